@@ -1,0 +1,111 @@
+#ifndef talus_base_time_control_h
+#define talus_base_time_control_h
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace Talus
+{
+  /**
+   * Newmark-beta time integration of the grid (founding paper eq. 9-10):
+   * @f[ a_{n+1} = \frac{\Delta u - \Delta t\, v_n
+   *     - \Delta t^2 (\tfrac12 - \beta) a_n}{\beta \Delta t^2},\qquad
+   *     v_{n+1} = v_n + \Delta t\,[(1-\gamma) a_n + \gamma a_{n+1}]. @f]
+   * The default beta = 1/4, gamma = 1/2 (average acceleration) is
+   * unconditionally stable and conserves energy for linear problems.
+   */
+  class NewmarkBeta
+  {
+  public:
+    NewmarkBeta(const double beta = 0.25, const double gamma = 0.5);
+
+    static void
+    declare_parameters(dealii::ParameterHandler &prm);
+
+    /** Parse from the current subsection ("Time"); rejects beta <= 0 and
+     * gamma < 1/2 or combinations that are not unconditionally stable. */
+    void
+    parse_parameters(dealii::ParameterHandler &prm);
+
+    /** Acceleration at t_{n+1} from the increment. */
+    double
+    acceleration(const double du,
+                 const double v_n,
+                 const double a_n,
+                 const double dt) const
+    {
+      return (du - dt * v_n - dt * dt * (0.5 - beta) * a_n) / (beta * dt * dt);
+    }
+
+    /** Velocity at t_{n+1}. */
+    double
+    velocity(const double v_n,
+             const double a_n,
+             const double a_new,
+             const double dt) const
+    {
+      return v_n + dt * ((1. - gamma) * a_n + gamma * a_new);
+    }
+
+    /** d a_{n+1} / d(du) = 1/(beta dt^2): factor of the mass in the tangent. */
+    double
+    mass_factor(const double dt) const
+    {
+      return 1. / (beta * dt * dt);
+    }
+
+    double beta;
+    double gamma;
+  };
+
+
+  /**
+   * Time stepping: end time, initial (or fixed) step, and the rejection of
+   * failed steps. A step whose Newton iteration fails is retried with half
+   * the step, at most 'maximum step halvings' times, each retry reported;
+   * after that the run stops with an error. A fixed step returns to its
+   * value after the halved step succeeded; with 'adaptive time step' the
+   * step grows back by a factor 2 (never above the initial step) after
+   * 'steps before growth' successful steps.
+   */
+  class TimeControl
+  {
+  public:
+    static void
+    declare_parameters(dealii::ParameterHandler &prm);
+
+    /** Parse subsection "Time" (including the Newmark parameters). */
+    void
+    parse_parameters(dealii::ParameterHandler &prm);
+
+    /** Step to attempt next: never beyond the end time. */
+    double
+    next_step() const;
+
+    /** The attempted step failed: halve it. Returns false if the number
+     * of halvings is exhausted. */
+    bool
+    reject();
+
+    /** The attempted step of size @p step_taken was accepted: advance
+     * time. A fixed step returns to 'time step' after a halved step. */
+    void
+    accept(const double step_taken);
+
+    bool
+    finished() const;
+
+    double       time                = 0.;
+    double       end_time            = 1.;
+    double       initial_dt          = 0.1;
+    double       dt                  = 0.1;
+    unsigned int step                = 0;
+    unsigned int halvings            = 0;
+    unsigned int max_halvings        = 5;
+    bool         adaptive            = false;
+    unsigned int steps_before_growth = 10;
+    unsigned int successes_since_cut = 0;
+    NewmarkBeta  newmark;
+  };
+} // namespace Talus
+
+#endif

@@ -1,0 +1,44 @@
+#ifndef talus_io_time_series_h
+#define talus_io_time_series_h
+
+#include <talus/mpm/mpm_solver.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <fstream>
+#include <string>
+
+namespace Talus
+{
+  namespace IO
+  {
+    /**
+     * CSV time series written every step by rank 0:
+     * step, time, dt, Newton and linear iterations, total mass, momentum
+     * (x, y, z; z = 0 in 2D), kinetic, strain and gravitational energy,
+     * their sum, and the mass lost through the grid boundary in the step.
+     * contrib/plot_time_series.py plots it.
+     */
+    template <int dim>
+    class TimeSeries
+    {
+    public:
+      void
+      open(const std::string &filename, const MPI_Comm communicator);
+
+      void
+      write(const unsigned int           step,
+            const double                 time,
+            const double                 dt,
+            const MPM::NewtonResult     &newton,
+            const MPM::Diagnostics<dim> &diagnostics,
+            const double                 lost_mass);
+
+    private:
+      std::ofstream file;
+      bool          is_root = false;
+    };
+  } // namespace IO
+} // namespace Talus
+
+#endif

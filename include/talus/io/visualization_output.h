@@ -1,0 +1,74 @@
+#ifndef talus_io_visualization_output_h
+#define talus_io_visualization_output_h
+
+#include <talus/mpm/background_grid.h>
+#include <talus/mpm/material_points.h>
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace Talus
+{
+  namespace IO
+  {
+    /**
+     * Writes the material points (all their properties) and the background
+     * grid (with the number of points per cell) for ParaView: VTU pieces
+     * per rank, a PVTU record per output and a PVD file indexing them by
+     * time; optionally HDF5 + XDMF instead.
+     *
+     * Files: <directory>/particles.pvd, particles-NNNNN.pvtu,
+     * grid.pvd, grid-NNNNN.pvtu (or particles.xdmf / grid.xdmf with .h5).
+     */
+    template <int dim>
+    class VisualizationOutput
+    {
+    public:
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Parse the output entries of subsection "Output". */
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+
+      /** Create the output directory (rank 0) on all ranks' behalf. */
+      void
+      initialize(const MPI_Comm communicator);
+
+      /** Is an output due at @p time (the last output was before)? */
+      bool
+      due(const double time) const;
+
+      void
+      write(const double                    time,
+            const MPM::BackgroundGrid<dim> &grid,
+            const MPM::MaterialPoints<dim> &points);
+
+      const std::string &
+      directory() const
+      {
+        return output_directory;
+      }
+
+      double output_interval = 0.;
+
+    private:
+      std::string                                 output_directory;
+      std::string                                 format;
+      bool                                        write_grid       = true;
+      bool                                        enabled          = true;
+      unsigned int                                counter          = 0;
+      double                                      last_output_time = -1e300;
+      std::vector<std::pair<double, std::string>> particle_records;
+      std::vector<std::pair<double, std::string>> grid_records;
+      std::vector<dealii::XDMFEntry>              particle_xdmf;
+      std::vector<dealii::XDMFEntry>              grid_xdmf;
+    };
+  } // namespace IO
+} // namespace Talus
+
+#endif

@@ -1,0 +1,114 @@
+#ifndef talus_materials_constitutive_model_h
+#define talus_materials_constitutive_model_h
+
+#include <deal.II/base/array_view.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace Talus
+{
+  /**
+   * Constitutive models evaluated at material points.
+   */
+  namespace Materials
+  {
+    /**
+     * Interface of every constitutive model at a material point.
+     *
+     * Models are written in three dimensions. Plane-strain problems
+     * (dim = 2) pass a deformation gradient with F(2,2) = 1 and zero
+     * out-of-plane shear; the solver uses the in-plane block of the
+     * returned stress and tangent.
+     *
+     * The solver works with the total deformation gradient
+     * @f$\mathbf F_{n+1}@f$ of the step being solved, the first
+     * Piola-Kirchhoff stress @f$\mathbf P = \partial\psi/\partial\mathbf F@f$
+     * and its derivative @f$\mathbb A = \partial\mathbf P/\partial\mathbf
+     * F@f$ (the consistent tangent, which already contains the geometric
+     * stiffness). The internal force of a material point with initial
+     * volume @f$V_0@f$ on grid node I is
+     * @f$f_I = V_0\,\mathbf P\,\nabla_{X_0}N_I@f$.
+     *
+     * History variables are stored on the material point; compute_stress()
+     * reads those of the last accepted step and writes trial values
+     * without side effects, so that a Newton iteration, a coupling
+     * iteration or a rejected step can evaluate it any number of times.
+     */
+    class ConstitutiveModel
+    {
+    public:
+      virtual ~ConstitutiveModel() = default;
+
+      /** Name of the model as written in the parameter file. */
+      virtual std::string
+      name() const = 0;
+
+      /** Number of history variables per material point (may be 0). */
+      virtual unsigned int
+      n_history_variables() const;
+
+      /** Write the history of a stress-free, undeformed material point. */
+      virtual void
+      initialize_history(const dealii::ArrayView<double> &history) const;
+
+      /**
+       * Stress update.
+       *
+       * @param F_old  deformation gradient of the last accepted step
+       * @param F_new  trial deformation gradient
+       * @param history_old  history of the last accepted step (read only)
+       * @param history_new  trial history (written)
+       * @param P  first Piola-Kirchhoff stress [Pa]
+       * @param A  if not nullptr: consistent tangent dP/dF [Pa]
+       */
+      virtual void
+      compute_stress(const dealii::Tensor<2, 3>            &F_old,
+                     const dealii::Tensor<2, 3>            &F_new,
+                     const dealii::ArrayView<const double> &history_old,
+                     const dealii::ArrayView<double>       &history_new,
+                     dealii::Tensor<2, 3>                  &P,
+                     dealii::Tensor<4, 3>                  *A) const = 0;
+
+      /**
+       * Stored (elastic) energy per unit reference volume [J/m^3] at the
+       * accepted state (F, history).
+       */
+      virtual double
+      energy_density(const dealii::Tensor<2, 3>            &F,
+                     const dealii::ArrayView<const double> &history) const = 0;
+
+      /**
+       * P-wave (constrained) modulus of the undeformed material [Pa]:
+       * used to scale penalties and to estimate wave speeds.
+       */
+      virtual double
+      p_wave_modulus() const = 0;
+    };
+
+    /**
+     * Declare the parameters of subsection "Material" (model name, density,
+     * elastic constants and the subsections of every registered model).
+     */
+    void
+    declare_parameters(dealii::ParameterHandler &prm);
+
+    /**
+     * Create the model named in subsection "Material" of @p prm, with its
+     * parameters checked. Throws Talus::ExcInvalidInput (see
+     * talus/base/input.h) for invalid values.
+     */
+    std::unique_ptr<ConstitutiveModel>
+    create_model(dealii::ParameterHandler &prm);
+
+    /** Names of all available models, separated by '|'. */
+    std::string
+    model_names();
+  } // namespace Materials
+} // namespace Talus
+
+#endif

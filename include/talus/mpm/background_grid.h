@@ -1,0 +1,94 @@
+#ifndef talus_mpm_background_grid_h
+#define talus_mpm_background_grid_h
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q1.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <set>
+#include <string>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    /**
+     * The fixed background grid of the Material Point Method: a
+     * parallel::distributed::Triangulation (a subdivided box or a Gmsh
+     * mesh), the vector-valued FE_Q(1)^dim space of the grid displacement
+     * increment and the conforming boundary conditions on its faces.
+     *
+     * The grid never moves: each step solves for the displacement
+     * increment of its nodes and is reset afterwards (founding paper §3).
+     * Boundary ids of a box: 0/1 at x = min/max, 2/3 at y = min/max,
+     * 4/5 at z = min/max (GridGenerator::subdivided_hyper_rectangle with
+     * colorize = true); a Gmsh mesh keeps its physical tags.
+     */
+    template <int dim>
+    class BackgroundGrid
+    {
+    public:
+      explicit BackgroundGrid(const MPI_Comm communicator);
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Parse subsection "Background grid" and create the mesh. */
+      void
+      parse_parameters_and_create(dealii::ParameterHandler &prm);
+
+      /** Distribute the degrees of freedom (after creation/refinement). */
+      void
+      setup_dofs();
+
+      MPI_Comm                                          mpi_communicator;
+      dealii::parallel::distributed::Triangulation<dim> triangulation;
+      dealii::FESystem<dim>                             fe;
+      dealii::DoFHandler<dim>                           dof_handler;
+      dealii::MappingQ1<dim>                            mapping;
+
+      dealii::IndexSet locally_owned_dofs;
+      dealii::IndexSet locally_relevant_dofs;
+
+      /** True for an axis-aligned box grid: shape gradients are computed
+       * directly from the cell extent. */
+      bool is_cartesian;
+
+      /** Cell extent per direction on a box grid [m]. */
+      dealii::Tensor<1, dim> cell_extent;
+
+      /** Smallest cell diameter [m]. */
+      double minimal_cell_diameter;
+
+      /** Bounding box of the whole grid. */
+      dealii::Point<dim> lower_corner, upper_corner;
+
+      /** Boundary ids where all displacement components are zero. */
+      std::set<dealii::types::boundary_id> fixed_boundaries;
+
+      /** Boundary ids where the normal displacement is zero (the boundary
+       * must be axis aligned). */
+      std::set<dealii::types::boundary_id> slip_boundaries;
+
+    private:
+      std::string               type;
+      std::string               mesh_file;
+      std::vector<unsigned int> subdivisions;
+    };
+
+    /** Parse "a, b[, c]" into a point with dim coordinates, or reject. */
+    template <int dim>
+    dealii::Point<dim>
+    parse_point(const dealii::ParameterHandler &prm,
+                const std::string              &subsection,
+                const std::string              &entry);
+  } // namespace MPM
+} // namespace Talus
+
+#endif

@@ -1,0 +1,179 @@
+#ifndef talus_mpm_material_points_h
+#define talus_mpm_material_points_h
+
+#include <talus/mpm/background_grid.h>
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/parsed_function.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/numerics/data_component_interpretation.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    /**
+     * Layout of the properties every material point carries in the
+     * Particles::ParticleHandler. Fixed block first, then the history
+     * variables of the constitutive model.
+     *
+     * | property             | size    | unit   |
+     * |----------------------|---------|--------|
+     * | mass                 | 1       | kg (per unit thickness in 2D) |
+     * | initial volume V0    | 1       | m^dim  |
+     * | velocity             | dim     | m/s    |
+     * | acceleration         | dim     | m/s^2  |
+     * | deformation gradient | dim*dim | -      |
+     * | Cauchy stress        | 6 (xx yy zz xy yz xz) | Pa |
+     * | initial position X   | dim     | m      |
+     * | history              | n       | model dependent |
+     *
+     * In 2D (plane strain) the out-of-plane stress zz is kept because it
+     * enters plasticity; the in-plane deformation gradient has F_zz = 1.
+     */
+    template <int dim>
+    struct MaterialPointProperties
+    {
+      static constexpr unsigned int mass             = 0;
+      static constexpr unsigned int initial_volume   = 1;
+      static constexpr unsigned int velocity         = 2;
+      static constexpr unsigned int acceleration     = velocity + dim;
+      static constexpr unsigned int deformation      = acceleration + dim;
+      static constexpr unsigned int stress           = deformation + dim * dim;
+      static constexpr unsigned int initial_position = stress + 6;
+      static constexpr unsigned int history          = initial_position + dim;
+
+      /** Number of properties for a model with @p n_history variables. */
+      static constexpr unsigned int
+      n_properties(const unsigned int n_history)
+      {
+        return history + n_history;
+      }
+
+      /** Names for output, one per property (history as history_i). */
+      static std::vector<std::string>
+      names(const unsigned int n_history);
+
+      /** Output interpretation (vectors for velocity, ...). */
+      static std::vector<
+        dealii::DataComponentInterpretation::DataComponentInterpretation>
+      interpretation(const unsigned int n_history);
+    };
+
+
+    /**
+     * The material points of the soil: a Particles::ParticleHandler on the
+     * background grid whose particles carry mass, volume, velocity,
+     * acceleration, deformation gradient, stress and the history of the
+     * constitutive model (MaterialPointProperties).
+     *
+     * Bodies are generated from geometry, with n^dim points per background
+     * cell placed at the centres of an n^dim subdivision of the cell (never
+     * on vertices or faces):
+     *  - `box` (2D and 3D): the points of the background cells that lie
+     *    inside the box;
+     *  - `polygon` (2D): the points inside a closed polygon;
+     *  - `gmsh` (2D and 3D): the cells of a Gmsh mesh of the body, each
+     *    with n^dim points at the centres of its subcells (volume = JxW).
+     *
+     * Points that leave the grid are removed: the lost mass is recorded by
+     * the `particle_lost` signal and reported (or turned into an error).
+     */
+    template <int dim>
+    class MaterialPoints
+    {
+    public:
+      using Properties = MaterialPointProperties<dim>;
+
+      explicit MaterialPoints(const BackgroundGrid<dim> &grid);
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Parse subsection "Body". */
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+
+      /**
+       * Generate the body: positions, masses (density * volume),
+       * velocities from the initial-velocity function, F = I, zero stress,
+       * history from @p initialize_history. Throws ExcInvalidInput for an
+       * empty body or a body outside the grid.
+       */
+      void
+      generate(const double       density,
+               const unsigned int n_history,
+               const std::function<void(const dealii::ArrayView<double> &)>
+                 &initialize_history);
+
+      dealii::Particles::ParticleHandler<dim> &
+      particle_handler();
+
+      const dealii::Particles::ParticleHandler<dim> &
+      particle_handler() const;
+
+      /** Total number of material points (all ranks). */
+      dealii::types::particle_index
+      n_global_points() const;
+
+      /** Mass lost through the grid boundary since the last call (global). */
+      double
+      take_lost_mass();
+
+      /** Number of points lost since the last call (global). */
+      unsigned int
+      take_lost_count();
+
+      /** Keep a copy of all points (state of the last accepted step). */
+      void
+      save_state();
+
+      /** Restore the copy made by save_state(). */
+      void
+      restore_state();
+
+      /** Number of history variables per point. */
+      unsigned int
+      n_history() const;
+
+    private:
+      void
+      generate_from_background_cells(
+        const std::function<bool(const dealii::Point<dim> &)> &inside,
+        std::vector<dealii::Point<dim>>                       &points,
+        std::vector<double>                                   &volumes) const;
+
+      void
+      generate_from_gmsh(std::vector<dealii::Point<dim>> &points,
+                         std::vector<double>             &volumes) const;
+
+      const BackgroundGrid<dim> &grid;
+
+      dealii::Particles::ParticleHandler<dim> handler;
+      dealii::Particles::ParticleHandler<dim> backup;
+
+      std::string                     geometry;
+      dealii::Point<dim>              box_lower;
+      dealii::Point<dim>              box_upper;
+      std::vector<dealii::Point<dim>> polygon;
+      std::string                     mesh_file;
+      unsigned int                    points_per_direction;
+      std::unique_ptr<dealii::Functions::ParsedFunction<dim>> initial_velocity;
+      unsigned int                                            history_size;
+
+      double       lost_mass;
+      unsigned int lost_count;
+    };
+  } // namespace MPM
+} // namespace Talus
+
+#endif

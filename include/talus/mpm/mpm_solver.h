@@ -1,0 +1,221 @@
+#ifndef talus_mpm_mpm_solver_h
+#define talus_mpm_mpm_solver_h
+
+#include <talus/base/time_control.h>
+#include <talus/materials/constitutive_model.h>
+#include <talus/mpm/background_grid.h>
+#include <talus/mpm/material_points.h>
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/parsed_function.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    /** Outcome of one Newton solve of a time step. */
+    struct NewtonResult
+    {
+      bool         converged         = false;
+      unsigned int iterations        = 0;
+      unsigned int linear_iterations = 0;
+      double       residual          = 0.; ///< last relative residual
+      std::string  failure;                ///< why it did not converge
+    };
+
+    /** Global integrals over the material points. */
+    template <int dim>
+    struct Diagnostics
+    {
+      double                 mass = 0.;
+      dealii::Tensor<1, dim> momentum;
+      double                 kinetic_energy       = 0.;
+      double                 strain_energy        = 0.;
+      double                 gravitational_energy = 0.;
+    };
+
+    /**
+     * Implicit Material Point Method (founding paper §3): an updated
+     * Lagrangian finite element step on the fixed background grid with the
+     * material points as integration points.
+     *
+     * Each time step is split as
+     *  1. prepare_step(): initialization phase. Mass, momentum and
+     *     acceleration are projected from the points to the grid
+     *     (m_I = sum_p N_I m_p, v_I = sum_p N_I m_p v_p / m_I, likewise
+     *     a_I), the external forces are assembled and the degrees of
+     *     freedom of nodes without mass are constrained to zero, so only
+     *     cells holding material points carry active unknowns.
+     *  2. solve_step(): Lagrangian phase. Newton-Raphson on the grid
+     *     displacement increment du for
+     *     R(du) = f_ext - f_int(du) - M a_{n+1}(du) = 0 with Newmark-beta,
+     *     f_int,I = sum_p V0_p P(F_p) grad_X0 N_I and the consistent
+     *     tangent K = sum_p V0_p G^T A G + M/(beta dt^2), A = dP/dF (it
+     *     contains the geometric stiffness). The particles are not
+     *     touched: the solve can be repeated with other data (coupling
+     *     iterations, rejected steps).
+     *  3. commit_step(): convective phase. Positions, velocities (FLIP
+     *     increment of the grid velocity), accelerations, F, stress and
+     *     history of the points are updated, the points are re-sorted into
+     *     cells, and the grid is reset (nothing of it is kept).
+     */
+    template <int dim>
+    class MPMSolver
+    {
+    public:
+      MPMSolver(BackgroundGrid<dim>                &grid,
+                MaterialPoints<dim>                &points,
+                const Materials::ConstitutiveModel &model,
+                const NewmarkBeta                  &newmark,
+                dealii::TimerOutput                &timer);
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Parse subsection "Solver". */
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+
+      /** Sparsity pattern, matrix and boundary dofs of the grid. */
+      void
+      setup();
+
+      /**
+       * Initial accelerations of the points: lumped M a = f_ext - f_int at
+       * the initial state, so that a body released under gravity starts
+       * with a = g.
+       */
+      void
+      initialize_acceleration(const double time);
+
+      /** Initialization phase of the step from t to t + dt. */
+      void
+      prepare_step(const double new_time, const double dt);
+
+      /** Lagrangian phase: Newton iteration; no side effect on the points. */
+      NewtonResult
+      solve_step();
+
+      /** Convective phase: update and move the points, reset the grid. */
+      void
+      commit_step();
+
+      /** Integrals over all points (all ranks). */
+      Diagnostics<dim>
+      compute_diagnostics() const;
+
+      /** Gravity vector [m/s^2]. */
+      const dealii::Tensor<1, dim> &
+      gravity() const
+      {
+        return gravity_vector;
+      }
+
+      /** Number of active (not constrained) degrees of freedom. */
+      dealii::types::global_dof_index
+      n_active_dofs() const
+      {
+        return n_active;
+      }
+
+      /** Throw an error instead of a warning when points leave the grid. */
+      bool abort_on_lost_points = false;
+
+    private:
+      /** Material points of one cell with cached shape data. */
+      struct CellCache
+      {
+        typename dealii::DoFHandler<dim>::active_cell_iterator cell;
+        std::vector<dealii::types::global_dof_index>           dofs;
+        unsigned int                                           first;
+        unsigned int                                           n;
+      };
+
+      void
+      cache_particles();
+
+      void
+      project_to_grid();
+
+      void
+      make_constraints();
+
+      /**
+       * Assemble the residual (and the tangent if @p with_matrix) at the
+       * increment @p du (ghosted). Returns false if a constitutive update
+       * failed on any rank (message in @p failure).
+       */
+      bool
+      assemble(const dealii::TrilinosWrappers::MPI::Vector &du,
+               const bool                                   with_matrix,
+               const bool                                   with_inertia,
+               std::string                                 &failure);
+
+      unsigned int
+      solve_linear(dealii::TrilinosWrappers::MPI::Vector &increment);
+
+      dealii::Tensor<1, dim>
+      external_acceleration(const dealii::Point<dim> &X, const double t) const;
+
+      BackgroundGrid<dim>                &grid;
+      MaterialPoints<dim>                &points;
+      const Materials::ConstitutiveModel &model;
+      const NewmarkBeta                  &newmark;
+      dealii::TimerOutput                &timer;
+
+      // Parameters.
+      bool                                                    quasi_static;
+      bool                                                    consistent_mass;
+      dealii::Tensor<1, dim>                                  gravity_vector;
+      std::unique_ptr<dealii::Functions::ParsedFunction<dim>> body_force;
+      double                                                  load_ramp_time;
+      unsigned int max_newton_iterations;
+      double       residual_tolerance;
+      double       absolute_residual_tolerance;
+      double       increment_tolerance;
+      std::string  linear_solver_type;
+      double       linear_tolerance;
+      unsigned int max_linear_iterations;
+
+      // Step data.
+      double time;
+      double dt;
+
+      std::vector<CellCache>                                         cells;
+      std::vector<typename dealii::Particles::ParticleIterator<dim>> particles;
+      std::vector<double>                 shape_values;
+      std::vector<dealii::Tensor<1, dim>> shape_gradients;
+
+      dealii::AffineConstraints<double>      constraints;
+      dealii::IndexSet                       fixed_dofs;
+      std::vector<dealii::IndexSet>          slip_dofs;
+      dealii::TrilinosWrappers::SparseMatrix matrix;
+      std::vector<std::vector<bool>>         constant_modes;
+
+      dealii::TrilinosWrappers::MPI::Vector nodal_mass;       // ghosted
+      dealii::TrilinosWrappers::MPI::Vector velocity_n;       // ghosted
+      dealii::TrilinosWrappers::MPI::Vector acceleration_n;   // ghosted
+      dealii::TrilinosWrappers::MPI::Vector external_force;   // owned
+      dealii::TrilinosWrappers::MPI::Vector residual;         // owned
+      dealii::TrilinosWrappers::MPI::Vector increment;        // owned
+      dealii::TrilinosWrappers::MPI::Vector displacement;     // ghosted du
+      dealii::TrilinosWrappers::MPI::Vector acceleration_new; // ghosted
+
+      dealii::types::global_dof_index n_active;
+      bool                            prepared;
+      bool                            solved;
+    };
+  } // namespace MPM
+} // namespace Talus
+
+#endif

@@ -1,0 +1,575 @@
+#include <talus/app/simulation.h>
+#include <talus/base/input.h>
+#include <talus/base/time_control.h>
+#include <talus/io/time_series.h>
+#include <talus/io/visualization_output.h>
+#include <talus/materials/constitutive_model.h>
+#include <talus/mpm/background_grid.h>
+#include <talus/mpm/material_points.h>
+#include <talus/mpm/mpm_solver.h>
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/convergence_table.h>
+#include <deal.II/base/parsed_function.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace Talus
+{
+  namespace
+  {
+    /** Entries of subsection "Verification" and "Convergence study". */
+    template <int dim>
+    void
+    declare_verification_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii;
+      prm.enter_subsection("Verification");
+      {
+        prm.declare_entry("compare with exact solution",
+                          "false",
+                          Patterns::Bool(),
+                          "Measure the material points against the exact "
+                          "displacement (and stress) below at the report "
+                          "times and print the errors.");
+        prm.declare_entry("report times",
+                          "",
+                          Patterns::List(Patterns::Double(0)),
+                          "Times at which the errors are measured [s] (the "
+                          "end time is always included).");
+        prm.enter_subsection("Exact displacement");
+        Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+        prm.leave_subsection();
+        prm.declare_entry("compare stress",
+                          "false",
+                          Patterns::Bool(),
+                          "Also measure the Cauchy stress against 'Exact "
+                          "stress'.");
+        prm.enter_subsection("Exact stress");
+        Functions::ParsedFunction<dim>::declare_parameters(prm,
+                                                           dim == 2 ? 3 : 6);
+        prm.leave_subsection();
+      }
+      prm.leave_subsection();
+      prm.enter_subsection("Convergence study");
+      {
+        prm.declare_entry("number of levels",
+                          "1",
+                          Patterns::Integer(1, 8),
+                          "Run the problem on this many grids, each refined "
+                          "once more (cells halved in every direction), and "
+                          "print a convergence table of the errors with "
+                          "their measured rates [-], 1 to 8. Needs 'compare "
+                          "with exact solution'.");
+        prm.declare_entry("first level",
+                          "0",
+                          Patterns::Integer(0, 8),
+                          "Refinement level of the first run [-].");
+        prm.declare_entry("refine time step",
+                          "true",
+                          Patterns::Bool(),
+                          "Halve the time step with every refinement.");
+      }
+      prm.leave_subsection();
+    }
+
+
+    std::string
+    format_seconds(const double s)
+    {
+      std::ostringstream o;
+      o << std::fixed << std::setprecision(1);
+      if (s < 120)
+        o << s << " s";
+      else if (s < 7200)
+        o << s / 60. << " min";
+      else
+        o << s / 3600. << " h";
+      return o.str();
+    }
+  } // namespace
+
+
+  template <int dim>
+  Simulation<dim>::Simulation(const MPI_Comm communicator)
+    : communicator(communicator)
+  {}
+
+
+  template <int dim>
+  void
+  Simulation<dim>::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    prm.declare_entry("dimension",
+                      "2",
+                      dealii::Patterns::Integer(2, 3),
+                      "Space dimension of the problem [-]: 2 (plane strain) "
+                      "or 3.");
+    MPM::BackgroundGrid<dim>::declare_parameters(prm);
+    MPM::MaterialPoints<dim>::declare_parameters(prm);
+    Materials::declare_parameters(prm);
+    MPM::MPMSolver<dim>::declare_parameters(prm);
+    TimeControl::declare_parameters(prm);
+    IO::VisualizationOutput<dim>::declare_parameters(prm);
+    prm.enter_subsection("Output");
+    prm.declare_entry("test mode",
+                      "false",
+                      dealii::Patterns::Bool(),
+                      "Deterministic terminal output for the test suite: no "
+                      "wall times, a rounded summary at the end, no timer "
+                      "table.");
+    prm.leave_subsection();
+    declare_verification_parameters<dim>(prm);
+  }
+
+
+  template <int dim>
+  std::vector<VerificationErrors>
+  Simulation<dim>::run(dealii::ParameterHandler &prm,
+                       const unsigned int        refinement)
+  {
+    using Properties = MPM::MaterialPointProperties<dim>;
+    const bool root =
+      dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+
+    prm.enter_subsection("Output");
+    const bool test_mode = prm.get_bool("test mode");
+    prm.leave_subsection();
+    dealii::ConditionalOStream pcout(std::cout, root);
+    dealii::TimerOutput        timer(communicator,
+                              pcout,
+                              test_mode ? dealii::TimerOutput::never :
+                                                 dealii::TimerOutput::summary,
+                              dealii::TimerOutput::wall_times);
+
+    // Build everything from the file.
+    MPM::BackgroundGrid<dim> grid(communicator);
+    grid.parse_parameters_and_create(prm);
+    if (refinement > 0)
+      {
+        grid.triangulation.refine_global(refinement);
+        grid.cell_extent /= std::pow(2., refinement);
+        grid.minimal_cell_diameter /= std::pow(2., refinement);
+        grid.setup_dofs();
+      }
+
+    const auto model = Materials::create_model(prm);
+    prm.enter_subsection("Material");
+    const double density = get_positive(prm, "Material", "density");
+    prm.leave_subsection();
+
+    TimeControl time_control;
+    time_control.parse_parameters(prm);
+    prm.enter_subsection("Convergence study");
+    if (prm.get_bool("refine time step") && refinement > 0)
+      {
+        time_control.initial_dt /= std::pow(2., refinement);
+        time_control.dt = time_control.initial_dt;
+      }
+    prm.leave_subsection();
+
+    MPM::MaterialPoints<dim> points(grid);
+    points.parse_parameters(prm);
+
+    MPM::MPMSolver<dim> solver(
+      grid, points, *model, time_control.newmark, timer);
+    solver.parse_parameters(prm);
+
+    IO::VisualizationOutput<dim> output;
+    output.parse_parameters(prm);
+
+    // Verification.
+    prm.enter_subsection("Verification");
+    const bool          compare = prm.get_bool("compare with exact solution");
+    std::vector<double> report_times = dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get("report times")));
+    dealii::Functions::ParsedFunction<dim> exact_displacement(dim);
+    prm.enter_subsection("Exact displacement");
+    exact_displacement.parse_parameters(prm);
+    prm.leave_subsection();
+    const bool compare_stress = prm.get_bool("compare stress");
+    dealii::Functions::ParsedFunction<dim> exact_stress(dim == 2 ? 3 : 6);
+    prm.enter_subsection("Exact stress");
+    exact_stress.parse_parameters(prm);
+    prm.leave_subsection();
+    prm.leave_subsection();
+    report_times.push_back(time_control.end_time);
+
+    // Generate the body and set up the solver.
+    points.generate(density,
+                    model->n_history_variables(),
+                    [&](const dealii::ArrayView<double> &h) {
+                      model->initialize_history(h);
+                    });
+    solver.setup();
+    output.initialize(communicator);
+
+    IO::TimeSeries<dim> series;
+    series.open(output.directory() + "/time_series.csv", communicator);
+
+    pcout << "Talus: " << dim << "D implicit MPM, "
+          << dealii::Utilities::MPI::n_mpi_processes(communicator)
+          << " MPI rank(s)\n"
+          << "  background grid: " << grid.triangulation.n_global_active_cells()
+          << " cells, " << grid.dof_handler.n_dofs() << " DoFs\n"
+          << "  material points: " << points.n_global_points() << '\n'
+          << "  material: " << model->name() << ", density " << density
+          << " kg/m^3\n";
+    if (!test_mode)
+      pcout << "  time: end " << time_control.end_time << " s, step "
+            << time_control.initial_dt << " s\n";
+
+    solver.initialize_acceleration(0.);
+    const auto        initial = solver.compute_diagnostics();
+    MPM::NewtonResult none;
+    series.write(0, 0., 0., none, initial, 0.);
+    output.write(0., grid, points);
+
+    // Errors against the exact solution at the current state.
+    std::vector<VerificationErrors> errors;
+    std::size_t                     next_report = 0;
+    std::sort(report_times.begin(), report_times.end());
+    const auto measure = [&](const double t) {
+      VerificationErrors e;
+      e.time = t;
+      exact_displacement.set_time(t);
+      exact_stress.set_time(t);
+      double sum_u = 0., sum_v = 0., max_ds = 0., max_s = 0.;
+      for (const auto &p : points.particle_handler())
+        {
+          const auto         props = p.get_properties();
+          dealii::Point<dim> X;
+          for (unsigned int d = 0; d < dim; ++d)
+            X[d] = props[Properties::initial_position + d];
+          const double V0 = props[Properties::initial_volume];
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double u = p.get_location()[d] - X[d];
+              sum_u += V0 * std::pow(u - exact_displacement.value(X, d), 2);
+            }
+          sum_v += V0;
+          if (compare_stress)
+            {
+              // 2D: xx yy xy; 3D: xx yy zz xy yz xz
+              const std::vector<unsigned int> map =
+                dim == 2 ? std::vector<unsigned int>{0, 1, 3} :
+                           std::vector<unsigned int>{0, 1, 2, 3, 4, 5};
+              for (unsigned int c = 0; c < map.size(); ++c)
+                {
+                  const double s_ex = exact_stress.value(X, c);
+                  max_ds =
+                    std::max(max_ds,
+                             std::abs(props[Properties::stress + map[c]] -
+                                      s_ex));
+                  max_s = std::max(max_s, std::abs(s_ex));
+                }
+            }
+        }
+      sum_u                = dealii::Utilities::MPI::sum(sum_u, communicator);
+      sum_v                = dealii::Utilities::MPI::sum(sum_v, communicator);
+      max_ds               = dealii::Utilities::MPI::max(max_ds, communicator);
+      max_s                = dealii::Utilities::MPI::max(max_s, communicator);
+      e.displacement_error = std::sqrt(sum_u / sum_v);
+      e.stress_error       = max_s > 0. ? max_ds / max_s : max_ds;
+      return e;
+    };
+
+    // Time loop.
+    const auto wall_start   = std::chrono::steady_clock::now();
+    const auto wall_seconds = [&]() {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                           wall_start)
+        .count();
+    };
+    double        total_lost_mass = 0.;
+    unsigned long total_newton    = 0;
+    unsigned int  total_rejected  = 0;
+    while (!time_control.finished())
+      {
+        const double      step  = time_control.next_step();
+        const double      t_new = time_control.time + step;
+        MPM::NewtonResult result;
+        while (true)
+          {
+            const double dt_try = time_control.next_step();
+            solver.prepare_step(time_control.time + dt_try, dt_try);
+            result = solver.solve_step();
+            if (result.converged)
+              break;
+            ++total_rejected;
+            pcout << "  step " << time_control.step + 1
+                  << " at t = " << time_control.time
+                  << " s rejected (dt = " << dt_try << " s): " << result.failure
+                  << '\n';
+            if (!time_control.reject())
+              {
+                std::ostringstream msg;
+                msg << "The step from t = " << time_control.time
+                    << " s could not be solved after "
+                    << time_control.max_halvings
+                    << " halvings of the time step (last dt = " << dt_try
+                    << " s): " << result.failure
+                    << ". Reduce 'time step' in subsection <Time>, raise "
+                       "'maximum step halvings' or 'maximum Newton "
+                       "iterations', or check the material parameters.";
+                throw ExcSimulationFailed(msg.str());
+              }
+            pcout << "    retrying with dt = " << time_control.next_step()
+                  << " s\n";
+          }
+        (void)t_new;
+        (void)step;
+        const double dt_taken = time_control.next_step();
+        solver.commit_step();
+        time_control.accept(dt_taken);
+        total_newton += result.iterations;
+
+        const unsigned int n_lost    = points.take_lost_count();
+        const double       lost_mass = points.take_lost_mass();
+        if (n_lost > 0)
+          {
+            total_lost_mass += lost_mass;
+            std::ostringstream msg;
+            msg << n_lost << " material point(s) with a mass of " << lost_mass
+                << " kg left the background grid at t = " << time_control.time
+                << " s and were removed (lost so far: " << total_lost_mass
+                << " kg)";
+            if (solver.abort_on_lost_points)
+              throw ExcSimulationFailed(
+                msg.str() + "; 'abort on lost material points' is set. "
+                            "Enlarge the background grid.");
+            pcout << "  Warning: " << msg.str() << '\n';
+          }
+
+        const auto diagnostics = solver.compute_diagnostics();
+        series.write(time_control.step,
+                     time_control.time,
+                     dt_taken,
+                     result,
+                     diagnostics,
+                     lost_mass);
+
+        if (output.due(time_control.time) || time_control.finished())
+          {
+            {
+              dealii::TimerOutput::Scope s(timer, "output");
+              output.write(time_control.time, grid, points);
+            }
+            if (!test_mode)
+              {
+                const double wall = wall_seconds();
+                const double left = wall / time_control.time *
+                                    (time_control.end_time - time_control.time);
+                pcout << "step " << std::setw(6) << time_control.step
+                      << "  t = " << std::scientific << std::setprecision(4)
+                      << time_control.time
+                      << " s  dt = " << std::setprecision(2) << dt_taken
+                      << " s  Newton " << std::setw(2) << result.iterations
+                      << "  |R| " << result.residual << std::defaultfloat
+                      << "  wall " << format_seconds(wall) << "  left ~"
+                      << format_seconds(left) << '\n';
+              }
+          }
+
+        while (compare && next_report < report_times.size() &&
+               time_control.time >= report_times[next_report] - 0.5 * dt_taken)
+          {
+            errors.push_back(measure(time_control.time));
+            ++next_report;
+          }
+      }
+
+    // Summary.
+    const auto final_state = solver.compute_diagnostics();
+    if (test_mode)
+      {
+        // Extreme displacements of the points.
+        dealii::Tensor<1, dim> u_min, u_max;
+        double                 v_max = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            u_min[d] = 1e300;
+            u_max[d] = -1e300;
+          }
+        for (const auto &p : points.particle_handler())
+          {
+            const auto props = p.get_properties();
+            double     v2    = 0.;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double u =
+                  p.get_location()[d] - props[Properties::initial_position + d];
+                u_min[d] = std::min(u_min[d], u);
+                u_max[d] = std::max(u_max[d], u);
+                v2 += std::pow(props[Properties::velocity + d], 2);
+              }
+            v_max = std::max(v_max, std::sqrt(v2));
+          }
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            u_min[d] = dealii::Utilities::MPI::min(u_min[d], communicator);
+            u_max[d] = dealii::Utilities::MPI::max(u_max[d], communicator);
+          }
+        v_max            = dealii::Utilities::MPI::max(v_max, communicator);
+        const auto round = [](const double x) {
+          std::ostringstream o;
+          const double       y = std::abs(x) < 1e-10 ? 0. : x;
+          o << std::setprecision(6) << y;
+          return o.str();
+        };
+        pcout << "Summary at t = " << round(time_control.time) << " s after "
+              << time_control.step << " steps\n"
+              << "  material points: " << points.n_global_points() << '\n'
+              << "  mass: " << round(final_state.mass) << " kg (initial "
+              << round(initial.mass) << ")\n"
+              << "  momentum:";
+        for (unsigned int d = 0; d < dim; ++d)
+          pcout << ' ' << round(final_state.momentum[d]);
+        pcout << "\n  kinetic energy: " << round(final_state.kinetic_energy)
+              << "\n  strain energy: " << round(final_state.strain_energy)
+              << "\n  displacement min:";
+        for (unsigned int d = 0; d < dim; ++d)
+          pcout << ' ' << round(u_min[d]);
+        pcout << "\n  displacement max:";
+        for (unsigned int d = 0; d < dim; ++d)
+          pcout << ' ' << round(u_max[d]);
+        pcout << "\n  max speed: " << round(v_max)
+              << "\n  lost mass: " << round(total_lost_mass) << " kg\n";
+      }
+    else
+      pcout << "Done: " << time_control.step << " steps (" << total_rejected
+            << " rejected), "
+            << static_cast<double>(total_newton) /
+                 std::max(1u, time_control.step)
+            << " Newton iterations per step, "
+            << "lost mass " << total_lost_mass << " kg, wall time "
+            << format_seconds(wall_seconds()) << "\n"
+            << "Output in " << output.directory() << "/\n";
+    if (compare)
+      for (const auto &e : errors)
+        {
+          pcout << "  error at t = " << std::setprecision(6) << e.time
+                << ": displacement " << std::setprecision(4) << std::scientific
+                << e.displacement_error;
+          if (compare_stress)
+            pcout << ", stress (relative, max) " << e.stress_error;
+          pcout << std::defaultfloat << '\n';
+        }
+    return errors;
+  }
+
+
+  namespace
+  {
+    template <int dim>
+    int
+    run_dimension(dealii::ParameterHandler &prm, const MPI_Comm communicator)
+    {
+      prm.enter_subsection("Convergence study");
+      const unsigned int n_levels    = prm.get_integer("number of levels");
+      const unsigned int first_level = prm.get_integer("first level");
+      prm.leave_subsection();
+      prm.enter_subsection("Verification");
+      const bool compare = prm.get_bool("compare with exact solution");
+      prm.leave_subsection();
+      if (n_levels > 1 && !compare)
+        InputFile::reject("Convergence study",
+                          "number of levels",
+                          std::to_string(n_levels),
+                          "a convergence study needs 'compare with exact "
+                          "solution = true' in subsection <Verification>");
+
+      dealii::ConvergenceTable table;
+      for (unsigned int level = first_level; level < first_level + n_levels;
+           ++level)
+        {
+          Simulation<dim> simulation(communicator);
+          const auto      errors = simulation.run(prm, level);
+          if (n_levels > 1)
+            {
+              table.add_value("level", level);
+              for (const auto &e : errors)
+                {
+                  std::ostringstream name;
+                  name << "u t=" << e.time;
+                  table.add_value(name.str(), e.displacement_error);
+                  table.set_scientific(name.str(), true);
+                  table.set_precision(name.str(), 3);
+                  table.evaluate_convergence_rates(
+                    name.str(), dealii::ConvergenceTable::reduction_rate_log2);
+                }
+            }
+        }
+      if (n_levels > 1 &&
+          dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+        {
+          std::cout << "Convergence table (rate: log2 of the error "
+                       "reduction per refinement):\n";
+          table.write_text(
+            std::cout,
+            dealii::TableHandler::table_with_separate_column_description);
+        }
+      return 0;
+    }
+  } // namespace
+
+
+  int
+  run_parameter_file(const std::string &filename, const MPI_Comm communicator)
+  {
+    InputFile::set_name(filename);
+    {
+      std::ifstream in(filename);
+      if (!in)
+        throw ExcInvalidInput("Cannot open the parameter file <" + filename +
+                              ">.");
+    }
+    // First pass: only the dimension.
+    unsigned int dimension;
+    {
+      dealii::ParameterHandler pre;
+      pre.declare_entry("dimension", "2", dealii::Patterns::Integer(2, 3));
+      pre.parse_input(filename, "", true);
+      dimension = pre.get_integer("dimension");
+    }
+    dealii::ParameterHandler prm;
+    if (dimension == 2)
+      {
+        Simulation<2>::declare_parameters(prm);
+        prm.parse_input(filename);
+        return run_dimension<2>(prm, communicator);
+      }
+    else
+      {
+        Simulation<3>::declare_parameters(prm);
+        prm.parse_input(filename);
+        return run_dimension<3>(prm, communicator);
+      }
+  }
+
+
+  void
+  print_parameters(std::ostream &out, const std::string &format)
+  {
+    dealii::ParameterHandler prm;
+    Simulation<2>::declare_parameters(prm);
+    if (format == "prm")
+      prm.print_parameters(out,
+                           dealii::ParameterHandler::PRM |
+                             dealii::ParameterHandler::KeepDeclarationOrder);
+    else
+      prm.print_parameters(out,
+                           dealii::ParameterHandler::Description |
+                             dealii::ParameterHandler::KeepDeclarationOrder);
+  }
+
+
+  template class Simulation<2>;
+  template class Simulation<3>;
+} // namespace Talus

@@ -1,0 +1,159 @@
+#include <talus/base/input.h>
+#include <talus/base/time_control.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace Talus
+{
+  NewmarkBeta::NewmarkBeta(const double beta, const double gamma)
+    : beta(beta)
+    , gamma(gamma)
+  {}
+
+
+  void
+  NewmarkBeta::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    prm.declare_entry("Newmark beta",
+                      "0.25",
+                      dealii::Patterns::Double(),
+                      "Newmark parameter beta [-]; 0 < beta <= 0.5 and "
+                      "beta >= gamma/2 (unconditional stability). 0.25: "
+                      "average acceleration.");
+    prm.declare_entry("Newmark gamma",
+                      "0.5",
+                      dealii::Patterns::Double(),
+                      "Newmark parameter gamma [-]; 0.5 <= gamma <= 1. "
+                      "0.5: no numerical damping; larger values damp.");
+  }
+
+
+  void
+  NewmarkBeta::parse_parameters(dealii::ParameterHandler &prm)
+  {
+    beta  = get_in_open_interval(prm, "Time", "Newmark beta", 0., 0.5 + 1e-14);
+    gamma = prm.get_double("Newmark gamma");
+    if (gamma < 0.5 || gamma > 1.)
+      InputFile::reject("Time",
+                        "Newmark gamma",
+                        prm.get("Newmark gamma"),
+                        "it must lie in [0.5, 1]");
+    if (2. * beta < gamma - 1e-14)
+      InputFile::reject("Time",
+                        "Newmark beta",
+                        prm.get("Newmark beta"),
+                        "beta >= gamma/2 is needed for unconditional "
+                        "stability (gamma = " +
+                          prm.get("Newmark gamma") + ")");
+  }
+
+
+  void
+  TimeControl::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    using dealii::Patterns::Bool;
+    using dealii::Patterns::Double;
+    using dealii::Patterns::Integer;
+    prm.enter_subsection("Time");
+    {
+      prm.declare_entry("end time",
+                        "1",
+                        Double(),
+                        "Simulated time at which the run ends [s]; > 0.");
+      prm.declare_entry("time step",
+                        "0.01",
+                        Double(),
+                        "Time step [s]; > 0. With an adaptive step this is "
+                        "the initial and largest step.");
+      prm.declare_entry("adaptive time step",
+                        "false",
+                        Bool(),
+                        "Let the step grow back (x2, up to 'time step') "
+                        "after 'steps before growth' accepted steps following "
+                        "a rejection.");
+      prm.declare_entry("maximum step halvings",
+                        "5",
+                        Integer(0, 30),
+                        "How often a step whose Newton iteration failed is "
+                        "retried with half the step before the run stops "
+                        "with an error [-], 0 to 30.");
+      prm.declare_entry("steps before growth",
+                        "10",
+                        Integer(1),
+                        "Accepted steps after a rejection before an adaptive "
+                        "step grows again [-], >= 1.");
+      NewmarkBeta::declare_parameters(prm);
+    }
+    prm.leave_subsection();
+  }
+
+
+  void
+  TimeControl::parse_parameters(dealii::ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time");
+    end_time            = get_positive(prm, "Time", "end time");
+    initial_dt          = get_positive(prm, "Time", "time step");
+    dt                  = initial_dt;
+    adaptive            = prm.get_bool("adaptive time step");
+    max_halvings        = prm.get_integer("maximum step halvings");
+    steps_before_growth = prm.get_integer("steps before growth");
+    newmark.parse_parameters(prm);
+    prm.leave_subsection();
+  }
+
+
+  double
+  TimeControl::next_step() const
+  {
+    const double remaining = end_time - time;
+    // Avoid a sliver of a last step: take it together with this one.
+    if (remaining <= dt * (1. + 1e-8))
+      return remaining;
+    if (remaining < 1.5 * dt)
+      return remaining / 2.;
+    return dt;
+  }
+
+
+  bool
+  TimeControl::reject()
+  {
+    if (halvings >= max_halvings)
+      return false;
+    ++halvings;
+    dt /= 2.;
+    successes_since_cut = 0;
+    return true;
+  }
+
+
+  void
+  TimeControl::accept(const double step_taken)
+  {
+    time += step_taken;
+    if (std::abs(end_time - time) < 1e-12 * end_time)
+      time = end_time;
+    ++step;
+    halvings = 0;
+    if (!adaptive)
+      dt = initial_dt;
+    else if (dt < initial_dt)
+      {
+        ++successes_since_cut;
+        if (adaptive && successes_since_cut >= steps_before_growth)
+          {
+            dt                  = std::min(2. * dt, initial_dt);
+            successes_since_cut = 0;
+          }
+      }
+  }
+
+
+  bool
+  TimeControl::finished() const
+  {
+    return time >= end_time - 1e-12 * end_time;
+  }
+} // namespace Talus

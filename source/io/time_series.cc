@@ -1,0 +1,56 @@
+#include <talus/base/input.h>
+#include <talus/io/time_series.h>
+
+#include <iomanip>
+
+namespace Talus
+{
+  namespace IO
+  {
+    template <int dim>
+    void
+    TimeSeries<dim>::open(const std::string &filename,
+                          const MPI_Comm     communicator)
+    {
+      is_root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+      if (!is_root)
+        return;
+      file.open(filename);
+      if (!file)
+        throw ExcInvalidInput("Cannot write the time series file <" + filename +
+                              ">: check 'output directory' in subsection "
+                              "<Output>.");
+      file << "step,time,dt,newton_iterations,linear_iterations,mass,"
+              "momentum_x,momentum_y,momentum_z,kinetic_energy,strain_energy,"
+              "gravitational_energy,total_energy,lost_mass\n";
+      file << std::setprecision(12);
+    }
+
+
+    template <int dim>
+    void
+    TimeSeries<dim>::write(const unsigned int           step,
+                           const double                 time,
+                           const double                 dt,
+                           const MPM::NewtonResult     &newton,
+                           const MPM::Diagnostics<dim> &d,
+                           const double                 lost_mass)
+    {
+      if (!is_root)
+        return;
+      file << step << ',' << time << ',' << dt << ',' << newton.iterations
+           << ',' << newton.linear_iterations << ',' << d.mass;
+      for (unsigned int i = 0; i < 3; ++i)
+        file << ',' << (i < dim ? d.momentum[i] : 0.);
+      file << ',' << d.kinetic_energy << ',' << d.strain_energy << ','
+           << d.gravitational_energy << ','
+           << d.kinetic_energy + d.strain_energy + d.gravitational_energy << ','
+           << lost_mass << '\n';
+      file.flush();
+    }
+
+
+    template class TimeSeries<2>;
+    template class TimeSeries<3>;
+  } // namespace IO
+} // namespace Talus

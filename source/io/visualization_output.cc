@@ -1,0 +1,188 @@
+#include <talus/base/input.h>
+#include <talus/io/visualization_output.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <deal.II/particles/data_out.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace Talus
+{
+  namespace IO
+  {
+    template <int dim>
+    void
+    VisualizationOutput<dim>::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii;
+      prm.enter_subsection("Output");
+      {
+        prm.declare_entry("output directory",
+                          "output",
+                          Patterns::DirectoryName(),
+                          "Directory for all output files (created if "
+                          "missing).");
+        prm.declare_entry("output interval",
+                          "0",
+                          Patterns::Double(0),
+                          "Simulated time between two visualization outputs "
+                          "and progress lines [s], >= 0; 0: every step.");
+        prm.declare_entry("format",
+                          "vtu",
+                          Patterns::Selection("vtu|hdf5|none"),
+                          "'vtu': VTU pieces + PVTU + PVD (ParaView); 'hdf5': "
+                          "one HDF5 file per output + an XDMF index; 'none': "
+                          "no visualization files (the CSV time series is "
+                          "always written).");
+        prm.declare_entry("write grid",
+                          "true",
+                          Patterns::Bool(),
+                          "Also write the background grid with the number of "
+                          "material points per cell.");
+      }
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    VisualizationOutput<dim>::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      output_directory = prm.get("output directory");
+      output_interval  = prm.get_double("output interval");
+      format           = prm.get("format");
+      write_grid       = prm.get_bool("write grid");
+      enabled          = format != "none";
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    VisualizationOutput<dim>::initialize(const MPI_Comm communicator)
+    {
+      int ok = 1;
+      if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+        {
+          std::error_code error;
+          std::filesystem::create_directories(output_directory, error);
+          ok = error ? 0 : 1;
+        }
+      ok = dealii::Utilities::MPI::min(ok, communicator);
+      if (!ok)
+        InputFile::reject("Output",
+                          "output directory",
+                          output_directory,
+                          "the directory cannot be created");
+    }
+
+
+    template <int dim>
+    bool
+    VisualizationOutput<dim>::due(const double time) const
+    {
+      return time >= last_output_time + output_interval * (1. - 1e-9);
+    }
+
+
+    template <int dim>
+    void
+    VisualizationOutput<dim>::write(const double                    time,
+                                    const MPM::BackgroundGrid<dim> &grid,
+                                    const MPM::MaterialPoints<dim> &points)
+    {
+      last_output_time = time;
+      if (!enabled)
+        return;
+      const MPI_Comm comm = grid.mpi_communicator;
+      using Properties    = MPM::MaterialPointProperties<dim>;
+      const auto &handler = points.particle_handler();
+
+      dealii::Particles::DataOut<dim> particle_out;
+      particle_out.build_patches(handler,
+                                 Properties::names(points.n_history()),
+                                 Properties::interpretation(
+                                   points.n_history()));
+
+      dealii::DataOut<dim>  grid_out;
+      dealii::Vector<float> n_points(grid.triangulation.n_active_cells());
+      dealii::Vector<float> subdomain(grid.triangulation.n_active_cells());
+      if (write_grid)
+        {
+          for (const auto &cell : grid.triangulation.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                n_points(cell->active_cell_index()) =
+                  handler.n_particles_in_cell(cell);
+                subdomain(cell->active_cell_index()) = cell->subdomain_id();
+              }
+          grid_out.attach_triangulation(grid.triangulation);
+          grid_out.add_data_vector(n_points, "material_points");
+          grid_out.add_data_vector(subdomain, "subdomain");
+          grid_out.build_patches();
+        }
+
+      const std::string dir = output_directory + "/";
+      if (format == "vtu")
+        {
+          const std::string pname = particle_out.write_vtu_with_pvtu_record(
+            dir, "particles", counter, comm, 5);
+          particle_records.emplace_back(time, pname);
+          if (write_grid)
+            {
+              const std::string gname = grid_out.write_vtu_with_pvtu_record(
+                dir, "grid", counter, comm, 5);
+              grid_records.emplace_back(time, gname);
+            }
+          if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+            {
+              std::ofstream pvd(dir + "particles.pvd");
+              dealii::DataOutBase::write_pvd_record(pvd, particle_records);
+              if (write_grid)
+                {
+                  std::ofstream gpvd(dir + "grid.pvd");
+                  dealii::DataOutBase::write_pvd_record(gpvd, grid_records);
+                }
+            }
+        }
+      else
+        {
+          const std::string number =
+            dealii::Utilities::int_to_string(counter, 5);
+          {
+            dealii::DataOutBase::DataOutFilter filter(
+              dealii::DataOutBase::DataOutFilterFlags(false, true));
+            particle_out.write_filtered_data(filter);
+            const std::string h5 = "particles-" + number + ".h5";
+            particle_out.write_hdf5_parallel(filter, dir + h5, comm);
+            particle_xdmf.push_back(
+              particle_out.create_xdmf_entry(filter, h5, time, comm));
+            particle_out.write_xdmf_file(particle_xdmf,
+                                         dir + "particles.xdmf",
+                                         comm);
+          }
+          if (write_grid)
+            {
+              dealii::DataOutBase::DataOutFilter filter(
+                dealii::DataOutBase::DataOutFilterFlags(true, true));
+              grid_out.write_filtered_data(filter);
+              const std::string h5 = "grid-" + number + ".h5";
+              grid_out.write_hdf5_parallel(filter, dir + h5, comm);
+              grid_xdmf.push_back(
+                grid_out.create_xdmf_entry(filter, h5, time, comm));
+              grid_out.write_xdmf_file(grid_xdmf, dir + "grid.xdmf", comm);
+            }
+        }
+      ++counter;
+    }
+
+
+    template class VisualizationOutput<2>;
+    template class VisualizationOutput<3>;
+  } // namespace IO
+} // namespace Talus

@@ -1,0 +1,82 @@
+// Talus: implicit Material Point Method and FEM for mass movements hitting
+// flexible protective barriers. The executable only reads the command line;
+// everything else is in the talus library.
+#include <talus/app/simulation.h>
+#include <talus/base/input.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include <iostream>
+#include <string>
+
+namespace
+{
+  const char *usage =
+    "Usage: talus <parameter file>          run the simulation in the file\n"
+    "       talus --print-parameters [prm]  list every parameter with its\n"
+    "                                       default, range, unit and meaning\n"
+    "                                       ('prm': as a parameter file)\n"
+    "       talus --help                    this text\n"
+    "Run in parallel with: mpirun -np N talus <parameter file>\n"
+    "Documentation: doc/ (parameters: doc/parameters.md).\n";
+}
+
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm                           comm = MPI_COMM_WORLD;
+  const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  dealii::deal_II_exceptions::disable_abort_on_exception();
+
+  if (argc < 2)
+    {
+      if (root)
+        std::cerr << usage;
+      return 2;
+    }
+  const std::string arg = argv[1];
+  if (arg == "--help" || arg == "-h")
+    {
+      if (root)
+        std::cout << usage;
+      return 0;
+    }
+  if (arg == "--print-parameters")
+    {
+      if (root)
+        Talus::print_parameters(std::cout, argc > 2 ? argv[2] : "");
+      return 0;
+    }
+
+  try
+    {
+      return Talus::run_parameter_file(arg, comm);
+    }
+  catch (const Talus::ExcInvalidInput &e)
+    {
+      if (root)
+        std::cerr << "\nError: " << e.what() << '\n';
+    }
+  catch (const Talus::ExcSimulationFailed &e)
+    {
+      if (root)
+        std::cerr << "\nError: the simulation failed: " << e.what() << '\n';
+    }
+  catch (const dealii::ExceptionBase &e)
+    {
+      if (root)
+        {
+          std::cerr << "\nError while reading <" << arg << ">:\n";
+          e.print_info(std::cerr);
+        }
+    }
+  catch (const std::exception &e)
+    {
+      if (root)
+        std::cerr << "\nError: " << e.what() << '\n';
+    }
+  return 1;
+}

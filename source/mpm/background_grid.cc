@@ -1,0 +1,254 @@
+#include <talus/base/input.h>
+#include <talus/mpm/background_grid.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    template <int dim>
+    dealii::Point<dim>
+    parse_point(const dealii::ParameterHandler &prm,
+                const std::string              &subsection,
+                const std::string              &entry)
+    {
+      std::vector<double> values;
+      try
+        {
+          values = dealii::Utilities::string_to_double(
+            dealii::Utilities::split_string_list(prm.get(entry), ','));
+        }
+      catch (...)
+        {
+          values.clear();
+        }
+      if (values.size() != dim)
+        InputFile::reject(
+          subsection,
+          entry,
+          prm.get(entry),
+          "it must be a list of " + std::to_string(dim) +
+            " numbers (one per coordinate) separated by commas");
+      dealii::Point<dim> p;
+      for (unsigned int d = 0; d < dim; ++d)
+        p[d] = values[d];
+      return p;
+    }
+
+
+    template <int dim>
+    BackgroundGrid<dim>::BackgroundGrid(const MPI_Comm communicator)
+      : mpi_communicator(communicator)
+      , triangulation(communicator)
+      , fe(dealii::FE_Q<dim>(1), dim)
+      , dof_handler(triangulation)
+      , is_cartesian(false)
+      , minimal_cell_diameter(0.)
+    {}
+
+
+    template <int dim>
+    void
+    BackgroundGrid<dim>::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using dealii::Patterns::Anything;
+      using dealii::Patterns::FileName;
+      using dealii::Patterns::Integer;
+      using dealii::Patterns::List;
+      using dealii::Patterns::Selection;
+      prm.enter_subsection("Background grid");
+      {
+        prm.declare_entry(
+          "type",
+          "box",
+          Selection("box|gmsh"),
+          "How the fixed background grid is made: 'box' is an "
+          "axis-aligned box subdivided into equal cells, 'gmsh' "
+          "reads a quadrilateral (2D) or hexahedral (3D) mesh "
+          "from 'mesh file'.");
+        prm.declare_entry("lower corner",
+                          dim == 2 ? "0, 0" : "0, 0, 0",
+                          Anything(),
+                          "Lower corner of the box [m], one coordinate per "
+                          "dimension separated by commas.");
+        prm.declare_entry(
+          "upper corner",
+          dim == 2 ? "1, 1" : "1, 1, 1",
+          Anything(),
+          "Upper corner of the box [m]; each coordinate must be "
+          "larger than the lower corner's.");
+        prm.declare_entry("subdivisions",
+                          dim == 2 ? "10, 10" : "10, 10, 10",
+                          List(Integer(1), dim, dim, ","),
+                          "Number of cells of the box per direction [-], "
+                          ">= 1 each.");
+        prm.declare_entry("mesh file",
+                          "",
+                          FileName(),
+                          "Gmsh (.msh) file of the background grid for type = "
+                          "gmsh; relative paths are relative to the working "
+                          "directory.");
+        prm.declare_entry(
+          "fixed boundaries",
+          "",
+          List(Integer(0, 255), 0, 255, ","),
+          "Boundary ids on which all displacement components are zero "
+          "(conforming Dirichlet condition). Box ids: 0/1 x-min/x-max, "
+          "2/3 y-min/y-max, 4/5 z-min/z-max.");
+        prm.declare_entry(
+          "slip boundaries",
+          "",
+          List(Integer(0, 255), 0, 255, ","),
+          "Boundary ids on which the normal displacement is zero and the "
+          "tangential motion is free (frictionless slip); the faces must be "
+          "axis aligned.");
+      }
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    BackgroundGrid<dim>::parse_parameters_and_create(
+      dealii::ParameterHandler &prm)
+    {
+      const std::string sub = "Background grid";
+      prm.enter_subsection(sub);
+      type           = prm.get("type");
+      const auto ids = [&](const std::string &entry) {
+        std::set<dealii::types::boundary_id> result;
+        for (const auto &s :
+             dealii::Utilities::split_string_list(prm.get(entry), ','))
+          result.insert(dealii::Utilities::string_to_int(s));
+        return result;
+      };
+      fixed_boundaries = ids("fixed boundaries");
+      slip_boundaries  = ids("slip boundaries");
+      for (const auto id : fixed_boundaries)
+        if (slip_boundaries.count(id))
+          InputFile::reject(sub,
+                            "slip boundaries",
+                            prm.get("slip boundaries"),
+                            "boundary id " + std::to_string(id) +
+                              " is already in 'fixed boundaries'");
+
+      if (type == "box")
+        {
+          lower_corner = parse_point<dim>(prm, sub, "lower corner");
+          upper_corner = parse_point<dim>(prm, sub, "upper corner");
+          for (unsigned int d = 0; d < dim; ++d)
+            if (!(upper_corner[d] > lower_corner[d]))
+              InputFile::reject(sub,
+                                "upper corner",
+                                prm.get("upper corner"),
+                                "every coordinate must be larger than the "
+                                "lower corner's (" +
+                                  prm.get("lower corner") + ")");
+          subdivisions.clear();
+          for (const auto &s :
+               dealii::Utilities::split_string_list(prm.get("subdivisions"),
+                                                    ','))
+            subdivisions.push_back(dealii::Utilities::string_to_int(s));
+          dealii::GridGenerator::subdivided_hyper_rectangle(
+            triangulation, subdivisions, lower_corner, upper_corner, true);
+          is_cartesian = true;
+          for (unsigned int d = 0; d < dim; ++d)
+            cell_extent[d] =
+              (upper_corner[d] - lower_corner[d]) / subdivisions[d];
+        }
+      else
+        {
+          mesh_file = prm.get("mesh file");
+          std::ifstream in(mesh_file);
+          if (!in)
+            InputFile::reject(sub,
+                              "mesh file",
+                              mesh_file,
+                              "the file cannot be opened for reading");
+          dealii::GridIn<dim> grid_in(triangulation);
+          try
+            {
+              grid_in.read_msh(in);
+            }
+          catch (const dealii::ExceptionBase &e)
+            {
+              std::ostringstream what;
+              e.print_info(what);
+              InputFile::reject(sub,
+                                "mesh file",
+                                mesh_file,
+                                "it is not a readable Gmsh mesh of " +
+                                  std::to_string(dim) +
+                                  "D quadrilaterals/hexahedra: " + what.str());
+            }
+          is_cartesian = false;
+          const auto box =
+            dealii::GridTools::compute_bounding_box(triangulation);
+          lower_corner = box.get_boundary_points().first;
+          upper_corner = box.get_boundary_points().second;
+        }
+      prm.leave_subsection();
+
+      minimal_cell_diameter =
+        dealii::GridTools::minimal_cell_diameter(triangulation, mapping);
+
+      // Every requested boundary id must exist somewhere in the grid.
+      std::vector<dealii::types::boundary_id> existing =
+        triangulation.get_boundary_ids();
+      const auto check = [&](const std::set<dealii::types::boundary_id> &set,
+                             const std::string &entry) {
+        for (const auto id : set)
+          if (std::find(existing.begin(), existing.end(), id) == existing.end())
+            {
+              prm.enter_subsection(sub);
+              const std::string value = prm.get(entry);
+              prm.leave_subsection();
+              InputFile::reject(sub,
+                                entry,
+                                value,
+                                "the grid has no boundary with id " +
+                                  std::to_string(id));
+            }
+      };
+      check(fixed_boundaries, "fixed boundaries");
+      check(slip_boundaries, "slip boundaries");
+
+      setup_dofs();
+    }
+
+
+    template <int dim>
+    void
+    BackgroundGrid<dim>::setup_dofs()
+    {
+      dof_handler.distribute_dofs(fe);
+      locally_owned_dofs = dof_handler.locally_owned_dofs();
+      dealii::DoFTools::extract_locally_relevant_dofs(dof_handler,
+                                                      locally_relevant_dofs);
+    }
+
+
+    template class BackgroundGrid<2>;
+    template class BackgroundGrid<3>;
+    template dealii::Point<2>
+    parse_point<2>(const dealii::ParameterHandler &,
+                   const std::string &,
+                   const std::string &);
+    template dealii::Point<3>
+    parse_point<3>(const dealii::ParameterHandler &,
+                   const std::string &,
+                   const std::string &);
+  } // namespace MPM
+} // namespace Talus

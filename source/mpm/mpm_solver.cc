@@ -1,0 +1,1007 @@
+#include <talus/base/input.h>
+#include <talus/mpm/mpm_solver.h>
+
+#include <deal.II/base/quadrature.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/vector.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    namespace
+    {
+      /** Embed an in-plane (dim x dim) deformation gradient in 3D. */
+      template <int dim>
+      dealii::Tensor<2, 3>
+      embed(const dealii::Tensor<2, dim> &F)
+      {
+        dealii::Tensor<2, 3> F3;
+        for (unsigned int i = 0; i < 3; ++i)
+          F3[i][i] = 1.;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            F3[i][j] = F[i][j];
+        return F3;
+      }
+
+      template <int dim>
+      dealii::Tensor<2, dim>
+      read_tensor(const dealii::ArrayView<const double> &p,
+                  const unsigned int                     first)
+      {
+        dealii::Tensor<2, dim> t;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            t[i][j] = p[first + i * dim + j];
+        return t;
+      }
+    } // namespace
+
+
+    template <int dim>
+    MPMSolver<dim>::MPMSolver(BackgroundGrid<dim>                &grid,
+                              MaterialPoints<dim>                &points,
+                              const Materials::ConstitutiveModel &model,
+                              const NewmarkBeta                  &newmark,
+                              dealii::TimerOutput                &timer)
+      : grid(grid)
+      , points(points)
+      , model(model)
+      , newmark(newmark)
+      , timer(timer)
+      , quasi_static(false)
+      , consistent_mass(false)
+      , load_ramp_time(0.)
+      , max_newton_iterations(20)
+      , residual_tolerance(1e-8)
+      , absolute_residual_tolerance(1e-12)
+      , increment_tolerance(1e-8)
+      , linear_solver_type("CG")
+      , linear_tolerance(1e-10)
+      , max_linear_iterations(1000)
+      , time(0.)
+      , dt(0.)
+      , n_active(0)
+      , prepared(false)
+      , solved(false)
+    {}
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii;
+      prm.enter_subsection("Solver");
+      {
+        prm.declare_entry("analysis",
+                          "dynamic",
+                          Patterns::Selection("dynamic|quasi-static"),
+                          "'dynamic': momentum balance with inertia "
+                          "(Newmark-beta). 'quasi-static': equilibrium "
+                          "without inertia, loads applied incrementally "
+                          "(see 'load ramp time'); velocities stay zero.");
+        prm.declare_entry("mass matrix",
+                          "lumped",
+                          Patterns::Selection("lumped|consistent"),
+                          "Grid mass matrix in the inertia term: 'lumped' "
+                          "(row sums, m_I = sum_p N_I m_p) or 'consistent' "
+                          "(M_IJ = sum_p m_p N_I N_J). The projection of "
+                          "velocity and acceleration to the grid always uses "
+                          "the lumped mass.");
+        prm.declare_entry("gravity",
+                          dim == 2 ? "0, -9.81" : "0, 0, -9.81",
+                          Patterns::Anything(),
+                          "Gravitational acceleration [m/s^2], one component "
+                          "per direction separated by commas. Any direction "
+                          "is allowed (tilt it to model an incline).");
+        prm.declare_entry("load ramp time",
+                          "0",
+                          Patterns::Double(0),
+                          "Gravity and body forces grow linearly from zero to "
+                          "their full value over this time [s], >= 0; 0: "
+                          "applied at once. A quasi-static run with end time "
+                          "T, time step T/20 and ramp time T applies the load "
+                          "in 20 steps.");
+        prm.enter_subsection("Body force");
+        Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+        prm.leave_subsection();
+        prm.declare_entry("maximum Newton iterations",
+                          "20",
+                          Patterns::Integer(1, 1000),
+                          "Newton iterations per step before the step is "
+                          "rejected [-], 1 to 1000.");
+        prm.declare_entry("residual tolerance",
+                          "1e-8",
+                          Patterns::Double(0),
+                          "Newton converges when |R| <= tol * max(|R_0|, "
+                          "|f_ext|) (or |R| <= 'absolute residual "
+                          "tolerance') and the increment criterion holds [-].");
+        prm.declare_entry("absolute residual tolerance",
+                          "1e-12",
+                          Patterns::Double(0),
+                          "Residual norm below which Newton has converged "
+                          "regardless of the relative criterion [N].");
+        prm.declare_entry("increment tolerance",
+                          "1e-8",
+                          Patterns::Double(0),
+                          "Newton also requires |d(du)| <= tol * |du| for the "
+                          "last correction [-] (or |du| = 0).");
+        prm.declare_entry("linear solver",
+                          "CG",
+                          Patterns::Selection("CG|GMRES|direct"),
+                          "'CG' or 'GMRES' (Trilinos ML algebraic multigrid "
+                          "preconditioner with the translations as near null "
+                          "space), or 'direct' (Amesos KLU, for small "
+                          "problems).");
+        prm.declare_entry("linear solver tolerance",
+                          "1e-10",
+                          Patterns::Double(0),
+                          "Relative residual reduction of the iterative "
+                          "linear solver [-].");
+        prm.declare_entry("maximum linear iterations",
+                          "2000",
+                          Patterns::Integer(1),
+                          "Iterations of the linear solver before the Newton "
+                          "step counts as failed [-].");
+        prm.declare_entry("abort on lost material points",
+                          "false",
+                          Patterns::Bool(),
+                          "Material points that leave the background grid are "
+                          "removed with a warning naming the lost mass; true "
+                          "turns this into an error that stops the run.");
+      }
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      const std::string sub = "Solver";
+      prm.enter_subsection(sub);
+      quasi_static    = prm.get("analysis") == "quasi-static";
+      consistent_mass = prm.get("mass matrix") == "consistent";
+      const auto g    = parse_point<dim>(prm, sub, "gravity");
+      for (unsigned int d = 0; d < dim; ++d)
+        gravity_vector[d] = g[d];
+      load_ramp_time = prm.get_double("load ramp time");
+      prm.enter_subsection("Body force");
+      body_force =
+        std::make_unique<dealii::Functions::ParsedFunction<dim>>(dim);
+      try
+        {
+          body_force->parse_parameters(prm);
+        }
+      catch (const dealii::ExceptionBase &e)
+        {
+          std::ostringstream what;
+          e.print_info(what);
+          InputFile::reject("Solver/Body force",
+                            "Function expression",
+                            prm.get("Function expression"),
+                            "it must be " + std::to_string(dim) +
+                              " muparser expressions separated by ';': " +
+                              what.str());
+        }
+      prm.leave_subsection();
+      max_newton_iterations = prm.get_integer("maximum Newton iterations");
+      residual_tolerance    = get_positive(prm, sub, "residual tolerance");
+      absolute_residual_tolerance =
+        prm.get_double("absolute residual tolerance");
+      increment_tolerance   = get_positive(prm, sub, "increment tolerance");
+      linear_solver_type    = prm.get("linear solver");
+      linear_tolerance      = get_positive(prm, sub, "linear solver tolerance");
+      max_linear_iterations = prm.get_integer("maximum linear iterations");
+      abort_on_lost_points  = prm.get_bool("abort on lost material points");
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::setup()
+    {
+      dealii::TimerOutput::Scope scope(timer, "setup");
+      const auto                &dof_handler = grid.dof_handler;
+
+      dealii::DynamicSparsityPattern dsp(grid.locally_relevant_dofs);
+      dealii::DoFTools::make_sparsity_pattern(dof_handler, dsp);
+      dealii::SparsityTools::distribute_sparsity_pattern(
+        dsp,
+        grid.locally_owned_dofs,
+        grid.mpi_communicator,
+        grid.locally_relevant_dofs);
+      matrix.reinit(grid.locally_owned_dofs,
+                    grid.locally_owned_dofs,
+                    dsp,
+                    grid.mpi_communicator);
+
+      const auto owned    = grid.locally_owned_dofs;
+      const auto relevant = grid.locally_relevant_dofs;
+      const auto comm     = grid.mpi_communicator;
+      for (auto *v : {&nodal_mass,
+                      &velocity_n,
+                      &acceleration_n,
+                      &displacement,
+                      &acceleration_new})
+        v->reinit(owned, relevant, comm);
+      for (auto *v : {&external_force, &residual, &increment})
+        v->reinit(owned, comm);
+
+      // Degrees of freedom on fixed and slip boundaries.
+      fixed_dofs = dealii::DoFTools::extract_boundary_dofs(
+        dof_handler, dealii::ComponentMask(dim, true), grid.fixed_boundaries);
+      slip_dofs.assign(dim, dealii::IndexSet(dof_handler.n_dofs()));
+      for (const auto id : grid.slip_boundaries)
+        {
+          // Normal direction of the (axis aligned) boundary.
+          int axis = -1;
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              for (const unsigned int f : cell->face_indices())
+                if (cell->face(f)->at_boundary() &&
+                    cell->face(f)->boundary_id() == id)
+                  {
+                    dealii::Tensor<1, dim> n =
+                      cell->face(f)->center() - cell->center();
+                    n /= n.norm();
+                    for (unsigned int d = 0; d < dim; ++d)
+                      if (std::abs(std::abs(n[d]) - 1.) < 1e-8)
+                        axis = d;
+                    if (axis < 0)
+                      InputFile::reject("Background grid",
+                                        "slip boundaries",
+                                        std::to_string(id),
+                                        "slip is only possible on axis-aligned "
+                                        "boundaries; boundary " +
+                                          std::to_string(id) +
+                                          " is not axis aligned");
+                  }
+          axis = dealii::Utilities::MPI::max(axis, comm);
+          std::set<dealii::types::boundary_id> ids{id};
+          dealii::ComponentMask                mask(dim, false);
+          mask.set(axis, true);
+          slip_dofs[axis].add_indices(
+            dealii::DoFTools::extract_boundary_dofs(dof_handler, mask, ids));
+        }
+
+      dealii::DoFTools::extract_constant_modes(dof_handler,
+                                               dealii::ComponentMask(dim, true),
+                                               constant_modes);
+    }
+
+
+    template <int dim>
+    dealii::Tensor<1, dim>
+    MPMSolver<dim>::external_acceleration(const dealii::Point<dim> &X,
+                                          const double              t) const
+    {
+      const double factor =
+        load_ramp_time > 0. ? std::min(1., t / load_ramp_time) : 1.;
+      dealii::Tensor<1, dim> b = gravity_vector;
+      body_force->set_time(t);
+      for (unsigned int d = 0; d < dim; ++d)
+        b[d] += body_force->value(X, d);
+      return factor * b;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::cache_particles()
+    {
+      using Properties           = MaterialPointProperties<dim>;
+      auto              &handler = points.particle_handler();
+      const auto        &fe      = grid.fe;
+      const auto        &base    = fe.base_element(0);
+      const unsigned int n_nodes = base.dofs_per_cell;
+
+      cells.clear();
+      particles.clear();
+      shape_values.clear();
+      shape_gradients.clear();
+      particles.reserve(handler.n_locally_owned_particles());
+      shape_values.reserve(handler.n_locally_owned_particles() * n_nodes);
+      shape_gradients.reserve(handler.n_locally_owned_particles() * n_nodes);
+
+      std::vector<dealii::Point<dim>> reference_points;
+      for (const auto &cell : grid.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const typename dealii::Triangulation<dim>::active_cell_iterator
+                               tria_cell(cell);
+            const unsigned int n = handler.n_particles_in_cell(tria_cell);
+            if (n == 0)
+              continue;
+            CellCache c;
+            c.cell  = cell;
+            c.first = particles.size();
+            c.n     = n;
+            c.dofs.resize(fe.dofs_per_cell);
+            cell->get_dof_indices(c.dofs);
+            reference_points.clear();
+            for (auto p = handler.particles_in_cell(tria_cell).begin();
+                 p != handler.particles_in_cell(tria_cell).end();
+                 ++p)
+              {
+                particles.push_back(p);
+                reference_points.push_back(p->get_reference_location());
+              }
+            if (grid.is_cartesian)
+              {
+                for (const auto &xi : reference_points)
+                  for (unsigned int k = 0; k < n_nodes; ++k)
+                    {
+                      shape_values.push_back(base.shape_value(k, xi));
+                      dealii::Tensor<1, dim> g = base.shape_grad(k, xi);
+                      for (unsigned int d = 0; d < dim; ++d)
+                        g[d] /= grid.cell_extent[d];
+                      shape_gradients.push_back(g);
+                    }
+              }
+            else
+              {
+                const dealii::Quadrature<dim> quadrature(reference_points);
+                dealii::FEValues<dim>         fe_values(grid.mapping,
+                                                base,
+                                                quadrature,
+                                                dealii::update_values |
+                                                  dealii::update_gradients);
+                fe_values.reinit(tria_cell);
+                for (unsigned int q = 0; q < n; ++q)
+                  for (unsigned int k = 0; k < n_nodes; ++k)
+                    {
+                      shape_values.push_back(fe_values.shape_value(k, q));
+                      shape_gradients.push_back(fe_values.shape_grad(k, q));
+                    }
+              }
+            cells.push_back(std::move(c));
+          }
+      (void)Properties::mass;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::project_to_grid()
+    {
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+
+      dealii::TrilinosWrappers::MPI::Vector mass(grid.locally_owned_dofs,
+                                                 grid.mpi_communicator);
+      dealii::TrilinosWrappers::MPI::Vector momentum(mass), mass_acc(mass);
+      external_force = 0.;
+
+      dealii::Vector<double> m_local(dofs_per_cell), p_local(dofs_per_cell),
+        a_local(dofs_per_cell), f_local(dofs_per_cell);
+      for (const auto &c : cells)
+        {
+          m_local = 0.;
+          p_local = 0.;
+          a_local = 0.;
+          f_local = 0.;
+          for (unsigned int q = 0; q < c.n; ++q)
+            {
+              const unsigned int k     = c.first + q;
+              const auto         props = particles[k]->get_properties();
+              const double       m     = props[Properties::mass];
+              dealii::Point<dim> X;
+              for (unsigned int d = 0; d < dim; ++d)
+                X[d] = props[Properties::initial_position + d];
+              const auto b = external_acceleration(X, time);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const auto         ci = fe.system_to_component_index(i);
+                  const double       N  = shape_values[k * n_nodes + ci.second];
+                  const unsigned int comp = ci.first;
+                  m_local[i] += N * m;
+                  p_local[i] += N * m * props[Properties::velocity + comp];
+                  a_local[i] += N * m * props[Properties::acceleration + comp];
+                  f_local[i] += N * m * b[comp];
+                }
+            }
+          mass.add(c.dofs, m_local);
+          momentum.add(c.dofs, p_local);
+          mass_acc.add(c.dofs, a_local);
+          external_force.add(c.dofs, f_local);
+        }
+      mass.compress(dealii::VectorOperation::add);
+      momentum.compress(dealii::VectorOperation::add);
+      mass_acc.compress(dealii::VectorOperation::add);
+      external_force.compress(dealii::VectorOperation::add);
+
+      for (const auto i : grid.locally_owned_dofs)
+        if (mass(i) > 0.)
+          {
+            momentum(i) /= mass(i);
+            mass_acc(i) /= mass(i);
+          }
+      momentum.compress(dealii::VectorOperation::insert);
+      mass_acc.compress(dealii::VectorOperation::insert);
+      nodal_mass     = mass;
+      velocity_n     = momentum;
+      acceleration_n = mass_acc;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::make_constraints()
+    {
+      constraints.clear();
+      constraints.reinit(grid.locally_relevant_dofs);
+      n_active = 0;
+      for (const auto i : grid.locally_relevant_dofs)
+        {
+          bool constrained = nodal_mass(i) <= 0. || fixed_dofs.is_element(i);
+          for (unsigned int d = 0; d < dim && !constrained; ++d)
+            constrained = slip_dofs[d].is_element(i);
+          if (constrained)
+            constraints.add_line(i);
+          else if (grid.locally_owned_dofs.is_element(i))
+            ++n_active;
+        }
+      constraints.close();
+      n_active = dealii::Utilities::MPI::sum(n_active, grid.mpi_communicator);
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::prepare_step(const double new_time, const double step)
+    {
+      dealii::TimerOutput::Scope scope(timer, "prepare (P2G)");
+      time = new_time;
+      dt   = step;
+      cache_particles();
+      project_to_grid();
+      make_constraints();
+      prepared = true;
+      solved   = false;
+    }
+
+
+    template <int dim>
+    bool
+    MPMSolver<dim>::assemble(const dealii::TrilinosWrappers::MPI::Vector &du,
+                             const bool   with_matrix,
+                             const bool   with_inertia,
+                             std::string &failure)
+    {
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      const unsigned int n_history     = points.n_history();
+      const double       c_mass = with_inertia ? newmark.mass_factor(dt) : 0.;
+
+      if (with_matrix)
+        matrix = 0.;
+      residual = external_force;
+
+      dealii::FullMatrix<double> k_local(dofs_per_cell, dofs_per_cell);
+      dealii::Vector<double>     r_local(dofs_per_cell);
+      std::vector<double>       du_local(dofs_per_cell), a_local(dofs_per_cell);
+      std::vector<unsigned int> comp(dofs_per_cell), node(dofs_per_cell);
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          comp[i] = fe.system_to_component_index(i).first;
+          node[i] = fe.system_to_component_index(i).second;
+        }
+      std::vector<double>                 history_new(n_history);
+      std::vector<dealii::Tensor<1, dim>> G(n_nodes);
+      dealii::Tensor<2, 3>                P;
+      dealii::Tensor<4, 3>                A;
+      bool                                ok = true;
+
+      for (const auto &c : cells)
+        {
+          if (!ok)
+            break;
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              du_local[i] = du(c.dofs[i]);
+              a_local[i]  = with_inertia ?
+                              newmark.acceleration(du_local[i],
+                                                  velocity_n(c.dofs[i]),
+                                                  acceleration_n(c.dofs[i]),
+                                                  dt) :
+                              0.;
+            }
+          k_local = 0.;
+          r_local = 0.;
+          for (unsigned int q = 0; q < c.n; ++q)
+            {
+              const unsigned int k     = c.first + q;
+              const auto         props = particles[k]->get_properties();
+              const double      *N     = &shape_values[k * n_nodes];
+              const auto        *dN    = &shape_gradients[k * n_nodes];
+
+              // Increment gradient, total deformation gradient.
+              dealii::Tensor<2, dim> H;
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                H[comp[i]] += du_local[i] * dN[node[i]];
+              const dealii::Tensor<2, dim> F_n =
+                read_tensor<dim>(props, Properties::deformation);
+              dealii::Tensor<2, dim> F_new = F_n + H * F_n;
+
+              try
+                {
+                  model.compute_stress(
+                    embed<dim>(F_n),
+                    embed<dim>(F_new),
+                    dealii::ArrayView<const double>(props.data() +
+                                                      Properties::history,
+                                                    n_history),
+                    dealii::ArrayView<double>(history_new.data(), n_history),
+                    P,
+                    with_matrix ? &A : nullptr);
+                }
+              catch (const std::exception &e)
+                {
+                  ok = false;
+                  std::ostringstream msg;
+                  msg << "constitutive update failed at the material point "
+                         "near "
+                      << particles[k]->get_location() << ": " << e.what();
+                  failure = msg.str();
+                  break;
+                }
+              for (unsigned int d = 0; d < 3; ++d)
+                for (unsigned int e = 0; e < 3; ++e)
+                  if (!std::isfinite(P[d][e]))
+                    {
+                      ok      = false;
+                      failure = "non-finite stress at a material point";
+                    }
+              if (!ok)
+                break;
+
+              // Gradients with respect to the initial configuration.
+              for (unsigned int a = 0; a < n_nodes; ++a)
+                {
+                  G[a] = 0.;
+                  for (unsigned int J = 0; J < dim; ++J)
+                    for (unsigned int i = 0; i < dim; ++i)
+                      G[a][J] += F_n[i][J] * dN[a][i];
+                }
+              const double V0 = props[Properties::initial_volume];
+              const double m  = props[Properties::mass];
+
+              // Particle acceleration for the (consistent) inertia term.
+              dealii::Tensor<1, dim> a_p;
+              if (with_inertia && consistent_mass)
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  a_p[comp[i]] += N[node[i]] * a_local[i];
+
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const unsigned int ci = comp[i];
+                  const auto        &Gi = G[node[i]];
+                  double             f  = 0.;
+                  for (unsigned int J = 0; J < dim; ++J)
+                    f += P[ci][J] * Gi[J];
+                  r_local[i] -= V0 * f;
+                  if (with_inertia)
+                    {
+                      if (consistent_mass)
+                        r_local[i] -= m * N[node[i]] * a_p[ci];
+                      else
+                        r_local[i] -= m * N[node[i]] * a_local[i];
+                    }
+                  if (!with_matrix)
+                    continue;
+                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                    {
+                      const unsigned int cj  = comp[j];
+                      const auto        &Gj  = G[node[j]];
+                      double             kij = 0.;
+                      for (unsigned int J = 0; J < dim; ++J)
+                        for (unsigned int L = 0; L < dim; ++L)
+                          kij += Gi[J] * A[ci][J][cj][L] * Gj[L];
+                      k_local(i, j) += V0 * kij;
+                    }
+                  if (with_inertia)
+                    {
+                      if (consistent_mass)
+                        {
+                          for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                            if (comp[j] == ci)
+                              k_local(i, j) +=
+                                c_mass * m * N[node[i]] * N[node[j]];
+                        }
+                      else
+                        k_local(i, i) += c_mass * m * N[node[i]];
+                    }
+                }
+            }
+          if (!ok)
+            break;
+          if (with_matrix)
+            constraints.distribute_local_to_global(
+              k_local, r_local, c.dofs, matrix, residual);
+          else
+            constraints.distribute_local_to_global(r_local, c.dofs, residual);
+        }
+
+      residual.compress(dealii::VectorOperation::add);
+      // Constrained rows keep the external force they were initialized
+      // with: clear them.
+      for (const auto i : grid.locally_owned_dofs)
+        if (constraints.is_constrained(i))
+          residual(i) = 0.;
+      residual.compress(dealii::VectorOperation::insert);
+
+      if (with_matrix)
+        {
+          matrix.compress(dealii::VectorOperation::add);
+          // Rows of nodes without mass: identity scaled like the others.
+          double max_diagonal = 0.;
+          for (const auto i : grid.locally_owned_dofs)
+            if (!constraints.is_constrained(i))
+              max_diagonal =
+                std::max(max_diagonal, std::abs(matrix.diag_element(i)));
+          max_diagonal =
+            dealii::Utilities::MPI::max(max_diagonal, grid.mpi_communicator);
+          if (max_diagonal == 0.)
+            max_diagonal = 1.;
+          for (const auto i : grid.locally_owned_dofs)
+            if (constraints.is_constrained(i) && matrix.diag_element(i) == 0.)
+              matrix.set(i, i, max_diagonal);
+          matrix.compress(dealii::VectorOperation::insert);
+        }
+
+      const bool all_ok =
+        dealii::Utilities::MPI::min(ok ? 1 : 0, grid.mpi_communicator) == 1;
+      if (!all_ok && failure.empty())
+        failure = "constitutive update failed on another MPI rank";
+      return all_ok;
+    }
+
+
+    template <int dim>
+    unsigned int
+    MPMSolver<dim>::solve_linear(dealii::TrilinosWrappers::MPI::Vector &x)
+    {
+      dealii::TimerOutput::Scope scope(timer, "linear solver");
+      x = 0.;
+      if (linear_solver_type == "direct")
+        {
+          dealii::SolverControl                  control(1, 0.);
+          dealii::TrilinosWrappers::SolverDirect solver(control);
+          solver.solve(matrix, x, residual);
+          constraints.distribute(x);
+          return 1;
+        }
+
+      dealii::TrilinosWrappers::PreconditionAMG                 amg;
+      dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.constant_modes        = constant_modes;
+      data.elliptic              = true;
+      data.higher_order_elements = false;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+      amg.initialize(matrix, data);
+
+      dealii::SolverControl control(max_linear_iterations,
+                                    linear_tolerance * residual.l2_norm());
+      if (linear_solver_type == "CG")
+        {
+          dealii::SolverCG<dealii::TrilinosWrappers::MPI::Vector> solver(
+            control);
+          solver.solve(matrix, x, residual, amg);
+        }
+      else
+        {
+          dealii::SolverGMRES<dealii::TrilinosWrappers::MPI::Vector> solver(
+            control);
+          solver.solve(matrix, x, residual, amg);
+        }
+      constraints.distribute(x);
+      return control.last_step();
+    }
+
+
+    template <int dim>
+    NewtonResult
+    MPMSolver<dim>::solve_step()
+    {
+      dealii::TimerOutput::Scope scope(timer, "solve (Newton)");
+      Assert(prepared, dealii::ExcMessage("prepare_step() first"));
+      NewtonResult result;
+
+      dealii::TrilinosWrappers::MPI::Vector du(grid.locally_owned_dofs,
+                                               grid.mpi_communicator);
+      displacement                = du;
+      const double f_ext_norm     = external_force.l2_norm();
+      double       reference      = 0.;
+      double       last_increment = 0.;
+
+      for (unsigned int it = 0; it <= max_newton_iterations; ++it)
+        {
+          std::string failure;
+          bool        ok;
+          {
+            dealii::TimerOutput::Scope s(timer, "assembly");
+            ok = assemble(displacement, true, !quasi_static, failure);
+          }
+          if (!ok)
+            {
+              result.failure = failure;
+              return result;
+            }
+          const double r = residual.l2_norm();
+          if (!std::isfinite(r))
+            {
+              result.failure = "the residual is not finite";
+              return result;
+            }
+          if (it == 0)
+            reference = std::max(r, f_ext_norm);
+          result.residual          = reference > 0. ? r / reference : r;
+          result.iterations        = it;
+          const double du_norm     = du.l2_norm();
+          const bool   residual_ok = r <= residual_tolerance * reference ||
+                                   r <= absolute_residual_tolerance;
+          const bool increment_ok =
+            it > 0 &&
+            (last_increment <= increment_tolerance * du_norm || du_norm == 0.);
+          if (residual_ok &&
+              (it == 0 ? r <= absolute_residual_tolerance || reference == 0. :
+                         increment_ok))
+            {
+              result.converged = true;
+              solved           = true;
+              return result;
+            }
+          if (it == max_newton_iterations)
+            break;
+
+          unsigned int n_linear = 0;
+          try
+            {
+              n_linear = solve_linear(increment);
+            }
+          catch (const std::exception &e)
+            {
+              result.failure =
+                std::string("the linear solver failed: ") + e.what();
+              return result;
+            }
+          result.linear_iterations += n_linear;
+          last_increment = increment.l2_norm();
+          du += increment;
+          displacement = du;
+        }
+      std::ostringstream msg;
+      msg << "no convergence in " << max_newton_iterations
+          << " Newton iterations (relative residual " << result.residual << ")";
+      result.failure = msg.str();
+      return result;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::initialize_acceleration(const double t)
+    {
+      if (quasi_static)
+        return;
+      // Project with a zero step: only mass and forces are used.
+      prepare_step(t, 1.);
+      std::string failure;
+      displacement = 0.;
+      if (!assemble(displacement, false, false, failure))
+        throw std::runtime_error("initial state: " + failure);
+      // a_I = r_I / m_I with the lumped mass (r = f_ext - f_int).
+      dealii::TrilinosWrappers::MPI::Vector a(grid.locally_owned_dofs,
+                                              grid.mpi_communicator);
+      for (const auto i : grid.locally_owned_dofs)
+        if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
+          a(i) = residual(i) / nodal_mass(i);
+      a.compress(dealii::VectorOperation::insert);
+      acceleration_new = a;
+
+      using Properties           = MaterialPointProperties<dim>;
+      const auto        &fe      = grid.fe;
+      const unsigned int n_nodes = fe.base_element(0).dofs_per_cell;
+      for (const auto &c : cells)
+        for (unsigned int q = 0; q < c.n; ++q)
+          {
+            const unsigned int     k = c.first + q;
+            dealii::Tensor<1, dim> a_p;
+            for (unsigned int i = 0; i < fe.dofs_per_cell; ++i)
+              {
+                const auto ci = fe.system_to_component_index(i);
+                a_p[ci.first] += shape_values[k * n_nodes + ci.second] *
+                                 acceleration_new(c.dofs[i]);
+              }
+            auto props = particles[k]->get_properties();
+            for (unsigned int d = 0; d < dim; ++d)
+              props[Properties::acceleration + d] = a_p[d];
+          }
+      prepared = false;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::commit_step()
+    {
+      dealii::TimerOutput::Scope scope(timer, "commit (G2P, move, sort)");
+      Assert(solved, dealii::ExcMessage("solve_step() first"));
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      const unsigned int n_history     = points.n_history();
+
+      // Nodal accelerations and velocity increments at t_{n+1}.
+      dealii::TrilinosWrappers::MPI::Vector a_new(grid.locally_owned_dofs,
+                                                  grid.mpi_communicator);
+      dealii::TrilinosWrappers::MPI::Vector dv(a_new);
+      if (!quasi_static)
+        {
+          for (const auto i : grid.locally_owned_dofs)
+            if (nodal_mass(i) > 0.)
+              {
+                const double du = displacement(i);
+                const double an = acceleration_n(i);
+                const double a =
+                  newmark.acceleration(du, velocity_n(i), an, dt);
+                a_new(i) = a;
+                dv(i)    = newmark.velocity(0., an, a, dt);
+              }
+          a_new.compress(dealii::VectorOperation::insert);
+          dv.compress(dealii::VectorOperation::insert);
+        }
+      acceleration_new = a_new;
+      dealii::TrilinosWrappers::MPI::Vector dv_ghosted(
+        grid.locally_owned_dofs,
+        grid.locally_relevant_dofs,
+        grid.mpi_communicator);
+      dv_ghosted = dv;
+
+      std::vector<double> history_new(n_history);
+      std::vector<double> du_local(dofs_per_cell), a_local(dofs_per_cell),
+        dv_local(dofs_per_cell);
+      dealii::Tensor<2, 3> P;
+      for (const auto &c : cells)
+        {
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              du_local[i] = displacement(c.dofs[i]);
+              a_local[i]  = acceleration_new(c.dofs[i]);
+              dv_local[i] = dv_ghosted(c.dofs[i]);
+            }
+          for (unsigned int q = 0; q < c.n; ++q)
+            {
+              const unsigned int k     = c.first + q;
+              auto               props = particles[k]->get_properties();
+              const double      *N     = &shape_values[k * n_nodes];
+              const auto        *dN    = &shape_gradients[k * n_nodes];
+
+              dealii::Tensor<1, dim> du_p, a_p, dv_p;
+              dealii::Tensor<2, dim> H;
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const auto ci = fe.system_to_component_index(i);
+                  du_p[ci.first] += N[ci.second] * du_local[i];
+                  a_p[ci.first] += N[ci.second] * a_local[i];
+                  dv_p[ci.first] += N[ci.second] * dv_local[i];
+                  H[ci.first] += du_local[i] * dN[ci.second];
+                }
+              const dealii::Tensor<2, dim> F_n =
+                read_tensor<dim>(props, Properties::deformation);
+              const dealii::Tensor<2, dim> F_new = F_n + H * F_n;
+              const dealii::Tensor<2, 3>   F3    = embed<dim>(F_new);
+              model.compute_stress(
+                embed<dim>(F_n),
+                F3,
+                dealii::ArrayView<const double>(props.data() +
+                                                  Properties::history,
+                                                n_history),
+                dealii::ArrayView<double>(history_new.data(), n_history),
+                P,
+                nullptr);
+              // Cauchy stress sigma = P F^T / J.
+              const dealii::Tensor<2, 3> sigma =
+                P * dealii::transpose(F3) / dealii::determinant(F3);
+              props[Properties::stress + 0] = sigma[0][0];
+              props[Properties::stress + 1] = sigma[1][1];
+              props[Properties::stress + 2] = sigma[2][2];
+              props[Properties::stress + 3] = sigma[0][1];
+              props[Properties::stress + 4] = sigma[1][2];
+              props[Properties::stress + 5] = sigma[0][2];
+              for (unsigned int h = 0; h < n_history; ++h)
+                props[Properties::history + h] = history_new[h];
+              for (unsigned int i = 0; i < dim; ++i)
+                {
+                  for (unsigned int j = 0; j < dim; ++j)
+                    props[Properties::deformation + i * dim + j] = F_new[i][j];
+                  props[Properties::velocity + i] =
+                    quasi_static ? 0. :
+                                   props[Properties::velocity + i] + dv_p[i];
+                  props[Properties::acceleration + i] =
+                    quasi_static ? 0. : a_p[i];
+                }
+              particles[k]->set_location(particles[k]->get_location() + du_p);
+            }
+        }
+      cells.clear();
+      particles.clear();
+      {
+        dealii::TimerOutput::Scope s(timer, "sort particles");
+        points.particle_handler().sort_particles_into_subdomains_and_cells();
+      }
+      prepared = false;
+      solved   = false;
+    }
+
+
+    template <int dim>
+    Diagnostics<dim>
+    MPMSolver<dim>::compute_diagnostics() const
+    {
+      using Properties = MaterialPointProperties<dim>;
+      Diagnostics<dim>   d;
+      const unsigned int n_history = points.n_history();
+      for (const auto &p : points.particle_handler())
+        {
+          const auto   props = p.get_properties();
+          const double m     = props[Properties::mass];
+          d.mass += m;
+          double v2 = 0.;
+          for (unsigned int i = 0; i < dim; ++i)
+            {
+              const double v = props[Properties::velocity + i];
+              d.momentum[i] += m * v;
+              v2 += v * v;
+              d.gravitational_energy -=
+                m * gravity_vector[i] * p.get_location()[i];
+            }
+          d.kinetic_energy += 0.5 * m * v2;
+          d.strain_energy +=
+            props[Properties::initial_volume] *
+            model.energy_density(
+              embed<dim>(read_tensor<dim>(props, Properties::deformation)),
+              dealii::ArrayView<const double>(props.data() +
+                                                Properties::history,
+                                              n_history));
+        }
+      const MPI_Comm comm = grid.mpi_communicator;
+      d.mass              = dealii::Utilities::MPI::sum(d.mass, comm);
+      d.momentum          = dealii::Utilities::MPI::sum(d.momentum, comm);
+      d.kinetic_energy    = dealii::Utilities::MPI::sum(d.kinetic_energy, comm);
+      d.strain_energy     = dealii::Utilities::MPI::sum(d.strain_energy, comm);
+      d.gravitational_energy =
+        dealii::Utilities::MPI::sum(d.gravitational_energy, comm);
+      return d;
+    }
+
+
+    template class MPMSolver<2>;
+    template class MPMSolver<3>;
+  } // namespace MPM
+} // namespace Talus
