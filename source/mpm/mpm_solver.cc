@@ -392,6 +392,7 @@ namespace Talus
                                                  grid.mpi_communicator);
       dealii::TrilinosWrappers::MPI::Vector momentum(mass), mass_acc(mass);
       external_force = 0.;
+      particle_forces.resize(particles.size());
 
       dealii::Vector<double> m_local(dofs_per_cell), p_local(dofs_per_cell),
         a_local(dofs_per_cell), f_local(dofs_per_cell);
@@ -409,7 +410,8 @@ namespace Talus
               dealii::Point<dim> X;
               for (unsigned int d = 0; d < dim; ++d)
                 X[d] = props[Properties::initial_position + d];
-              const auto b = external_acceleration(X, time);
+              const auto b       = external_acceleration(X, time);
+              particle_forces[k] = m * b;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const auto         ci = fe.system_to_component_index(i);
@@ -498,7 +500,7 @@ namespace Talus
 
       if (with_matrix)
         matrix = 0.;
-      residual = external_force;
+      residual = 0.;
 
       dealii::FullMatrix<double> k_local(dofs_per_cell, dofs_per_cell);
       dealii::Vector<double>     r_local(dofs_per_cell);
@@ -599,7 +601,8 @@ namespace Talus
                 {
                   const unsigned int ci = comp[i];
                   const auto        &Gi = G[node[i]];
-                  double             f  = 0.;
+                  r_local[i] += N[node[i]] * particle_forces[k][ci];
+                  double f = 0.;
                   for (unsigned int J = 0; J < dim; ++J)
                     f += P[ci][J] * Gi[J];
                   r_local[i] -= V0 * f;
@@ -647,11 +650,15 @@ namespace Talus
 
       residual.compress(dealii::VectorOperation::add);
       // Constrained rows keep the external force they were initialized
-      // with: clear them.
-      for (const auto i : grid.locally_owned_dofs)
-        if (constraints.is_constrained(i))
-          residual(i) = 0.;
-      residual.compress(dealii::VectorOperation::insert);
+      // with: clear them (owned entries, written directly).
+      {
+        Epetra_FEVector &r = residual.trilinos_vector();
+        for (const auto i : grid.locally_owned_dofs)
+          if (constraints.is_constrained(i))
+            r[0][r.Map().LID(static_cast<int>(i))] = 0.;
+      }
+      if (!ok)
+        std::cerr << "DEBUG rank failure: " << failure << std::endl;
 
       if (with_matrix)
         {
@@ -674,8 +681,18 @@ namespace Talus
 
       const bool all_ok =
         dealii::Utilities::MPI::min(ok ? 1 : 0, grid.mpi_communicator) == 1;
-      if (!all_ok && failure.empty())
-        failure = "constitutive update failed on another MPI rank";
+      if (!all_ok)
+        {
+          // Every rank reports the first failure of any rank.
+          const auto all =
+            dealii::Utilities::MPI::all_gather(grid.mpi_communicator, failure);
+          for (const auto &f : all)
+            if (!f.empty())
+              {
+                failure = f;
+                break;
+              }
+        }
       return all_ok;
     }
 

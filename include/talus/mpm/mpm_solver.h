@@ -195,6 +195,7 @@ namespace Talus
       std::vector<typename dealii::Particles::ParticleIterator<dim>> particles;
       std::vector<double>                 shape_values;
       std::vector<dealii::Tensor<1, dim>> shape_gradients;
+      std::vector<dealii::Tensor<1, dim>> particle_forces; ///< m_p b_p [N]
 
       dealii::AffineConstraints<double>      constraints;
       dealii::IndexSet                       fixed_dofs;
