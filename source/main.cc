@@ -60,6 +60,12 @@ main(int argc, char **argv)
       if (root)
         std::cerr << "\nError: " << e.what() << '\n';
     }
+  catch (const Talus::ExcVerificationFailed &e)
+    {
+      if (root)
+        std::cerr << "\nVerification failed: " << e.what() << '\n';
+      return 3;
+    }
   catch (const Talus::ExcSimulationFailed &e)
     {
       if (root)

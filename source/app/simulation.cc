@@ -46,6 +46,33 @@ namespace Talus
         prm.enter_subsection("Exact displacement");
         Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
         prm.leave_subsection();
+        prm.declare_entry("displacement error tolerance",
+                          "0",
+                          Patterns::Double(0),
+                          "If > 0: the run fails (exit code 3) when the "
+                          "displacement error at any report time exceeds "
+                          "this value [m].");
+        prm.declare_entry("stress error tolerance",
+                          "0",
+                          Patterns::Double(0),
+                          "If > 0: the run fails when the relative stress "
+                          "error max|s - s_ex| / max|s_ex| exceeds this [-].");
+        prm.declare_entry("reference period",
+                          "0",
+                          Patterns::Double(0),
+                          "If > 0: the period of the oscillation is measured "
+                          "from the zero crossings of the total momentum in x "
+                          "and compared with this value [s].");
+        prm.declare_entry("period tolerance",
+                          "0.005",
+                          Patterns::Double(0),
+                          "Allowed relative error of the measured period [-].");
+        prm.declare_entry("energy drift tolerance",
+                          "0",
+                          Patterns::Double(0),
+                          "If > 0: the run fails when the total energy "
+                          "(kinetic + strain + gravitational) drifts by more "
+                          "than this fraction of its initial value [-].");
         prm.declare_entry("compare stress",
                           "false",
                           Patterns::Bool(),
@@ -142,10 +169,11 @@ namespace Talus
     const bool test_mode = prm.get_bool("test mode");
     prm.leave_subsection();
     dealii::ConditionalOStream pcout(std::cout, root);
-    dealii::TimerOutput        timer(communicator,
-                              pcout,
+    // Rank 0's wall times (no MPI in the destructor, so an error does not
+    // print TimerOutput's warning about skipped communication).
+    dealii::TimerOutput timer(pcout,
                               test_mode ? dealii::TimerOutput::never :
-                                                 dealii::TimerOutput::summary,
+                                          dealii::TimerOutput::summary,
                               dealii::TimerOutput::wall_times);
 
     // Build everything from the file.
@@ -193,7 +221,12 @@ namespace Talus
     prm.enter_subsection("Exact displacement");
     exact_displacement.parse_parameters(prm);
     prm.leave_subsection();
-    const bool compare_stress = prm.get_bool("compare stress");
+    const bool   compare_stress = prm.get_bool("compare stress");
+    const double u_tolerance = prm.get_double("displacement error tolerance");
+    const double s_tolerance = prm.get_double("stress error tolerance");
+    const double reference_period = prm.get_double("reference period");
+    const double period_tolerance = prm.get_double("period tolerance");
+    const double drift_tolerance  = prm.get_double("energy drift tolerance");
     dealii::Functions::ParsedFunction<dim> exact_stress(dim == 2 ? 3 : 6);
     prm.enter_subsection("Exact stress");
     exact_stress.parse_parameters(prm);
@@ -287,9 +320,12 @@ namespace Talus
                                            wall_start)
         .count();
     };
-    double        total_lost_mass = 0.;
-    unsigned long total_newton    = 0;
-    unsigned int  total_rejected  = 0;
+    double              max_drift     = 0.;
+    double              last_momentum = initial.momentum[0];
+    std::vector<double> crossings;
+    double              total_lost_mass = 0.;
+    unsigned long       total_newton    = 0;
+    unsigned int        total_rejected  = 0;
     while (!time_control.finished())
       {
         const double      step  = time_control.next_step();
@@ -348,6 +384,21 @@ namespace Talus
           }
 
         const auto diagnostics = solver.compute_diagnostics();
+        {
+          const double e0 = initial.kinetic_energy + initial.strain_energy +
+                            initial.gravitational_energy;
+          const double e = diagnostics.kinetic_energy +
+                           diagnostics.strain_energy +
+                           diagnostics.gravitational_energy;
+          max_drift =
+            std::max(max_drift,
+                     std::abs(e - e0) / std::max(std::abs(e0), 1e-300));
+          const double p = diagnostics.momentum[0];
+          if (p * last_momentum < 0.)
+            crossings.push_back(time_control.time -
+                                dt_taken * p / (p - last_momentum));
+          last_momentum = p;
+        }
         series.write(time_control.step,
                      time_control.time,
                      dt_taken,
@@ -461,6 +512,48 @@ namespace Talus
             pcout << ", stress (relative, max) " << e.stress_error;
           pcout << std::defaultfloat << '\n';
         }
+    // Checks against the references given in the file.
+    bool       passed = true;
+    const auto check =
+      [&](const std::string &what, const double value, const double tolerance) {
+        const bool ok = value <= tolerance;
+        pcout << "  check " << what << ": " << std::setprecision(3)
+              << std::scientific << value << (ok ? " <= " : " > ") << tolerance
+              << std::defaultfloat << (ok ? "  ok" : "  FAILED") << '\n';
+        passed = passed && ok;
+      };
+    if (compare)
+      for (const auto &e : errors)
+        {
+          if (u_tolerance > 0.)
+            check("displacement error", e.displacement_error, u_tolerance);
+          if (compare_stress && s_tolerance > 0.)
+            check("stress error", e.stress_error, s_tolerance);
+        }
+    if (drift_tolerance > 0.)
+      check("energy drift", max_drift, drift_tolerance);
+    if (reference_period > 0.)
+      {
+        if (crossings.size() < 2)
+          {
+            pcout << "  check period: fewer than two zero crossings of the "
+                     "momentum  FAILED\n";
+            passed = false;
+          }
+        else
+          {
+            const double period = 2. * (crossings.back() - crossings.front()) /
+                                  (crossings.size() - 1);
+            pcout << "  period: " << std::setprecision(6) << period
+                  << " s (reference " << reference_period << " s)\n";
+            check("relative period error",
+                  std::abs(period - reference_period) / reference_period,
+                  period_tolerance);
+          }
+      }
+    if (!passed)
+      throw ExcVerificationFailed("the results miss the reference values "
+                                  "given in subsection <Verification>.");
     return errors;
   }
 

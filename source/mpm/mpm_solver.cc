@@ -247,8 +247,11 @@ namespace Talus
         v->reinit(owned, comm);
 
       // Degrees of freedom on fixed and slip boundaries.
-      fixed_dofs = dealii::DoFTools::extract_boundary_dofs(
-        dof_handler, dealii::ComponentMask(dim, true), grid.fixed_boundaries);
+      // (an empty set of ids would mean "all boundaries" to deal.II)
+      fixed_dofs = dealii::IndexSet(dof_handler.n_dofs());
+      if (!grid.fixed_boundaries.empty())
+        fixed_dofs = dealii::DoFTools::extract_boundary_dofs(
+          dof_handler, dealii::ComponentMask(dim, true), grid.fixed_boundaries);
       slip_dofs.assign(dim, dealii::IndexSet(dof_handler.n_dofs()));
       for (const auto id : grid.slip_boundaries)
         {
@@ -479,6 +482,19 @@ namespace Talus
       cache_particles();
       project_to_grid();
       make_constraints();
+      // Grid velocity and acceleration obey the essential conditions: a
+      // fixed node neither moves nor carries the particles' velocity.
+      for (auto *v : {&velocity_n, &acceleration_n})
+        {
+          dealii::TrilinosWrappers::MPI::Vector owned(grid.locally_owned_dofs,
+                                                      grid.mpi_communicator);
+          owned              = *v;
+          Epetra_FEVector &e = owned.trilinos_vector();
+          for (const auto i : grid.locally_owned_dofs)
+            if (constraints.is_constrained(i))
+              e[0][e.Map().LID(static_cast<int>(i))] = 0.;
+          *v = owned;
+        }
       prepared = true;
       solved   = false;
     }

@@ -20,6 +20,13 @@ namespace Talus
     using std::runtime_error::runtime_error;
   };
 
+  /** A verification run missed its reference values (exit code 3). */
+  class ExcVerificationFailed : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
   /** Errors measured against an exact solution at one report time. */
   struct VerificationErrors
   {
