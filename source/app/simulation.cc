@@ -1,5 +1,6 @@
 #include <talus/app/simulation.h>
 #include <talus/base/input.h>
+#include <talus/base/parsed_functions.h>
 #include <talus/base/time_control.h>
 #include <talus/io/time_series.h>
 #include <talus/io/visualization_output.h>
@@ -219,7 +220,7 @@ namespace Talus
       dealii::Utilities::split_string_list(prm.get("report times")));
     dealii::Functions::ParsedFunction<dim> exact_displacement(dim);
     prm.enter_subsection("Exact displacement");
-    exact_displacement.parse_parameters(prm);
+    parse_function(prm, exact_displacement, "Verification/Exact displacement");
     prm.leave_subsection();
     const bool   compare_stress = prm.get_bool("compare stress");
     const double u_tolerance = prm.get_double("displacement error tolerance");
@@ -229,7 +230,7 @@ namespace Talus
     const double drift_tolerance  = prm.get_double("energy drift tolerance");
     dealii::Functions::ParsedFunction<dim> exact_stress(dim == 2 ? 3 : 6);
     prm.enter_subsection("Exact stress");
-    exact_stress.parse_parameters(prm);
+    parse_function(prm, exact_stress, "Verification/Exact stress");
     prm.leave_subsection();
     prm.leave_subsection();
     report_times.push_back(time_control.end_time);
@@ -268,6 +269,13 @@ namespace Talus
     std::vector<VerificationErrors> errors;
     std::size_t                     next_report = 0;
     std::sort(report_times.begin(), report_times.end());
+    report_times.erase(std::unique(report_times.begin(),
+                                   report_times.end(),
+                                   [](const double a, const double b) {
+                                     return std::abs(a - b) <=
+                                            1e-12 * std::max(1., std::abs(b));
+                                   }),
+                       report_times.end());
     const auto measure = [&](const double t) {
       VerificationErrors e;
       e.time = t;
@@ -432,6 +440,9 @@ namespace Talus
                time_control.time >= report_times[next_report] - 0.5 * dt_taken)
           {
             errors.push_back(measure(time_control.time));
+            // Name the error by the requested time, so that the columns of
+            // a convergence study line up even if a step was halved.
+            errors.back().time = report_times[next_report];
             ++next_report;
           }
       }

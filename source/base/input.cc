@@ -1,8 +1,10 @@
 #include <talus/base/input.h>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
-#include <regex>
 #include <sstream>
+#include <vector>
 
 namespace Talus
 {
@@ -36,27 +38,129 @@ namespace Talus
   }
 
 
+  namespace
+  {
+    std::string
+    trim(const std::string &s)
+    {
+      std::size_t begin = 0;
+      std::size_t end   = s.size();
+      while (begin < end &&
+             std::isspace(static_cast<unsigned char>(s[begin])) != 0)
+        ++begin;
+      while (end > begin &&
+             std::isspace(static_cast<unsigned char>(s[end - 1])) != 0)
+        --end;
+      return s.substr(begin, end - begin);
+    }
+
+
+    bool
+    starts_with(const std::string &s, const std::string &prefix)
+    {
+      return s.compare(0, prefix.size(), prefix) == 0;
+    }
+
+
+    /**
+     * Split "Body/Initial velocity" into {"Body", "Initial velocity"};
+     * empty components (an empty path: the top level) are dropped.
+     */
+    std::vector<std::string>
+    split_subsection_path(const std::string &path)
+    {
+      std::vector<std::string> components;
+      std::size_t              begin = 0;
+      while (begin <= path.size())
+        {
+          std::size_t end = path.find('/', begin);
+          if (end == std::string::npos)
+            end = path.size();
+          const std::string component = trim(path.substr(begin, end - begin));
+          if (!component.empty())
+            components.push_back(component);
+          begin = end + 1;
+        }
+      return components;
+    }
+  } // namespace
+
+
   unsigned int
-  InputFile::line_of(const std::string &entry)
+  InputFile::line_of(const std::string &subsection_path,
+                     const std::string &entry)
   {
     std::ifstream in(input_file_name());
     if (!in)
       return 0;
-    const std::regex pattern(
-      "^\\s*set\\s+" +
-      std::regex_replace(entry,
-                         std::regex(R"([.^$|()\[\]{}*+?\\])"),
-                         R"(\$&)") +
-      "\\s*=.*");
-    std::string  line;
-    unsigned int n = 0;
-    while (std::getline(in, line))
+
+    const std::vector<std::string> wanted_path =
+      split_subsection_path(subsection_path);
+    const std::string wanted_entry = trim(entry);
+
+    std::vector<std::string> current_path;
+    unsigned int             found = 0;
+
+    // One logical line (continuations already joined), interpreted as
+    // dealii::ParameterHandler::scan_line() does. Lines deal.II would reject
+    // cannot occur here (the file has been parsed successfully before any
+    // value is checked) and are simply skipped.
+    const auto scan = [&](std::string line, const unsigned int line_n) {
+      const std::size_t comment = line.find('#');
+      if (comment != std::string::npos)
+        line.erase(comment);
+      std::replace(line.begin(), line.end(), '\t', ' ');
+      line = trim(line);
+
+      if (starts_with(line, "subsection ") || starts_with(line, "SUBSECTION "))
+        current_path.push_back(trim(line.substr(11)));
+      else if (starts_with(line, "end") || starts_with(line, "END"))
+        {
+          if (trim(line.substr(3)).empty() && !current_path.empty())
+            current_path.pop_back();
+        }
+      else if (starts_with(line, "set ") || starts_with(line, "SET "))
+        {
+          const std::size_t equals = line.find('=', 4);
+          if (equals != std::string::npos &&
+              trim(line.substr(4, equals - 4)) == wanted_entry &&
+              current_path == wanted_path)
+            found = line_n;
+        }
+    };
+
+    std::string  physical_line;
+    std::string  logical_line;
+    bool         continued      = false;
+    unsigned int line_n         = 0;
+    unsigned int logical_line_n = 0;
+    while (std::getline(in, physical_line))
       {
-        ++n;
-        if (std::regex_match(line, pattern))
-          return n;
+        ++line_n;
+        if (!continued)
+          {
+            logical_line.clear();
+            logical_line_n = line_n;
+          }
+        physical_line = trim(physical_line);
+        if (!physical_line.empty() && physical_line.back() == '\\')
+          {
+            physical_line.pop_back();
+            logical_line += physical_line;
+            continued = true;
+          }
+        else
+          {
+            logical_line += physical_line;
+            continued = false;
+            scan(logical_line, logical_line_n);
+          }
       }
-    return 0;
+    // deal.II also accepts a backslash on the very last line.
+    if (continued)
+      scan(logical_line, logical_line_n);
+
+    return found;
   }
 
 
@@ -71,7 +175,7 @@ namespace Talus
     if (!name().empty())
       {
         msg << " in file <" << name() << ">";
-        const unsigned int line = line_of(entry);
+        const unsigned int line = line_of(subsection, entry);
         if (line > 0)
           msg << ", line " << line;
       }

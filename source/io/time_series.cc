@@ -13,10 +13,13 @@ namespace Talus
                           const MPI_Comm     communicator)
     {
       is_root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
-      if (!is_root)
+      if (is_root)
+        file.open(filename);
+      const int ok =
+        dealii::Utilities::MPI::min(is_root ? (file ? 1 : 0) : 1, communicator);
+      if (!is_root && ok)
         return;
-      file.open(filename);
-      if (!file)
+      if (!ok)
         throw ExcInvalidInput("Cannot write the time series file <" + filename +
                               ">: check 'output directory' in subsection "
                               "<Output>.");

@@ -1,4 +1,5 @@
 #include <talus/base/input.h>
+#include <talus/base/parsed_functions.h>
 #include <talus/mpm/material_points.h>
 
 #include <deal.II/base/mpi.h>
@@ -214,21 +215,7 @@ namespace Talus
       prm.enter_subsection("Initial velocity");
       initial_velocity =
         std::make_unique<dealii::Functions::ParsedFunction<dim>>(dim);
-      try
-        {
-          initial_velocity->parse_parameters(prm);
-        }
-      catch (const dealii::ExceptionBase &e)
-        {
-          std::ostringstream what;
-          e.print_info(what);
-          InputFile::reject("Body/Initial velocity",
-                            "Function expression",
-                            prm.get("Function expression"),
-                            "it must be " + std::to_string(dim) +
-                              " muparser expressions separated by ';': " +
-                              what.str());
-        }
+      parse_function(prm, *initial_velocity, "Body/Initial velocity");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -292,8 +279,9 @@ namespace Talus
       std::vector<dealii::Point<dim>> &points,
       std::vector<double>             &volumes) const
     {
-      if (dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) != 0)
-        return;
+      // Every rank reads the mesh, so that a bad file is an error on all
+      // ranks; rank 0 alone generates the points (they are distributed by
+      // insert_global_particles).
       dealii::Triangulation<dim> body;
       dealii::GridIn<dim>        grid_in(body);
       std::ifstream              in(mesh_file);
@@ -310,6 +298,8 @@ namespace Talus
                             mesh_file,
                             "it is not a readable Gmsh mesh: " + what.str());
         }
+      if (dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) != 0)
+        return;
       const dealii::QIterated<dim> quadrature(dealii::QMidpoint<1>(),
                                               points_per_direction);
       dealii::FE_Q<dim>            fe(1);

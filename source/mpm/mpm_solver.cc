@@ -1,4 +1,5 @@
 #include <talus/base/input.h>
+#include <talus/base/parsed_functions.h>
 #include <talus/mpm/mpm_solver.h>
 
 #include <deal.II/base/quadrature.h>
@@ -186,21 +187,7 @@ namespace Talus
       prm.enter_subsection("Body force");
       body_force =
         std::make_unique<dealii::Functions::ParsedFunction<dim>>(dim);
-      try
-        {
-          body_force->parse_parameters(prm);
-        }
-      catch (const dealii::ExceptionBase &e)
-        {
-          std::ostringstream what;
-          e.print_info(what);
-          InputFile::reject("Solver/Body force",
-                            "Function expression",
-                            prm.get("Function expression"),
-                            "it must be " + std::to_string(dim) +
-                              " muparser expressions separated by ';': " +
-                              what.str());
-        }
+      parse_function(prm, *body_force, "Solver/Body force");
       prm.leave_subsection();
       max_newton_iterations = prm.get_integer("maximum Newton iterations");
       residual_tolerance    = get_positive(prm, sub, "residual tolerance");
@@ -256,7 +243,8 @@ namespace Talus
       for (const auto id : grid.slip_boundaries)
         {
           // Normal direction of the (axis aligned) boundary.
-          int axis = -1;
+          int axis        = -1;
+          int not_aligned = 0;
           for (const auto &cell : dof_handler.active_cell_iterators())
             if (cell->is_locally_owned())
               for (const unsigned int f : cell->face_indices())
@@ -270,15 +258,16 @@ namespace Talus
                       if (std::abs(std::abs(n[d]) - 1.) < 1e-8)
                         axis = d;
                     if (axis < 0)
-                      InputFile::reject("Background grid",
-                                        "slip boundaries",
-                                        std::to_string(id),
-                                        "slip is only possible on axis-aligned "
-                                        "boundaries; boundary " +
-                                          std::to_string(id) +
-                                          " is not axis aligned");
+                      not_aligned = 1;
                   }
           axis = dealii::Utilities::MPI::max(axis, comm);
+          if (dealii::Utilities::MPI::max(not_aligned, comm) > 0 || axis < 0)
+            InputFile::reject("Background grid",
+                              "slip boundaries",
+                              std::to_string(id),
+                              "slip is only possible on axis-aligned "
+                              "boundaries; boundary " +
+                                std::to_string(id) + " is not axis aligned");
           std::set<dealii::types::boundary_id> ids{id};
           dealii::ComponentMask                mask(dim, false);
           mask.set(axis, true);

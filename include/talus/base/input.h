@@ -36,11 +36,23 @@ namespace Talus
     name();
 
     /**
-     * Line (1-based) of the first "set <entry> =" in the file, or 0 if the
-     * entry is not set there (it then has its default value).
+     * Line (1-based) where parameter @p entry of subsection
+     * @p subsection_path is set in the file, or 0 if it is not set there (it
+     * then has its default value) or the file cannot be read.
+     *
+     * @p subsection_path names the nested subsections separated by '/', as
+     * passed to reject(): "Body", "Body/Initial velocity", "Solver/Body
+     * force"; an empty path means the top level. The file is scanned the way
+     * deal.II's ParameterHandler reads it: "subsection X" enters X, "end"
+     * leaves it, everything after '#' is a comment, a line ending in a
+     * backslash continues on the next one (the statement's first line is
+     * reported),
+     * and the keywords are lower or upper case. If the entry is set more
+     * than once, the last line is returned, since that is the value deal.II
+     * keeps. Statements in files pulled in by "include" are not followed.
      */
     static unsigned int
-    line_of(const std::string &entry);
+    line_of(const std::string &subsection_path, const std::string &entry);
 
     /**
      * Throw ExcInvalidInput for parameter @p entry of subsection
