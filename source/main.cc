@@ -14,9 +14,10 @@ namespace
 {
   const char *usage =
     "Usage: talus <parameter file>          run the simulation in the file\n"
-    "       talus --print-parameters [prm]  list every parameter with its\n"
-    "                                       default, range, unit and meaning\n"
-    "                                       ('prm': as a parameter file)\n"
+    "       talus --print-parameters        list every parameter with its\n"
+    "                                       allowed values, unit and meaning\n"
+    "       talus --print-parameters prm    a complete parameter file with\n"
+    "                                       all defaults\n"
     "       talus --help                    this text\n"
     "Run in parallel with: mpirun -np N talus <parameter file>\n"
     "Documentation: doc/ (parameters: doc/parameters.md).\n";
@@ -46,9 +47,24 @@ main(int argc, char **argv)
     }
   if (arg == "--print-parameters")
     {
+      const std::string format = argc > 2 ? argv[2] : "";
+      if (format != "" && format != "prm")
+        {
+          if (root)
+            std::cerr << "Error: unknown format <" << format
+                      << "> for --print-parameters (allowed: none or 'prm').\n"
+                      << usage;
+          return 2;
+        }
       if (root)
-        Talus::print_parameters(std::cout, argc > 2 ? argv[2] : "");
+        Talus::print_parameters(std::cout, format);
       return 0;
+    }
+  if (arg.size() > 1 && arg[0] == '-')
+    {
+      if (root)
+        std::cerr << "Error: unknown option <" << arg << ">.\n" << usage;
+      return 2;
     }
 
   try
@@ -75,7 +91,7 @@ main(int argc, char **argv)
     {
       if (root)
         {
-          std::cerr << "\nError while reading <" << arg << ">:\n";
+          std::cerr << "\nError (input file <" << arg << ">):\n";
           e.print_info(std::cerr);
         }
     }

@@ -22,6 +22,8 @@ T_x wall time of TimerOutput section x on rank 0):
   G2P+sort          P * S / (T_commit R)                  [particles/s/core]
   lin. share        T_linear / (S * step time)
   CG its/solve      linear iterations / Newton iterations (time_series.csv)
+  init              TimerOutput total - time loop wall ("Done:" line): grid,
+                    particle generation, setup, initial acceleration
   CPU use           sum over ranks of (user + sys) / (R * wall): well below
                     1 means the ranks waited for a core (shared machine)
 """
@@ -92,6 +94,11 @@ def parse_run(d):
         return r
     sec, total = parse_timer(log)
     r["total_wall"] = total
+    m = re.search(r"Done: .* wall time ([0-9.]+) (s|min|h)", log)
+    if m:
+        loop = float(m.group(1)) * {"s": 1, "min": 60, "h": 3600}[m.group(2)]
+        r["loop_wall"] = loop
+        r["init_s"] = total - loop
     newton = linear = steps = 0
     with open(os.path.join(d, "time_series.csv")) as f:
         for row in csv.DictReader(f):
@@ -141,7 +148,7 @@ def parse_floor(path):
         return r
     for kv in m.group(1).split():
         k, v = kv.split("=")
-        r[k] = float(v)
+        r[k] = float(v) if k not in ("dim", "N", "ranks") else int(v)
     q, R = r["qpoints"], r["ranks"]
     r["us_rebuild"] = (r["assembly_s"] + r["amg_setup_s"] + r["cg_s"]) \
         * R / q * 1e6
@@ -170,7 +177,7 @@ def rate(x):
 
 def main(out):
     runs = sorted((parse_run(d) for d in glob.glob(os.path.join(out, "*d_N*_np*"))
-                   if not os.path.basename(d).startswith("floor")),
+                   if re.match(r"\dd_", os.path.basename(d))),
                   key=lambda r: (r["dim"], r["N"], r["ranks"]))
     floors = sorted((parse_floor(d) for d in glob.glob(os.path.join(out, "floor_*"))),
                     key=lambda r: (r["dim"], r["N"], r["ranks"]))
@@ -185,14 +192,14 @@ def main(out):
              "| CG its/solve | step wall [s] | µs/particle/Newton it "
              "(asm + lin) | assembly [p/s/core] | P2G [p/s/core] "
              "| G2P+sort [p/s/core] | linear solver share | peak RSS/rank "
-             "[MB] | CPU use | load before |")
-    L.append("|" + "---|" * 16)
+             "[MB] | CPU use | init [s] | load before |")
+    L.append("|" + "---|" * 17)
     for r in runs:
         if r["status"] != "ok":
             L.append(f"| {r['dim']}D | {r['ranks']} | "
                      f"{fmt(r.get('particles', (2 ** r['dim']) * r['N'] ** r['dim']))} "
                      f"| {fmt(r.get('dofs'))} | – | – | – | – | – | – | – | – | – "
-                     f"| {fmt(r.get('maxrss_mb'))} | – | {r['load'] or '–'} |"
+                     f"| {fmt(r.get('maxrss_mb'))} | – | – | {r['load'] or '–'} |"
                      f" *{r['status']}*")
             continue
         L.append(
@@ -203,7 +210,8 @@ def main(out):
             f"{r['us_lin_per_particle_it']:.1f}) | {rate(r['asm_rate'])} "
             f"| {rate(r['p2g_rate'])} | {rate(r['g2p_rate'])} "
             f"| {100 * r['lin_share']:.0f}% | {r['maxrss_mb']:.0f} "
-            f"| {100 * r['cpu_use']:.0f}% | {r['load']} |")
+            f"| {100 * r['cpu_use']:.0f}% | {fmt(r.get('init_s'))} "
+            f"| {r['load']} |")
     L.append("")
 
     # Table 2: where a step goes.
@@ -335,6 +343,42 @@ def main(out):
                  f"{fmt(r2['step_s'])} s per step, {fmt(r1['particles'])} "
                  f"particles) | {'yes' if met else '**no**'} | {why} |")
     L.append("")
+
+    # Table 5: particle generation.
+    gens = []
+    for d in glob.glob(os.path.join(out, "gen_2d_N*_k*")):
+        m = re.match(r"gen_2d_N(\d+)_k(\d+)$", os.path.basename(d))
+        g = {"N": int(m.group(1)), "k": int(m.group(2)),
+             "status": read(os.path.join(d, "status"), "not run").strip()}
+        prm = read(os.path.join(d, "input.prm"))
+        sub = re.search(r"set subdivisions\s*=\s*([\d, ]+)", prm)
+        lev = re.search(r"set first level\s*=\s*(\d+)", prm)
+        if sub and lev:
+            g["coarse"] = 1
+            for x in sub.group(1).split(","):
+                g["coarse"] *= int(x)
+            g["level"] = int(lev.group(1))
+        log = read(os.path.join(d, "log"))
+        mp = re.search(r"material points: (\d+)", log)
+        _, total = parse_timer(log)
+        ml = re.search(r"Done: .* wall time ([0-9.]+) (s|min|h)", log)
+        if mp and total is not None and ml:
+            g["particles"] = int(mp.group(1))
+            g["init"] = total - float(ml.group(1)) * \
+                {"s": 1, "min": 60, "h": 3600}[ml.group(2)]
+        gens.append(g)
+    if gens:
+        gens.sort(key=lambda g: (g["N"], g["k"]))
+        L.append("### Particle generation (2D, 1 rank; init = TimerOutput "
+                 "total - time loop)\n")
+        L.append("| particles | coarse cells | refinements | init [s] |")
+        L.append("|---|---|---|---|")
+        for g in gens:
+            L.append(f"| {fmt(g.get('particles', 4 * g['N'] ** 2))} "
+                     f"| {fmt(g.get('coarse'))} | {g.get('level', '–')} "
+                     f"| {fmt(g.get('init')) if 'init' in g else g['status']} |")
+        L.append("")
+
     skipped = [r["name"] for r in runs if r["status"] != "ok"]
     if skipped:
         L.append("Not completed: " + ", ".join(
@@ -350,7 +394,7 @@ def main(out):
             "t_commit_step", "t_sort_step", "us_per_particle_it",
             "us_asm_per_particle_it", "us_lin_per_particle_it", "asm_rate",
             "p2g_rate", "g2p_rate", "lin_share", "maxrss_mb", "cpu_use",
-            "total_wall", "load"]
+            "total_wall", "loop_wall", "init_s", "load"]
     with open(os.path.join(out, "results.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, keys, extrasaction="ignore")
         w.writeheader()

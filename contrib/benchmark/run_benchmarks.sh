@@ -10,24 +10,33 @@
 # block) and the performance targets of the issue.
 #
 #   usage: bash contrib/benchmark/run_benchmarks.sh [options]
-#     --quick          small sizes only (2D 32 63 126, 3D 6 9 17): smoke test
+#     --quick          small sizes only (2D 28 60 124, 3D 4 8 12): smoke test
 #     --no-build       use the existing executables in the build directory
 #     --no-floor       skip the deal.II floor runs
 #     --help           this text
 #   environment (defaults in brackets):
 #     TALUS_BENCH_BUILD    Release build directory [<repo>/build-bench]
 #     TALUS_BENCH_OUT      result directory [<build>/benchmark-results]
-#     TALUS_BENCH_SIZES_2D cells per direction under the 2D block [63 177 500]
-#     TALUS_BENCH_SIZES_3D cells per direction under the 3D block [9 17 34]
+#     TALUS_BENCH_SIZES_2D cells per direction under the 2D block [60 180 508]
+#     TALUS_BENCH_SIZES_3D cells per direction under the 3D block [8 18 36]
+#     TALUS_BENCH_GEN_SIZES 2D sizes of the particle-generation runs (one
+#                          step, single-level grid vs refined grid, 1 rank)
+#                          [60 124 180]; empty: none
 #     TALUS_BENCH_RANKS    MPI rank counts [1 2]
 #     TALUS_BENCH_STEPS    time steps per run [5]
 #     TALUS_BENCH_BUDGET   wall-time budget of all runs [s, 1200]; once it
 #                          is spent the remaining runs are skipped (and listed
 #                          as skipped in the tables)
 #     TALUS_BENCH_TIMEOUT  limit per run [s, 600]
+#     TALUS_BENCH_COMMIT   revision to state in the results [git rev-parse]
+#     TALUS_BENCH_MAX_REFINE  most refinements of the coarse grid [4]; 0 makes
+#                          the grid a single level (slow particle generation,
+#                          see fill() below)
 #
-# Particle counts: 2D 4 N^2 (63: 15,876; 177: 125,316; 500: 1,000,000),
-# 3D 8 N^3 (9: 5,832; 17: 39,304; 34: 314,432). Consecutive sizes grow ~8x.
+# Particle counts: 2D 4 N^2 (60: 14,400; 180: 129,600; 508: 1,032,256),
+# 3D 8 N^3 (8: 4,096; 18: 46,656; 36: 373,248). The two larger sizes of each
+# dimension differ by a factor 8 (the AMG growth target); N + 4 has a large
+# power of 2 as factor (see fill() below).
 # The result directory holds one folder per run (input, log, time series)
 # and results.md / results.csv. Exit status: non-zero if the build fails or
 # a run fails (timeouts and skipped runs are reported, not fatal).
@@ -36,19 +45,21 @@ set -euo pipefail
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 here="$top/contrib/benchmark"
 build=${TALUS_BENCH_BUILD:-$top/build-bench}
-sizes2d=${TALUS_BENCH_SIZES_2D:-"63 177 500"}
-sizes3d=${TALUS_BENCH_SIZES_3D:-"9 17 34"}
+sizes2d=${TALUS_BENCH_SIZES_2D:-"60 180 508"}
+sizes3d=${TALUS_BENCH_SIZES_3D:-"8 18 36"}
+gen_sizes=${TALUS_BENCH_GEN_SIZES:-"60 124 180"}
 ranks=${TALUS_BENCH_RANKS:-"1 2"}
 steps=${TALUS_BENCH_STEPS:-5}
 budget=${TALUS_BENCH_BUDGET:-1200}
 timeout_run=${TALUS_BENCH_TIMEOUT:-600}
+max_refine=${TALUS_BENCH_MAX_REFINE:-4}
 dt=0.01
 do_build=1
 do_floor=1
 
 while [ $# -gt 0 ]; do
   case "$1" in
-    --quick) sizes2d="32 63 126"; sizes3d="6 9 17" ;;
+    --quick) sizes2d="28 60 124"; sizes3d="4 8 12" ;;
     --no-build) do_build=0 ;;
     --no-floor) do_floor=0 ;;
     --help|-h) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
@@ -100,7 +111,13 @@ status=0
 # Machine and revision (for doc/performance.md).
 {
   echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"
-  echo "commit: $(git -C "$top" rev-parse --short HEAD 2>/dev/null || echo unknown)$(git -C "$top" diff --quiet HEAD -- include source 2>/dev/null || echo ' (with local changes in include/ or source/)')"
+  if [ -n "${TALUS_BENCH_COMMIT:-}" ]; then
+    echo "commit: $TALUS_BENCH_COMMIT"
+  elif git -C "$top" rev-parse --short HEAD > /dev/null 2>&1; then
+    echo "commit: $(git -C "$top" rev-parse --short HEAD)$(git -C "$top" diff --quiet HEAD -- include source CMakeLists.txt || echo ' + uncommitted changes in include/ or source/')"
+  else
+    echo "commit: unknown"
+  fi
   echo "nproc: $(nproc)"
   echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')"
   echo "memory: $(awk '/MemTotal/ {printf "%.1f GiB", $2 / 1048576}' /proc/meminfo)"
@@ -111,17 +128,27 @@ status=0
 } > "$out/machine.txt"
 
 # fill <dim> <N> <output dir>: the input file of one run on stdout. The grid
-# has N cells per direction under the unit block plus 2 empty cells on the
-# sides and on top (room for the Poisson expansion and the motion).
+# has N cells per direction under the unit block plus empty cells: 2 on the
+# sides, 4 on top (room for the Poisson expansion and the motion), N + 4 in
+# all. It is made as a coarse grid of (N + 4) / 2^k cells refined k times
+# ('Convergence study/first level'), k the largest <= max_refine with
+# 2^k | N + 4: with k = 0 the particle generation of Talus 0.x takes
+# O(particles x coarse cells) (GridTools::guess_point_owner over one bounding
+# box per coarse cell in ParticleHandler::insert_global_particles), minutes
+# for 1e6 particles; the refined grid is the same grid with few coarse cells.
 fill() {
   local dim=$1 n=$2 dir=$3
-  local h xlo xhi yhi
+  local h xlo xhi yhi k=0 m=$(($2 + 4))
+  while [ "$k" -lt "$max_refine" ] && [ $((m % (1 << (k + 1)))) = 0 ] &&
+          [ $((m >> (k + 1))) -ge 2 ]; do
+    k=$((k + 1))
+  done
   h=$(awk -v n="$n" 'BEGIN {printf "%.17g", 1 / n}')
   xlo=$(awk -v h="$h" 'BEGIN {printf "%.17g", -2 * h}')
   xhi=$(awk -v h="$h" 'BEGIN {printf "%.17g", 1 + 2 * h}')
-  yhi=$xhi
+  yhi=$(awk -v h="$h" 'BEGIN {printf "%.17g", 1 + 4 * h}')
   sed -e "s/@N@/$n/g" -e "s/@XLO@/$xlo/g" -e "s/@XHI@/$xhi/g" \
-      -e "s/@YHI@/$yhi/g" -e "s/@NX@/$((n + 4))/g" -e "s/@NY@/$((n + 2))/g" \
+      -e "s/@YHI@/$yhi/g" -e "s/@N0@/$((m >> k))/g" -e "s/@K@/$k/g" \
       -e "s/@END@/$(awk -v s="$steps" -v dt="$dt" 'BEGIN {printf "%.10g", s * dt}')/g" \
       -e "s/@DT@/$dt/g" -e "s#@OUT@#$dir#g" \
       "$here/block_${dim}d.prm.in"
@@ -172,6 +199,17 @@ for dim in 2 3; do
         run_case "floor_${dim}d_N${n}_np${np}" "$np" "$floor" "$dim" "$n" 2
       done
     fi
+  done
+done
+
+# Particle generation (untimed by Talus: "init" = total - time loop) on a
+# single-level grid (max_refine = 0) and on the refined grid, one step.
+for n in $gen_sizes; do
+  for k in 0 "$max_refine"; do
+    name="gen_2d_N${n}_k${k}"
+    mkdir -p "$out/$name"
+    max_refine=$k steps=1 fill 2 "$n" "$out/$name" > "$out/$name/input.prm"
+    run_case "$name" 1 "$talus" "$out/$name/input.prm"
   done
 done
 

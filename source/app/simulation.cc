@@ -494,13 +494,16 @@ namespace Talus
         for (unsigned int d = 0; d < dim; ++d)
           pcout << ' ' << round(final_state.momentum[d]);
         pcout << "\n  kinetic energy: " << round(final_state.kinetic_energy)
-              << "\n  strain energy: " << round(final_state.strain_energy)
-              << "\n  displacement min:";
-        for (unsigned int d = 0; d < dim; ++d)
-          pcout << ' ' << round(u_min[d]);
-        pcout << "\n  displacement max:";
-        for (unsigned int d = 0; d < dim; ++d)
-          pcout << ' ' << round(u_max[d]);
+              << "\n  strain energy: " << round(final_state.strain_energy);
+        if (points.n_global_points() > 0)
+          {
+            pcout << "\n  displacement min:";
+            for (unsigned int d = 0; d < dim; ++d)
+              pcout << ' ' << round(u_min[d]);
+            pcout << "\n  displacement max:";
+            for (unsigned int d = 0; d < dim; ++d)
+              pcout << ' ' << round(u_max[d]);
+          }
         pcout << "\n  max speed: " << round(v_max)
               << "\n  lost mass: " << round(total_lost_mass) << " kg\n";
       }

@@ -191,7 +191,8 @@ namespace Talus
                                 mesh_file,
                                 "it is not a readable Gmsh mesh of " +
                                   std::to_string(dim) +
-                                  "D quadrilaterals/hexahedra: " + what.str());
+                                  "D quadrilaterals/hexahedra: " +
+                                  dealii::Utilities::trim(what.str()));
             }
           is_cartesian = false;
           const auto box =

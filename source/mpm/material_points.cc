@@ -296,7 +296,8 @@ namespace Talus
           InputFile::reject("Body",
                             "mesh file",
                             mesh_file,
-                            "it is not a readable Gmsh mesh: " + what.str());
+                            "it is not a readable Gmsh mesh: " +
+                              dealii::Utilities::trim(what.str()));
         }
       if (dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) != 0)
         return;

@@ -786,9 +786,13 @@ namespace Talus
           const double du_norm     = du.l2_norm();
           const bool   residual_ok = r <= residual_tolerance * reference ||
                                    r <= absolute_residual_tolerance;
+          // The increment criterion may be waived when the residual is far
+          // below its tolerance (quadratic convergence: the last correction
+          // is then still large relative to the current error).
           const bool increment_ok =
             it > 0 &&
-            (last_increment <= increment_tolerance * du_norm || du_norm == 0.);
+            (last_increment <= increment_tolerance * du_norm || du_norm == 0. ||
+             r <= 1e-4 * residual_tolerance * reference);
           if (residual_ok &&
               (it == 0 ? r <= absolute_residual_tolerance || reference == 0. :
                          increment_ok))

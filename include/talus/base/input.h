@@ -46,10 +46,10 @@ namespace Talus
      * deal.II's ParameterHandler reads it: "subsection X" enters X, "end"
      * leaves it, everything after '#' is a comment, a line ending in a
      * backslash continues on the next one (the statement's first line is
-     * reported),
-     * and the keywords are lower or upper case. If the entry is set more
-     * than once, the last line is returned, since that is the value deal.II
-     * keeps. Statements in files pulled in by "include" are not followed.
+     * reported), and the keywords are lower or upper case. If the entry is
+     * set more than once, the last line is returned, since that is the value
+     * deal.II keeps. Statements in files pulled in by "include" are not
+     * followed.
      */
     static unsigned int
     line_of(const std::string &subsection_path, const std::string &entry);
