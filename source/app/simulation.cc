@@ -99,6 +99,12 @@ namespace Talus
                           "0",
                           Patterns::Integer(0, 8),
                           "Refinement level of the first run [-].");
+        prm.declare_entry("minimum rate",
+                          "0",
+                          Patterns::Double(0),
+                          "If > 0: the study fails (exit code 3) when the "
+                          "rate measured between the last two levels is "
+                          "below this value for any report time [-].");
         prm.declare_entry("refine time step",
                           "true",
                           Patterns::Bool(),
@@ -581,7 +587,9 @@ namespace Talus
       prm.enter_subsection("Convergence study");
       const unsigned int n_levels    = prm.get_integer("number of levels");
       const unsigned int first_level = prm.get_integer("first level");
+      const double       minimum_rate = prm.get_double("minimum rate");
       prm.leave_subsection();
+      std::vector<std::vector<double>> level_errors;
       prm.enter_subsection("Verification");
       const bool compare = prm.get_bool("compare with exact solution");
       prm.leave_subsection();
@@ -598,6 +606,9 @@ namespace Talus
         {
           Simulation<dim> simulation(communicator);
           const auto      errors = simulation.run(prm, level);
+          level_errors.emplace_back();
+          for (const auto &e : errors)
+            level_errors.back().push_back(e.displacement_error);
           if (n_levels > 1)
             {
               table.add_value("level", level);
@@ -621,6 +632,28 @@ namespace Talus
           table.write_text(
             std::cout,
             dealii::TableHandler::table_with_separate_column_description);
+        }
+      if (n_levels > 1 && minimum_rate > 0.)
+        {
+          bool        passed = true;
+          const auto &fine   = level_errors[n_levels - 1];
+          const auto &coarse = level_errors[n_levels - 2];
+          for (unsigned int k = 0; k < std::min(fine.size(), coarse.size());
+               ++k)
+            {
+              const double rate = std::log2(coarse[k] / fine[k]);
+              const bool   ok   = rate >= minimum_rate;
+              passed            = passed && ok;
+              if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+                std::cout << "  check rate (report time " << k + 1
+                          << ", last two levels): " << std::setprecision(3)
+                          << std::fixed << rate << (ok ? " >= " : " < ")
+                          << minimum_rate << std::defaultfloat
+                          << (ok ? "  ok" : "  FAILED") << '\n';
+            }
+          if (!passed)
+            throw ExcVerificationFailed("the measured convergence rate is "
+                                        "below 'minimum rate'.");
         }
       return 0;
     }
