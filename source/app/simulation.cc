@@ -585,8 +585,8 @@ namespace Talus
     run_dimension(dealii::ParameterHandler &prm, const MPI_Comm communicator)
     {
       prm.enter_subsection("Convergence study");
-      const unsigned int n_levels    = prm.get_integer("number of levels");
-      const unsigned int first_level = prm.get_integer("first level");
+      const unsigned int n_levels     = prm.get_integer("number of levels");
+      const unsigned int first_level  = prm.get_integer("first level");
       const double       minimum_rate = prm.get_double("minimum rate");
       prm.leave_subsection();
       std::vector<std::vector<double>> level_errors;

@@ -151,6 +151,13 @@ namespace Talus
                           "preconditioner with the translations as near null "
                           "space), or 'direct' (Amesos KLU, for small "
                           "problems).");
+        prm.declare_entry("reuse preconditioner",
+                          "true",
+                          Patterns::Bool(),
+                          "Build the AMG preconditioner once per time step "
+                          "(first Newton iteration) and reuse it in the later "
+                          "iterations; it is rebuilt if the Krylov solver "
+                          "then fails.");
         prm.declare_entry("linear solver tolerance",
                           "1e-10",
                           Patterns::Double(0),
@@ -195,6 +202,7 @@ namespace Talus
         prm.get_double("absolute residual tolerance");
       increment_tolerance   = get_positive(prm, sub, "increment tolerance");
       linear_solver_type    = prm.get("linear solver");
+      reuse_preconditioner  = prm.get_bool("reuse preconditioner");
       linear_tolerance      = get_positive(prm, sub, "linear solver tolerance");
       max_linear_iterations = prm.get_integer("maximum linear iterations");
       abort_on_lost_points  = prm.get_bool("abort on lost material points");
@@ -471,6 +479,7 @@ namespace Talus
       cache_particles();
       project_to_grid();
       make_constraints();
+      amg_current = false;
       // Grid velocity and acceleration obey the essential conditions: a
       // fixed node neither moves nor carries the particles' velocity.
       for (auto *v : {&velocity_n, &acceleration_n})
@@ -717,28 +726,55 @@ namespace Talus
           return 1;
         }
 
-      dealii::TrilinosWrappers::PreconditionAMG                 amg;
-      dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
-      data.constant_modes        = constant_modes;
-      data.elliptic              = true;
-      data.higher_order_elements = false;
-      data.smoother_sweeps       = 2;
-      data.aggregation_threshold = 0.02;
-      amg.initialize(matrix, data);
+      // The AMG hierarchy is built at the first Newton iteration of a step
+      // and reused by the later ones (the tangent changes little); if the
+      // Krylov solver fails with a reused hierarchy, it is rebuilt once.
+      const auto build_amg = [&]() {
+        dealii::TimerOutput::Scope s(timer, "AMG setup");
+        dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
+        data.constant_modes        = constant_modes;
+        data.elliptic              = true;
+        data.higher_order_elements = false;
+        data.smoother_sweeps       = 2;
+        data.aggregation_threshold = 0.02;
+        amg = std::make_unique<dealii::TrilinosWrappers::PreconditionAMG>();
+        amg->initialize(matrix, data);
+      };
+      bool fresh = false;
+      if (!amg || !reuse_preconditioner || !amg_current)
+        {
+          build_amg();
+          amg_current = true;
+          fresh       = true;
+        }
 
+      const auto krylov = [&](dealii::SolverControl &control) {
+        x = 0.;
+        if (linear_solver_type == "CG")
+          {
+            dealii::SolverCG<dealii::TrilinosWrappers::MPI::Vector> solver(
+              control);
+            solver.solve(matrix, x, residual, *amg);
+          }
+        else
+          {
+            dealii::SolverGMRES<dealii::TrilinosWrappers::MPI::Vector> solver(
+              control);
+            solver.solve(matrix, x, residual, *amg);
+          }
+      };
       dealii::SolverControl control(max_linear_iterations,
                                     linear_tolerance * residual.l2_norm());
-      if (linear_solver_type == "CG")
+      try
         {
-          dealii::SolverCG<dealii::TrilinosWrappers::MPI::Vector> solver(
-            control);
-          solver.solve(matrix, x, residual, amg);
+          krylov(control);
         }
-      else
+      catch (const dealii::SolverControl::NoConvergence &)
         {
-          dealii::SolverGMRES<dealii::TrilinosWrappers::MPI::Vector> solver(
-            control);
-          solver.solve(matrix, x, residual, amg);
+          if (fresh)
+            throw;
+          build_amg();
+          krylov(control);
         }
       constraints.distribute(x);
       return control.last_step();

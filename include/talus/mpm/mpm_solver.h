@@ -12,6 +12,7 @@
 #include <deal.II/base/timer.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -197,11 +198,14 @@ namespace Talus
       std::vector<dealii::Tensor<1, dim>> shape_gradients;
       std::vector<dealii::Tensor<1, dim>> particle_forces; ///< m_p b_p [N]
 
-      dealii::AffineConstraints<double>      constraints;
-      dealii::IndexSet                       fixed_dofs;
-      std::vector<dealii::IndexSet>          slip_dofs;
-      dealii::TrilinosWrappers::SparseMatrix matrix;
-      std::vector<std::vector<bool>>         constant_modes;
+      dealii::AffineConstraints<double>                          constraints;
+      dealii::IndexSet                                           fixed_dofs;
+      std::vector<dealii::IndexSet>                              slip_dofs;
+      dealii::TrilinosWrappers::SparseMatrix                     matrix;
+      std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
+      bool                           amg_current          = false;
+      bool                           reuse_preconditioner = true;
+      std::vector<std::vector<bool>> constant_modes;
 
       dealii::TrilinosWrappers::MPI::Vector nodal_mass;       // ghosted
       dealii::TrilinosWrappers::MPI::Vector velocity_n;       // ghosted
