@@ -32,11 +32,12 @@ regenerate it with
     bash contrib/generate_parameter_doc.sh [path/to/talus]
 
 which stores the output of `talus --print-parameters` below: every parameter
-of the input file, by subsection, with the values it accepts and its meaning
-(units in square brackets). The defaults are not part of this listing:
+of the input file, by subsection, with its default value, the values it
+accepts and its meaning (units in square brackets). Range conditions that a
+pattern cannot express (e.g. density > 0, Poisson's ratio in (-1, 0.5)) are
+stated in the meaning and checked when the file is read.
 `talus --print-parameters prm` prints a complete input file with every
-parameter at its default value and its documentation as comments, a good
-starting point for a new input file.
+parameter at its default value, a good starting point for a new input file.
 
 The listing shows the 2D declarations (`set dimension = 2`, the default). With
 `set dimension = 3`, points and vectors (corners, gravity, subdivisions,

@@ -15,6 +15,9 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -694,19 +697,89 @@ namespace Talus
   }
 
 
+  namespace
+  {
+    // deal.II mangles names in its JSON export: every character that is not
+    // a letter or digit is written as _XX (hex).
+    std::string
+    demangle(const std::string &s)
+    {
+      std::string r;
+      for (std::size_t i = 0; i < s.size(); ++i)
+        if (s[i] == '_' && i + 2 < s.size())
+          {
+            r += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+          }
+        else
+          r += s[i];
+      return r;
+    }
+
+    void
+    print_tree(std::ostream                      &out,
+               const boost::property_tree::ptree &tree,
+               const unsigned int                 indent)
+    {
+      const std::string pad(indent, ' ');
+      // Entries first, then subsections (as in a parameter file).
+      for (const auto &[name, node] : tree)
+        if (node.get_child_optional("value"))
+          {
+            out << pad << "set " << demangle(name) << " = "
+                << node.get<std::string>("default_value") << '\n'
+                << pad << "    # allowed: "
+                << node.get<std::string>("pattern_description") << '\n';
+            std::istringstream doc(node.get<std::string>("documentation"));
+            std::string        word, line;
+            while (doc >> word)
+              {
+                if (line.size() + word.size() + pad.size() + 7 > 79)
+                  {
+                    out << pad << "    # " << line << '\n';
+                    line.clear();
+                  }
+                line += (line.empty() ? "" : " ") + word;
+              }
+            if (!line.empty())
+              out << pad << "    # " << line << '\n';
+          }
+      for (const auto &[name, node] : tree)
+        if (!node.get_child_optional("value"))
+          {
+            out << '\n' << pad << "subsection " << demangle(name) << '\n';
+            print_tree(out, node, indent + 2);
+            out << pad << "end\n";
+          }
+    }
+  } // namespace
+
+
   void
   print_parameters(std::ostream &out, const std::string &format)
   {
     dealii::ParameterHandler prm;
     Simulation<2>::declare_parameters(prm);
     if (format == "prm")
-      prm.print_parameters(out,
-                           dealii::ParameterHandler::PRM |
-                             dealii::ParameterHandler::KeepDeclarationOrder);
-    else
-      prm.print_parameters(out,
-                           dealii::ParameterHandler::Description |
-                             dealii::ParameterHandler::KeepDeclarationOrder);
+      {
+        prm.print_parameters(out,
+                             dealii::ParameterHandler::PRM |
+                               dealii::ParameterHandler::KeepDeclarationOrder);
+        return;
+      }
+    // Default, allowed values (pattern) and documentation of every entry.
+    std::stringstream json;
+    prm.print_parameters(json,
+                         dealii::ParameterHandler::JSON |
+                           dealii::ParameterHandler::KeepDeclarationOrder);
+    boost::property_tree::ptree tree;
+    boost::property_tree::read_json(json, tree);
+    out
+      << "# Every parameter of a Talus input file: default value, allowed\n"
+         "# values and meaning (units in brackets). Defaults of vector\n"
+         "# entries are shown for dimension = 2; in 3D they have a third\n"
+         "# component. 'talus --print-parameters prm' prints an input file.\n\n";
+    print_tree(out, tree, 0);
   }
 
 
