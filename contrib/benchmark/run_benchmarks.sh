@@ -69,6 +69,9 @@ while [ $# -gt 0 ]; do
 done
 out=${TALUS_BENCH_OUT:-$build/benchmark-results}
 
+# (before OMP_NUM_THREADS is set: nproc honours it)
+ncores=$(nproc --all 2>/dev/null || getconf _NPROCESSORS_ONLN)
+
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 # One thread per rank (deal.II/TBB, OpenMP in Trilinos/BLAS if any).
@@ -81,7 +84,7 @@ if [ "$do_build" = 1 ]; then
   (cd "$build" &&
      cmake "$top" -DCMAKE_BUILD_TYPE=Release -DTALUS_ENABLE_TESTS=OFF \
        > cmake.log &&
-     make -j"$(nproc)" talus > make.log) ||
+     make -j"$ncores" talus > make.log) ||
     { echo "run_benchmarks.sh: build failed, see $build/make.log" >&2; exit 1; }
   if [ "$do_floor" = 1 ]; then
     echo "run_benchmarks.sh: building the deal.II floor in $build/floor"
@@ -118,10 +121,11 @@ status=0
   else
     echo "commit: unknown"
   fi
-  echo "nproc: $(nproc)"
-  echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')"
+  echo "nproc: $ncores"
+  echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//') (family $(grep -m1 'cpu family' /proc/cpuinfo | cut -d: -f2 | tr -d ' ') model $(grep -m1 '^model[[:space:]]*:' /proc/cpuinfo | cut -d: -f2 | tr -d ' '), $(grep -c '^processor' /proc/cpuinfo) logical CPUs, $(lscpu 2>/dev/null | sed -n 's/^Thread(s) per core: *//p') thread(s) per core$(lscpu 2>/dev/null | sed -n 's/^Hypervisor vendor: */, hypervisor /p'))"
   echo "memory: $(awk '/MemTotal/ {printf "%.1f GiB", $2 / 1048576}' /proc/meminfo)"
-  echo "deal.II: $(sed -n 's/^DEAL_II_PACKAGE_VERSION:[A-Z]*=//p; s/^deal.II_DIR:PATH=//p' "$build/CMakeCache.txt" | head -1)"
+  dealii_dir=$(sed -n 's/^deal.II_DIR:PATH=//p' "$build/CMakeCache.txt")
+  echo "deal.II: $(sed -n 's/^[sS][eE][tT](DEAL_II_PACKAGE_VERSION "\(.*\)")/\1/p' "$dealii_dir/deal.IIConfig.cmake" 2>/dev/null | head -1) ($dealii_dir)"
   echo "mpirun: $(mpirun --version 2>/dev/null | head -1)"
   echo "steps: $steps"
   echo "dt: $dt"

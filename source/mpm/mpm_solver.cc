@@ -18,6 +18,9 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+
 #include <cmath>
 #include <sstream>
 
@@ -283,6 +286,35 @@ namespace Talus
             dealii::DoFTools::extract_boundary_dofs(dof_handler, mask, ids));
         }
 
+      // Support points of the owned dofs (relative to the grid centre, for
+      // well-scaled rotation modes) and their components.
+      {
+        std::map<dealii::types::global_dof_index, dealii::Point<dim>> points;
+        dealii::DoFTools::map_dofs_to_support_points(grid.mapping,
+                                                     dof_handler,
+                                                     points);
+        const dealii::Point<dim> centre =
+          0.5 * (grid.lower_corner + grid.upper_corner);
+        owned_support_points.resize(grid.locally_owned_dofs.n_elements());
+        owned_components.resize(grid.locally_owned_dofs.n_elements());
+        std::vector<dealii::types::global_dof_index> dofs(
+          grid.fe.dofs_per_cell);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              cell->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                if (grid.locally_owned_dofs.is_element(dofs[i]))
+                  {
+                    const auto k =
+                      grid.locally_owned_dofs.index_within_set(dofs[i]);
+                    owned_support_points[k] =
+                      dealii::Point<dim>(points[dofs[i]] - centre);
+                    owned_components[k] =
+                      grid.fe.system_to_component_index(i).first;
+                  }
+            }
+      }
       dealii::DoFTools::extract_constant_modes(dof_handler,
                                                dealii::ComponentMask(dim, true),
                                                constant_modes);
@@ -737,8 +769,46 @@ namespace Talus
         data.higher_order_elements = false;
         data.smoother_sweeps       = 2;
         data.aggregation_threshold = 0.02;
+        // ML parameters with the rigid body modes (translations and
+        // rotations) as near null space; deal.II 9.4's AdditionalData only
+        // takes the translations.
+        Teuchos::ParameterList              parameters;
+        std::unique_ptr<Epetra_MultiVector> translations;
+        data.set_parameters(parameters, translations, matrix);
+        const Epetra_Map  &map     = matrix.trilinos_matrix().DomainMap();
+        const unsigned int n_modes = dim == 2 ? 3 : 6;
+        rigid_body_modes = std::make_unique<Epetra_MultiVector>(map, n_modes);
+        for (int l = 0; l < map.NumMyElements(); ++l)
+          {
+            const auto global =
+              static_cast<dealii::types::global_dof_index>(map.GID(l));
+            const auto local_index =
+              grid.locally_owned_dofs.index_within_set(global);
+            const auto        &x = owned_support_points[local_index];
+            const unsigned int c = owned_components[local_index];
+            double            *v = (*rigid_body_modes)[0];
+            const int          n = map.NumMyElements();
+            for (unsigned int m = 0; m < n_modes; ++m)
+              v[m * n + l] = 0.;
+            v[c * n + l] = 1.; // translation in direction c
+            if (dim == 2)
+              v[2 * n + l] = (c == 0 ? -x[1] : x[0]);
+            else
+              {
+                // rotations about x, y, z
+                const double rx[3] = {0., -x[2], x[1]};
+                const double ry[3] = {x[2], 0., -x[0]};
+                const double rz[3] = {-x[1], x[0], 0.};
+                v[3 * n + l]       = rx[c];
+                v[4 * n + l]       = ry[c];
+                v[5 * n + l]       = rz[c];
+              }
+          }
+        parameters.set("null space: type", "pre-computed");
+        parameters.set("null space: dimension", static_cast<int>(n_modes));
+        parameters.set("null space: vectors", rigid_body_modes->Values());
         amg = std::make_unique<dealii::TrilinosWrappers::PreconditionAMG>();
-        amg->initialize(matrix, data);
+        amg->initialize(matrix, parameters);
       };
       bool fresh = false;
       if (!amg || !reuse_preconditioner || !amg_current)

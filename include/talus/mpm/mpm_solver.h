@@ -16,6 +16,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <Epetra_MultiVector.h>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -203,9 +205,12 @@ namespace Talus
       std::vector<dealii::IndexSet>                              slip_dofs;
       dealii::TrilinosWrappers::SparseMatrix                     matrix;
       std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
-      bool                           amg_current          = false;
-      bool                           reuse_preconditioner = true;
-      std::vector<std::vector<bool>> constant_modes;
+      bool                                amg_current = false;
+      std::unique_ptr<Epetra_MultiVector> rigid_body_modes;
+      std::vector<dealii::Point<dim>>     owned_support_points;
+      std::vector<unsigned int>           owned_components;
+      bool                                reuse_preconditioner = true;
+      std::vector<std::vector<bool>>      constant_modes;
 
       dealii::TrilinosWrappers::MPI::Vector nodal_mass;       // ghosted
       dealii::TrilinosWrappers::MPI::Vector velocity_n;       // ghosted
