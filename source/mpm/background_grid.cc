@@ -13,6 +13,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 namespace Talus
 {
@@ -45,6 +46,25 @@ namespace Talus
       for (unsigned int d = 0; d < dim; ++d)
         p[d] = values[d];
       return p;
+    }
+
+
+    template <int dim>
+    std::pair<dealii::Point<dim>, dealii::Point<dim>>
+    parse_box(const dealii::ParameterHandler &prm,
+              const std::string              &subsection)
+    {
+      const auto lower = parse_point<dim>(prm, subsection, "lower corner");
+      const auto upper = parse_point<dim>(prm, subsection, "upper corner");
+      for (unsigned int d = 0; d < dim; ++d)
+        if (!(upper[d] > lower[d]))
+          InputFile::reject(subsection,
+                            "upper corner",
+                            prm.get("upper corner"),
+                            "every coordinate must be larger than the lower "
+                            "corner's (" +
+                              prm.get("lower corner") + ")");
+      return {lower, upper};
     }
 
 
@@ -146,16 +166,7 @@ namespace Talus
 
       if (type == "box")
         {
-          lower_corner = parse_point<dim>(prm, sub, "lower corner");
-          upper_corner = parse_point<dim>(prm, sub, "upper corner");
-          for (unsigned int d = 0; d < dim; ++d)
-            if (!(upper_corner[d] > lower_corner[d]))
-              InputFile::reject(sub,
-                                "upper corner",
-                                prm.get("upper corner"),
-                                "every coordinate must be larger than the "
-                                "lower corner's (" +
-                                  prm.get("lower corner") + ")");
+          std::tie(lower_corner, upper_corner) = parse_box<dim>(prm, sub);
           subdivisions.clear();
           for (const auto &s :
                dealii::Utilities::split_string_list(prm.get("subdivisions"),
@@ -243,6 +254,10 @@ namespace Talus
 
     template class BackgroundGrid<2>;
     template class BackgroundGrid<3>;
+    template std::pair<dealii::Point<2>, dealii::Point<2>>
+    parse_box<2>(const dealii::ParameterHandler &, const std::string &);
+    template std::pair<dealii::Point<3>, dealii::Point<3>>
+    parse_box<3>(const dealii::ParameterHandler &, const std::string &);
     template dealii::Point<2>
     parse_point<2>(const dealii::ParameterHandler &,
                    const std::string &,

@@ -15,6 +15,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 namespace Talus
 {
@@ -130,16 +131,7 @@ namespace Talus
       points_per_direction = prm.get_integer("points per cell per direction");
       if (geometry == "box")
         {
-          box_lower = parse_point<dim>(prm, sub, "lower corner");
-          box_upper = parse_point<dim>(prm, sub, "upper corner");
-          for (unsigned int d = 0; d < dim; ++d)
-            if (!(box_upper[d] > box_lower[d]))
-              InputFile::reject(sub,
-                                "upper corner",
-                                prm.get("upper corner"),
-                                "every coordinate must be larger than the "
-                                "lower corner's (" +
-                                  prm.get("lower corner") + ")");
+          std::tie(box_lower, box_upper) = parse_box<dim>(prm, sub);
           for (unsigned int d = 0; d < dim; ++d)
             if (box_lower[d] < grid.lower_corner[d] - 1e-12 ||
                 box_upper[d] > grid.upper_corner[d] + 1e-12)

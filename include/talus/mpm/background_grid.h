@@ -82,6 +82,16 @@ namespace Talus
       std::vector<unsigned int> subdivisions;
     };
 
+    /**
+     * Parse the entries "lower corner" and "upper corner" of the current
+     * subsection @p subsection into an axis-aligned box, or reject them
+     * (wrong number of coordinates, upper not above lower).
+     */
+    template <int dim>
+    std::pair<dealii::Point<dim>, dealii::Point<dim>>
+    parse_box(const dealii::ParameterHandler &prm,
+              const std::string              &subsection);
+
     /** Parse "a, b[, c]" into a point with dim coordinates, or reject. */
     template <int dim>
     dealii::Point<dim>
