@@ -21,6 +21,8 @@ T_x wall time of TimerOutput section x on rank 0):
   P2G               P * calls_P2G / (T_P2G R)             [particles/s/core]
   G2P+sort          P * S / (T_commit R)                  [particles/s/core]
   lin. share        T_linear / (S * step time)
+  AMG setup         TimerOutput section "AMG setup" inside "linear solver"
+                    (Talus >= 8c62bab; builds = number of AMG setups)
   CG its/solve      linear iterations / Newton iterations (time_series.csv)
   init              TimerOutput total - time loop wall ("Done:" line): grid,
                     particle generation, setup, initial acceleration
@@ -111,6 +113,8 @@ def parse_run(d):
     c_p2g, t_p2g = sec["prepare (P2G)"]
     c_asm, t_asm = sec["assembly"]
     _, t_lin = sec["linear solver"]
+    # "AMG setup" (inside "linear solver") exists from 8c62bab on.
+    c_amg, t_amg = sec.get("AMG setup", (None, None))
     _, t_newton = sec["solve (Newton)"]
     _, t_commit = sec["commit (G2P, move, sort)"]
     _, t_sort = sec.get("sort particles", (0, 0.))
@@ -122,11 +126,15 @@ def parse_run(d):
         "step_s": step,
         "t_p2g_step": t_p2g / c_p2g, "t_asm_step": t_asm / S,
         "t_lin_step": t_lin / S, "t_commit_step": t_commit / S,
+        "t_amg_step": None if t_amg is None else t_amg / S,
+        "amg_builds": c_amg,
         "t_sort_step": t_sort / S,
         "t_newton_other_step": (t_newton - t_asm - t_lin) / S,
         "us_per_particle_it": t_newton * R / (P * newton) * 1e6,
         "us_asm_per_particle_it": t_asm * R / (P * newton) * 1e6,
         "us_lin_per_particle_it": t_lin * R / (P * newton) * 1e6,
+        "us_amg_per_particle_it": None if t_amg is None else
+        t_amg * R / (P * newton) * 1e6,
         "asm_rate": P * c_asm / (t_asm * R),
         "p2g_rate": P * c_p2g / (t_p2g * R),
         "g2p_rate": P * S / (t_commit * R),
@@ -190,7 +198,7 @@ def main(out):
     L.append("### Talus runs\n")
     L.append("| dim | ranks | particles | DoFs | steps | Newton its/step "
              "| CG its/solve | step wall [s] | µs/particle/Newton it "
-             "(asm + lin) | assembly [p/s/core] | P2G [p/s/core] "
+             "(asm + lin [of which AMG setup]) | assembly [p/s/core] | P2G [p/s/core] "
              "| G2P+sort [p/s/core] | linear solver share | peak RSS/rank "
              "[MB] | CPU use | init [s] | load before |")
     L.append("|" + "---|" * 17)
@@ -207,7 +215,10 @@ def main(out):
             f"| {fmt(r['dofs'])} | {r['steps']} | {r['newton_per_step']:.2g} "
             f"| {r['cg_per_solve']:.1f} | {fmt(r['step_s'])} "
             f"| {r['us_per_particle_it']:.1f} ({r['us_asm_per_particle_it']:.1f} + "
-            f"{r['us_lin_per_particle_it']:.1f}) | {rate(r['asm_rate'])} "
+            f"{r['us_lin_per_particle_it']:.1f}"
+            + ("" if r["us_amg_per_particle_it"] is None else
+               f" [AMG {r['us_amg_per_particle_it']:.1f}]")
+            + f") | {rate(r['asm_rate'])} "
             f"| {rate(r['p2g_rate'])} | {rate(r['g2p_rate'])} "
             f"| {100 * r['lin_share']:.0f}% | {r['maxrss_mb']:.0f} "
             f"| {100 * r['cpu_use']:.0f}% | {fmt(r.get('init_s'))} "
@@ -217,14 +228,18 @@ def main(out):
     # Table 2: where a step goes.
     L.append("### Time per step by phase (rank 0, seconds)\n")
     L.append("| dim | ranks | particles | P2G | assembly | linear solver "
-             "| Newton other | G2P+move | sort | step |")
-    L.append("|" + "---|" * 10)
+             "| AMG setup (builds in run, s/step) | Newton other | G2P+move | sort "
+             "| step |")
+    L.append("|" + "---|" * 11)
     for r in runs:
         if r["status"] != "ok":
             continue
         L.append(f"| {r['dim']}D | {r['ranks']} | {fmt(r['particles'])} "
                  f"| {fmt(r['t_p2g_step'])} | {fmt(r['t_asm_step'])} "
-                 f"| {fmt(r['t_lin_step'])} | {fmt(r['t_newton_other_step'])} "
+                 f"| {fmt(r['t_lin_step'])} "
+                 + ("| – " if r["t_amg_step"] is None else
+                    f"| {r['amg_builds']}, {fmt(r['t_amg_step'])} ")
+                 + f"| {fmt(r['t_newton_other_step'])} "
                  f"| {fmt(r['t_commit_step'] - r['t_sort_step'])} "
                  f"| {fmt(r['t_sort_step'])} | {fmt(r['step_s'])} |")
     L.append("")
@@ -284,8 +299,11 @@ def main(out):
         f = floor_of.get((dim, r["N"], 1))
         why = ""
         if not met:
-            parts = sorted((("linear solver (AMG setup + CG)",
-                             r["us_lin_per_particle_it"]),
+            lin = "linear solver (AMG setup + CG)"
+            if r["us_amg_per_particle_it"] is not None:
+                lin = (f"linear solver (AMG setup "
+                       f"{r['us_amg_per_particle_it']:.1f} µs + CG)")
+            parts = sorted(((lin, r["us_lin_per_particle_it"]),
                             ("assembly", r["us_asm_per_particle_it"])),
                            key=lambda p: -p[1])
             why = (f"{parts[0][0]} {parts[0][1]:.1f} µs "
@@ -393,7 +411,8 @@ def main(out):
     keys = ["dim", "N", "ranks", "status", "particles", "dofs", "steps",
             "newton", "linear", "newton_per_step", "cg_per_solve", "step_s",
             "t_p2g_step", "t_asm_step", "t_lin_step", "t_newton_other_step",
-            "t_commit_step", "t_sort_step", "us_per_particle_it",
+            "t_commit_step", "t_sort_step", "t_amg_step", "amg_builds",
+            "us_per_particle_it", "us_amg_per_particle_it",
             "us_asm_per_particle_it", "us_lin_per_particle_it", "asm_rate",
             "p2g_rate", "g2p_rate", "lin_share", "maxrss_mb", "cpu_use",
             "total_wall", "loop_wall", "init_s", "load"]

@@ -14,7 +14,7 @@
 #     --no-build       use the existing executables in the build directory
 #     --no-floor       skip the deal.II floor runs
 #     --help           this text
-#   environment (defaults in brackets):
+#   environment (defaults in brackets; an empty size list runs none):
 #     TALUS_BENCH_BUILD    Release build directory [<repo>/build-bench]
 #     TALUS_BENCH_OUT      result directory [<build>/benchmark-results]
 #     TALUS_BENCH_SIZES_2D cells per direction under the 2D block [60 180 508]
@@ -45,9 +45,9 @@ set -euo pipefail
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 here="$top/contrib/benchmark"
 build=${TALUS_BENCH_BUILD:-$top/build-bench}
-sizes2d=${TALUS_BENCH_SIZES_2D:-"60 180 508"}
-sizes3d=${TALUS_BENCH_SIZES_3D:-"8 18 36"}
-gen_sizes=${TALUS_BENCH_GEN_SIZES:-"60 124 180"}
+sizes2d=${TALUS_BENCH_SIZES_2D-"60 180 508"}
+sizes3d=${TALUS_BENCH_SIZES_3D-"8 18 36"}
+gen_sizes=${TALUS_BENCH_GEN_SIZES-"60 124 180"}
 ranks=${TALUS_BENCH_RANKS:-"1 2"}
 steps=${TALUS_BENCH_STEPS:-5}
 budget=${TALUS_BENCH_BUDGET:-1200}
@@ -136,7 +136,7 @@ status=0
 # sides, 4 on top (room for the Poisson expansion and the motion), N + 4 in
 # all. It is made as a coarse grid of (N + 4) / 2^k cells refined k times
 # ('Convergence study/first level'), k the largest <= max_refine with
-# 2^k | N + 4: with k = 0 the particle generation of Talus 0.x takes
+# 2^k | N + 4: with k = 0 the particle generation of Talus (8c62bab) takes
 # O(particles x coarse cells) (GridTools::guess_point_owner over one bounding
 # box per coarse cell in ParticleHandler::insert_global_particles), minutes
 # for 1e6 particles; the refined grid is the same grid with few coarse cells.

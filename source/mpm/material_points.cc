@@ -241,7 +241,10 @@ namespace Talus
     MaterialPoints<dim>::generate_from_background_cells(
       const std::function<bool(const dealii::Point<dim> &)> &inside,
       std::vector<dealii::Point<dim>>                       &points,
-      std::vector<double>                                   &volumes) const
+      std::vector<double>                                   &volumes,
+      std::vector<typename dealii::Triangulation<dim>::active_cell_iterator>
+                                      &cells,
+      std::vector<dealii::Point<dim>> &reference_points) const
     {
       const dealii::QIterated<dim> quadrature(dealii::QMidpoint<1>(),
                                               points_per_direction);
@@ -260,6 +263,8 @@ namespace Talus
                 {
                   points.push_back(fe_values.quadrature_point(q));
                   volumes.push_back(fe_values.JxW(q));
+                  cells.push_back(cell);
+                  reference_points.push_back(quadrature.point(q));
                 }
           }
     }
@@ -336,6 +341,9 @@ namespace Talus
 
       std::vector<dealii::Point<dim>> points;
       std::vector<double>             volumes;
+      std::vector<typename dealii::Triangulation<dim>::active_cell_iterator>
+                                      cells;
+      std::vector<dealii::Point<dim>> reference_points;
       if (geometry == "box")
         generate_from_background_cells(
           [this](const dealii::Point<dim> &p) {
@@ -345,14 +353,18 @@ namespace Talus
             return true;
           },
           points,
-          volumes);
+          volumes,
+          cells,
+          reference_points);
       else if (geometry == "polygon")
         generate_from_background_cells(
           [this](const dealii::Point<dim> &p) {
             return inside_polygon(polygon, p);
           },
           points,
-          volumes);
+          volumes,
+          cells,
+          reference_points);
       else
         generate_from_gmsh(points, volumes);
 
@@ -390,12 +402,49 @@ namespace Talus
                                         n_history));
         }
 
-      const auto local_boxes =
-        dealii::GridTools::compute_mesh_predicate_bounding_box(
-          grid.triangulation, dealii::IteratorFilters::LocallyOwnedCell());
-      const auto global_boxes =
-        dealii::Utilities::MPI::all_gather(grid.mpi_communicator, local_boxes);
-      handler.insert_global_particles(points, global_boxes, properties);
+      if (geometry != "gmsh")
+        {
+          // The points were made in locally owned cells: insert them there
+          // directly (no search), with globally unique ids.
+          const dealii::types::particle_index n_local = points.size();
+          dealii::types::particle_index       offset  = 0;
+          MPI_Exscan(
+            &n_local,
+            &offset,
+            1,
+            dealii::Utilities::MPI::internal::MPIDataTypes::mpi_type_id(
+              &n_local),
+            MPI_SUM,
+            grid.mpi_communicator);
+          if (dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) ==
+              0)
+            offset = 0;
+          for (unsigned int i = 0; i < points.size(); ++i)
+            handler.insert_particle(
+              points[i],
+              reference_points[i],
+              offset + i,
+              cells[i],
+              dealii::ArrayView<const double>(properties[i].data(),
+                                              properties[i].size()));
+          handler.update_cached_numbers();
+        }
+      else
+        {
+          // Points of a body mesh: distribute them to the owners of their
+          // cells (a few merged boxes per rank keep the search cheap).
+          const auto local_boxes =
+            dealii::GridTools::compute_mesh_predicate_bounding_box(
+              grid.triangulation,
+              dealii::IteratorFilters::LocallyOwnedCell(),
+              1,
+              true,
+              4);
+          const auto global_boxes =
+            dealii::Utilities::MPI::all_gather(grid.mpi_communicator,
+                                               local_boxes);
+          handler.insert_global_particles(points, global_boxes, properties);
+        }
 
       const auto n_inserted = handler.n_global_particles();
       if (n_inserted != n_total)

@@ -150,7 +150,10 @@ namespace Talus
       generate_from_background_cells(
         const std::function<bool(const dealii::Point<dim> &)> &inside,
         std::vector<dealii::Point<dim>>                       &points,
-        std::vector<double>                                   &volumes) const;
+        std::vector<double>                                   &volumes,
+        std::vector<typename dealii::Triangulation<dim>::active_cell_iterator>
+                                        &cells,
+        std::vector<dealii::Point<dim>> &reference_points) const;
 
       void
       generate_from_gmsh(std::vector<dealii::Point<dim>> &points,
