@@ -3,7 +3,7 @@
 #   usage: bash contrib/indent.sh           rewrite files in place
 #          bash contrib/indent.sh --check   change nothing, list offending
 #                                           lines, exit non-zero if any
-# Files: include/**/*.h source/**/*.cc tests/**/*.cc
+# Files: include/**/*.h source/**/*.cc tests/**/*.cc contrib/**/*.cc
 set -euo pipefail
 
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -24,7 +24,7 @@ done
 "$cf" --version | grep -q 'version 14\.' ||
   echo "indent.sh: warning: the style is made for clang-format 14, this is: $("$cf" --version)" >&2
 
-mapfile -d '' files < <(find include source tests \
+mapfile -d '' files < <(find include source tests contrib \
   \( -name '*.h' -path 'include/*' -o -name '*.cc' \) -type f -print0 2>/dev/null | sort -z)
 [[ ${#files[@]} -gt 0 ]] || { echo "indent.sh: no source files found"; exit 0; }
 

@@ -146,7 +146,9 @@ namespace Talus
                           "1e-8",
                           Patterns::Double(0),
                           "Newton also requires |d(du)| <= tol * |du| for the "
-                          "last correction [-] (or |du| = 0).");
+                          "last correction [-] (or |du| = 0), unless the "
+                          "residual is already below 1e-4 times its "
+                          "tolerance.");
         prm.declare_entry("linear solver",
                           "CG",
                           Patterns::Selection("CG|GMRES|direct"),

@@ -17,17 +17,6 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/timer.h>
 
-#include <deal.II/distributed/tria.h>
-
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/dofs/dof_tools.h>
-
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/fe_values.h>
-
-#include <deal.II/grid/grid_generator.h>
-
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
@@ -37,7 +26,18 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <deal.II/grid/grid_generator.h>
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+
 #include <deal.II/numerics/vector_tools.h>
+
+#include <deal.II/distributed/tria.h>
 
 #include <algorithm>
 #include <iostream>
@@ -49,8 +49,8 @@ template <int dim>
 int
 run(const unsigned int N, const unsigned int repeats)
 {
-  const MPI_Comm comm = MPI_COMM_WORLD;
-  const bool     root = Utilities::MPI::this_mpi_process(comm) == 0;
+  const MPI_Comm     comm    = MPI_COMM_WORLD;
+  const bool         root    = Utilities::MPI::this_mpi_process(comm) == 0;
   const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
 
   parallel::distributed::Triangulation<dim> tria(comm);
@@ -69,8 +69,10 @@ run(const unsigned int N, const unsigned int repeats)
   DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
 
   AffineConstraints<double> constraints(relevant);
-  VectorTools::interpolate_boundary_values(
-    dof_handler, 2 * (dim - 1), Functions::ZeroFunction<dim>(dim), constraints);
+  VectorTools::interpolate_boundary_values(dof_handler,
+                                           2 * (dim - 1),
+                                           Functions::ZeroFunction<dim>(dim),
+                                           constraints);
   constraints.close();
 
   DynamicSparsityPattern dsp(relevant);
@@ -90,8 +92,7 @@ run(const unsigned int N, const unsigned int repeats)
   const QGauss<dim>  quadrature(2);
   FEValues<dim>      fe_values(fe,
                           quadrature,
-                          update_values | update_gradients |
-                            update_JxW_values);
+                          update_values | update_gradients | update_JxW_values);
   const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
   const unsigned int n_q           = quadrature.size();
   FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
@@ -135,7 +136,8 @@ run(const unsigned int N, const unsigned int repeats)
                         const unsigned int cj =
                           fe.system_to_component_index(j).first;
                         const Tensor<1, dim> gj = fe_values.shape_grad(j, q);
-                        double k = gi[cj] * gj[ci] * mu + gi[ci] * gj[cj] * lambda;
+                        double               k =
+                          gi[cj] * gj[ci] * mu + gi[ci] * gj[cj] * lambda;
                         if (ci == cj)
                           k += mu * (gi * gj);
                         cell_matrix(i, j) += k * JxW;
@@ -181,9 +183,9 @@ run(const unsigned int N, const unsigned int repeats)
     std::cout << "FLOOR dim=" << dim << " N=" << N << " ranks=" << n_ranks
               << " cells=" << tria.n_global_active_cells()
               << " qpoints=" << tria.n_global_active_cells() * n_q
-              << " dofs=" << dof_handler.n_dofs() << " assembly_s=" << t_assembly
-              << " amg_setup_s=" << t_amg << " cg_s=" << t_cg
-              << " cg_its=" << cg_its << std::endl;
+              << " dofs=" << dof_handler.n_dofs()
+              << " assembly_s=" << t_assembly << " amg_setup_s=" << t_amg
+              << " cg_s=" << t_cg << " cg_its=" << cg_its << std::endl;
   return 0;
 }
 
