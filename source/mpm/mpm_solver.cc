@@ -705,9 +705,6 @@ namespace Talus
           if (constraints.is_constrained(i))
             r[0][r.Map().LID(static_cast<int>(i))] = 0.;
       }
-      if (!ok)
-        std::cerr << "DEBUG rank failure: " << failure << std::endl;
-
       if (with_matrix)
         {
           matrix.compress(dealii::VectorOperation::add);
