@@ -77,6 +77,23 @@ namespace Talus
                           "If > 0: the run fails when the total energy "
                           "(kinetic + strain + gravitational) drifts by more "
                           "than this fraction of its initial value [-].");
+        prm.declare_entry("maximum final speed",
+                          "0",
+                          Patterns::Double(0),
+                          "If > 0: the run fails when the largest speed of a "
+                          "material point at the end exceeds this value "
+                          "[m/s] (e.g. a body that must come to or stay at "
+                          "rest).");
+        prm.declare_entry("energy balance tolerance",
+                          "0",
+                          Patterns::Double(0),
+                          "If > 0: the run fails when the energy balance "
+                          "B = kinetic + strain + gravitational + plastic "
+                          "dissipation + friction dissipation changes during "
+                          "the run by more than this fraction of the "
+                          "largest released gravitational energy "
+                          "max|G(t) - G(0)| plus the initial kinetic energy "
+                          "[-].");
         prm.declare_entry("compare stress",
                           "false",
                           Patterns::Bool(),
@@ -234,9 +251,11 @@ namespace Talus
     const bool   compare_stress = prm.get_bool("compare stress");
     const double u_tolerance = prm.get_double("displacement error tolerance");
     const double s_tolerance = prm.get_double("stress error tolerance");
-    const double reference_period = prm.get_double("reference period");
-    const double period_tolerance = prm.get_double("period tolerance");
-    const double drift_tolerance  = prm.get_double("energy drift tolerance");
+    const double reference_period  = prm.get_double("reference period");
+    const double period_tolerance  = prm.get_double("period tolerance");
+    const double drift_tolerance   = prm.get_double("energy drift tolerance");
+    const double speed_limit       = prm.get_double("maximum final speed");
+    const double balance_tolerance = prm.get_double("energy balance tolerance");
     dealii::Functions::ParsedFunction<dim> exact_stress(dim == 2 ? 3 : 6);
     prm.enter_subsection("Exact stress");
     parse_function(prm, exact_stress, "Verification/Exact stress");
@@ -337,7 +356,8 @@ namespace Talus
                                            wall_start)
         .count();
     };
-    double              max_drift     = 0.;
+    double              max_drift          = 0.;
+    double              max_balance_change = 0., max_released = 0.;
     double              last_momentum = initial.momentum[0];
     std::vector<double> crossings;
     double              total_lost_mass = 0.;
@@ -410,7 +430,15 @@ namespace Talus
           max_drift =
             std::max(max_drift,
                      std::abs(e - e0) / std::max(std::abs(e0), 1e-300));
-          const double p = diagnostics.momentum[0];
+          const double b0 =
+            e0 + initial.plastic_dissipation + initial.friction_dissipation;
+          const double b = e + diagnostics.plastic_dissipation +
+                           diagnostics.friction_dissipation;
+          max_balance_change = std::max(max_balance_change, std::abs(b - b0));
+          max_released       = std::max(max_released,
+                                  std::abs(diagnostics.gravitational_energy -
+                                           initial.gravitational_energy));
+          const double p     = diagnostics.momentum[0];
           if (p * last_momentum < 0.)
             crossings.push_back(time_control.time -
                                 dt_taken * p / (p - last_momentum));
@@ -555,6 +583,35 @@ namespace Talus
         }
     if (drift_tolerance > 0.)
       check("energy drift", max_drift, drift_tolerance);
+    if (balance_tolerance > 0.)
+      {
+        const double scale = max_released + initial.kinetic_energy;
+        pcout << "  energy balance: largest change " << max_balance_change
+              << " J, released gravitational energy " << max_released
+              << " J, plastic dissipation " << final_state.plastic_dissipation
+              << " J, friction dissipation " << final_state.friction_dissipation
+              << " J\n";
+        check("energy balance",
+              max_balance_change / std::max(scale, 1e-300),
+              balance_tolerance);
+      }
+    if (speed_limit > 0.)
+      {
+        double v_end = 0.;
+        for (const auto &p : points.particle_handler())
+          {
+            double v2 = 0.;
+            for (unsigned int d = 0; d < dim; ++d)
+              v2 += std::pow(
+                p.get_properties()[MPM::MaterialPointProperties<dim>::velocity +
+                                   d],
+                2);
+            v_end = std::max(v_end, std::sqrt(v2));
+          }
+        check("final speed",
+              dealii::Utilities::MPI::max(v_end, communicator),
+              speed_limit);
+      }
     if (reference_period > 0.)
       {
         if (crossings.size() < 2)

@@ -25,7 +25,9 @@ namespace Talus
                               "<Output>.");
       file << "step,time,dt,newton_iterations,linear_iterations,mass,"
               "momentum_x,momentum_y,momentum_z,kinetic_energy,strain_energy,"
-              "gravitational_energy,total_energy,lost_mass\n";
+              "gravitational_energy,total_energy,lost_mass,plastic_dissipation,"
+              "friction_dissipation,energy_balance,contact_force_x,"
+              "contact_force_y,contact_force_z\n";
       file << std::setprecision(12);
     }
 
@@ -48,7 +50,13 @@ namespace Talus
       file << ',' << d.kinetic_energy << ',' << d.strain_energy << ','
            << d.gravitational_energy << ','
            << d.kinetic_energy + d.strain_energy + d.gravitational_energy << ','
-           << lost_mass << '\n';
+           << lost_mass << ',' << d.plastic_dissipation << ','
+           << d.friction_dissipation << ','
+           << d.kinetic_energy + d.strain_energy + d.gravitational_energy +
+                d.plastic_dissipation + d.friction_dissipation;
+      for (unsigned int i = 0; i < 3; ++i)
+        file << ',' << (i < dim ? d.contact_force[i] : 0.);
+      file << '\n';
       file.flush();
     }
 

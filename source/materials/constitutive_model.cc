@@ -22,6 +22,14 @@ namespace Talus
 
 
 
+    std::vector<std::string>
+    ConstitutiveModel::history_names() const
+    {
+      return {};
+    }
+
+
+
     void
     ConstitutiveModel::initialize_history(
       const dealii::ArrayView<double> & /*history*/) const

@@ -11,6 +11,7 @@
 
 #include <deal.II/fe/fe_q.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <tuple>
@@ -134,6 +135,21 @@ namespace Talus
           "Boundary ids on which the normal displacement is zero and the "
           "tangential motion is free (frictionless slip); the faces must be "
           "axis aligned.");
+        prm.declare_entry(
+          "friction boundaries",
+          "",
+          Anything(),
+          "Axis-aligned boundaries with Coulomb friction, as a comma-separated "
+          "list of 'id: mu' pairs (boundary id, friction coefficient mu >= 0 "
+          "[-]), e.g. '2: 0.3'. On the grid nodes of these faces the normal "
+          "displacement is zero while the contact force is compressive (the "
+          "node is released when the boundary would have to pull); "
+          "tangentially a node sticks (zero velocity) while the tangential "
+          "reaction stays within mu times the normal force, and otherwise "
+          "slips with the friction force mu times the normal force opposing "
+          "its velocity. The states are updated inside the Newton iteration "
+          "(doc/theory.md, 'Coulomb friction on grid boundaries'). Nodes on two "
+          "such boundaries (corners) are fixed.");
       }
       prm.leave_subsection();
     }
@@ -156,6 +172,53 @@ namespace Talus
       };
       fixed_boundaries = ids("fixed boundaries");
       slip_boundaries  = ids("slip boundaries");
+      friction_boundaries.clear();
+      {
+        const std::string value = prm.get("friction boundaries");
+        for (const auto &pair :
+             dealii::Utilities::split_string_list(value, ','))
+          {
+            const auto parts = dealii::Utilities::split_string_list(pair, ':');
+            bool       valid = parts.size() == 2;
+            int        id    = -1;
+            double     mu    = -1.;
+            if (valid)
+              try
+                {
+                  id = dealii::Utilities::string_to_int(parts[0]);
+                  mu = dealii::Utilities::string_to_double(parts[1]);
+                }
+              catch (...)
+                {
+                  valid = false;
+                }
+            if (!valid || id < 0 || id > 255)
+              InputFile::reject(sub,
+                                "friction boundaries",
+                                value,
+                                "a comma-separated list of 'id: mu' pairs with "
+                                "a boundary id from 0 to 255 and a friction "
+                                "coefficient mu >= 0 is expected; '" +
+                                  pair + "' is not such a pair");
+            if (!(mu >= 0.) || !std::isfinite(mu))
+              InputFile::reject(sub,
+                                "friction boundaries",
+                                value,
+                                "the friction coefficient of boundary " +
+                                  std::to_string(id) +
+                                  " must be finite and >= 0");
+            const auto b = static_cast<dealii::types::boundary_id>(id);
+            if (friction_boundaries.count(b) || fixed_boundaries.count(b) ||
+                slip_boundaries.count(b))
+              InputFile::reject(sub,
+                                "friction boundaries",
+                                value,
+                                "boundary id " + std::to_string(id) +
+                                  " appears twice or is already a fixed or "
+                                  "slip boundary");
+            friction_boundaries[b] = mu;
+          }
+      }
       for (const auto id : fixed_boundaries)
         if (slip_boundaries.count(id))
           InputFile::reject(sub,
@@ -236,6 +299,12 @@ namespace Talus
       };
       check(fixed_boundaries, "fixed boundaries");
       check(slip_boundaries, "slip boundaries");
+      {
+        std::set<dealii::types::boundary_id> friction_ids;
+        for (const auto &f : friction_boundaries)
+          friction_ids.insert(f.first);
+        check(friction_ids, "friction boundaries");
+      }
 
       setup_dofs();
     }

@@ -18,11 +18,18 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/differentiation/ad/sacado_product_types.h>
+
 #include <Epetra_MultiVector.h>
+#include <Sacado.hpp>
 #include <Teuchos_ParameterList.hpp>
 
+#include <array>
 #include <cmath>
+#include <cstdlib>
+#include <map>
 #include <sstream>
+#include <tuple>
 
 namespace Talus
 {
@@ -54,6 +61,153 @@ namespace Talus
           for (unsigned int j = 0; j < dim; ++j)
             t[i][j] = p[first + i * dim + j];
         return t;
+      }
+
+      /** Value of a plain or forward-AD number. */
+      inline double
+      value_of(const double x)
+      {
+        return x;
+      }
+
+      template <typename Number>
+      inline double
+      value_of(const Number &x)
+      {
+        return x.val();
+      }
+
+      /**
+       * Forward-mode AD number with one derivative per degree of freedom
+       * of a Q1 cell (static size: no allocation).
+       */
+      template <int dim>
+      using CellAD = Sacado::Fad::SFad<double, dim *(1 << dim)>;
+
+      /**
+       * F-bar internal forces of the points of one cell (see
+       * MPMSolver::fbar_cell()), for Number = double (residual only) or
+       * CellAD<dim> (residual and exact derivative). The points are given
+       * by their shape gradients dN (with respect to the positions at the
+       * start of the step), F_n, V0; P_and_A evaluates the constitutive
+       * model at a deformation gradient (3x3) and returns false on
+       * failure.
+       *
+       * Variational F-bar: with f_p = I + H_p, J_p = det f_p, the volume
+       * weights w_p = v_p / sum v (v_p = V0 det F_n), J_bar = sum w_q J_q,
+       * alpha_p = (J_bar/J_p)^(1/dim) and F_bar_p = alpha_p f_p F_n, the
+       * internal virtual work sum_p V0 P(F_bar_p) : dF_bar_p equals
+       * sum_p T_p : dH_p with
+       *   T_p = alpha_p S_p + (s_bar beta_p - alpha_p s_p)/dim f_p^{-T},
+       *   S_p = V0 P F_n^T, s_p = S_p : f_p, s_bar = sum_q alpha_q s_q,
+       *   beta_p = w_p J_p / J_bar.
+       */
+      template <int dim, typename Number, typename ModelCall>
+      bool
+      fbar_internal_forces(const unsigned int                         n_points,
+                           const unsigned int                         n_nodes,
+                           const std::vector<unsigned int>           &comp,
+                           const std::vector<unsigned int>           &node,
+                           const std::vector<Number>                 &u,
+                           const dealii::Tensor<1, dim>              *dN_first,
+                           const std::vector<dealii::Tensor<2, dim>> &F_n,
+                           const std::vector<double>                 &V0,
+                           const ModelCall                           &P_and_A,
+                           std::vector<Number>                       &f_int,
+                           std::vector<dealii::Tensor<2, dim>>       *F_bar_out)
+      {
+        const unsigned int                          n_dofs = u.size();
+        std::vector<dealii::Tensor<2, dim, Number>> f(n_points);
+        std::vector<Number>                         J(n_points);
+        std::vector<double>                         v(n_points);
+        Number                                      J_bar = 0.;
+        double                                      v_sum = 0.;
+        for (unsigned int q = 0; q < n_points; ++q)
+          {
+            const dealii::Tensor<1, dim> *dN = dN_first + q * n_nodes;
+            for (unsigned int d = 0; d < dim; ++d)
+              f[q][d][d] = 1.;
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              for (unsigned int d = 0; d < dim; ++d)
+                f[q][comp[i]][d] += u[i] * dN[node[i]][d];
+            J[q] = dealii::determinant(f[q]);
+            if (!(value_of(J[q]) > 0.))
+              return false;
+            v[q] = V0[q] * dealii::determinant(F_n[q]);
+            v_sum += v[q];
+            J_bar += v[q] * J[q];
+          }
+        J_bar /= v_sum;
+
+        std::vector<Number> alpha(n_points), s(n_points);
+        std::vector<dealii::Tensor<2, dim, Number>> S(n_points);
+        Number                                      s_bar = 0.;
+        dealii::Tensor<2, 3>                        P;
+        dealii::Tensor<4, 3>                        A;
+        constexpr bool with_derivatives = !std::is_same<Number, double>::value;
+        for (unsigned int q = 0; q < n_points; ++q)
+          {
+            alpha[q] = std::pow(J_bar / J[q], 1. / dim);
+            // (explicit loops: deal.II's scalar-tensor operators do not
+            // accept Sacado's expression types)
+            dealii::Tensor<2, dim, Number> F_bar;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                {
+                  Number sum = 0.;
+                  for (unsigned int k = 0; k < dim; ++k)
+                    sum += f[q][i][k] * F_n[q][k][j];
+                  F_bar[i][j] = alpha[q] * sum;
+                }
+            dealii::Tensor<2, dim> F_value;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                F_value[i][j] = value_of(F_bar[i][j]);
+            if (F_bar_out != nullptr)
+              (*F_bar_out)[q] = F_value;
+            if (!P_and_A(q, F_value, P, with_derivatives ? &A : nullptr))
+              return false;
+            // P(F_bar) linearized around the value: exact first derivative.
+            dealii::Tensor<2, dim, Number> P_ad;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int J_ = 0; J_ < dim; ++J_)
+                {
+                  P_ad[i][J_] = P[i][J_];
+                  if (with_derivatives)
+                    for (unsigned int k = 0; k < dim; ++k)
+                      for (unsigned int L = 0; L < dim; ++L)
+                        P_ad[i][J_] +=
+                          A[i][J_][k][L] * (F_bar[k][L] - F_value[k][L]);
+                }
+            s[q] = 0.;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                {
+                  Number sum = 0.;
+                  for (unsigned int k = 0; k < dim; ++k)
+                    sum += P_ad[i][k] * F_n[q][j][k];
+                  S[q][i][j] = V0[q] * sum;
+                  s[q] += S[q][i][j] * f[q][i][j];
+                }
+            s_bar += alpha[q] * s[q];
+          }
+
+        for (unsigned int q = 0; q < n_points; ++q)
+          {
+            const Number beta = v[q] * J[q] / (v_sum * J_bar);
+            const Number coefficient =
+              (s_bar * beta - alpha[q] * s[q]) / double(dim);
+            const dealii::Tensor<2, dim, Number> f_inv = dealii::invert(f[q]);
+            dealii::Tensor<2, dim, Number>       T;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                T[i][j] = alpha[q] * S[q][i][j] + coefficient * f_inv[j][i];
+            const dealii::Tensor<1, dim> *dN = dN_first + q * n_nodes;
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              for (unsigned int d = 0; d < dim; ++d)
+                f_int[i] += T[comp[i]][d] * dN[node[i]][d];
+          }
+        return true;
       }
     } // namespace
 
@@ -145,8 +299,9 @@ namespace Talus
         prm.declare_entry("increment tolerance",
                           "1e-8",
                           Patterns::Double(0),
-                          "Newton also requires |d(du)| <= tol * |du| for the "
-                          "last correction [-] (or |du| = 0), unless the "
+                          "Newton also requires |d(du)| <= tol * max(|du|, h) "
+                          "for the last correction [-] (h: smallest cell "
+                          "diameter, for bodies at rest), unless the "
                           "residual is already below 1e-4 times its "
                           "tolerance.");
         prm.declare_entry("linear solver",
@@ -173,6 +328,19 @@ namespace Talus
                           Patterns::Integer(1),
                           "Iterations of the linear solver before the Newton "
                           "step counts as failed [-].");
+        prm.declare_entry(
+          "volumetric locking treatment",
+          "none",
+          Patterns::Selection("none|F-bar"),
+          "'none': every material point uses its own deformation gradient. "
+          "'F-bar': the volume change of the step is averaged over the "
+          "points of each cell, f_p -> (J_bar/J_p)^(1/dim) f_p with the "
+          "volume-weighted mean J_bar of J_p = det f_p (f_p: deformation "
+          "gradient of the step), which removes volumetric locking of "
+          "isochoric plastic flow and nearly incompressible materials on "
+          "Q1 cells with several points per cell (Coombs et al. 2018, "
+          "CMAME 333; variational form and exact tangent: doc/theory.md). "
+          "Use it for granular materials.");
         prm.declare_entry("abort on lost material points",
                           "false",
                           Patterns::Bool(),
@@ -211,6 +379,7 @@ namespace Talus
       linear_tolerance      = get_positive(prm, sub, "linear solver tolerance");
       max_linear_iterations = prm.get_integer("maximum linear iterations");
       abort_on_lost_points  = prm.get_bool("abort on lost material points");
+      use_fbar = prm.get("volumetric locking treatment") == "F-bar";
       prm.leave_subsection();
     }
 
@@ -245,6 +414,7 @@ namespace Talus
         v->reinit(owned, relevant, comm);
       for (auto *v : {&external_force, &residual, &increment})
         v->reinit(owned, comm);
+      raw_residual.reinit(owned, comm);
 
       // Degrees of freedom on fixed and slip boundaries.
       // (an empty set of ids would mean "all boundaries" to deal.II)
@@ -320,6 +490,7 @@ namespace Talus
       dealii::DoFTools::extract_constant_modes(dof_handler,
                                                dealii::ComponentMask(dim, true),
                                                constant_modes);
+      setup_friction_nodes();
     }
 
 
@@ -490,14 +661,26 @@ namespace Talus
       n_active = 0;
       for (const auto i : grid.locally_relevant_dofs)
         {
-          bool constrained = nodal_mass(i) <= 0. || fixed_dofs.is_element(i);
+          bool constrained = nodal_mass(i) <= 0. || fixed_dofs.is_element(i) ||
+                             friction_corner_dofs.is_element(i);
           for (unsigned int d = 0; d < dim && !constrained; ++d)
             constrained = slip_dofs[d].is_element(i);
           if (constrained)
             constraints.add_line(i);
-          else if (grid.locally_owned_dofs.is_element(i))
-            ++n_active;
         }
+      for (const auto &fn : friction_nodes)
+        if (fn.state != ContactState::free)
+          {
+            if (!constraints.is_constrained(fn.normal_dof))
+              constraints.add_line(fn.normal_dof);
+            if (fn.state == ContactState::stick)
+              for (const auto t : fn.tangential_dofs)
+                if (!constraints.is_constrained(t))
+                  constraints.add_line(t);
+          }
+      for (const auto i : grid.locally_owned_dofs)
+        if (!constraints.is_constrained(i))
+          ++n_active;
       constraints.close();
       n_active = dealii::Utilities::MPI::sum(n_active, grid.mpi_communicator);
     }
@@ -512,6 +695,7 @@ namespace Talus
       dt   = step;
       cache_particles();
       project_to_grid();
+      initialize_friction_states();
       make_constraints();
       amg_current = false;
       // Grid velocity and acceleration obey the essential conditions: a
@@ -549,6 +733,8 @@ namespace Talus
       if (with_matrix)
         matrix = 0.;
       residual = 0.;
+      if (!grid.friction_boundaries.empty())
+        raw_residual = 0.;
 
       dealii::FullMatrix<double> k_local(dofs_per_cell, dofs_per_cell);
       dealii::Vector<double>     r_local(dofs_per_cell);
@@ -588,12 +774,47 @@ namespace Talus
               const double      *N     = &shape_values[k * n_nodes];
               const auto        *dN    = &shape_gradients[k * n_nodes];
 
+              const dealii::Tensor<2, dim> F_n =
+                read_tensor<dim>(props, Properties::deformation);
+              const double V0 = props[Properties::initial_volume];
+              const double m  = props[Properties::mass];
+
+              // Particle acceleration for the (consistent) inertia term.
+              dealii::Tensor<1, dim> a_p;
+              if (with_inertia && consistent_mass)
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  a_p[comp[i]] += N[node[i]] * a_local[i];
+
+              // External and inertia forces.
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const unsigned int ci = comp[i];
+                  r_local[i] += N[node[i]] * particle_forces[k][ci];
+                  if (!with_inertia)
+                    continue;
+                  if (consistent_mass)
+                    {
+                      r_local[i] -= m * N[node[i]] * a_p[ci];
+                      if (with_matrix)
+                        for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                          if (comp[j] == ci)
+                            k_local(i, j) +=
+                              c_mass * m * N[node[i]] * N[node[j]];
+                    }
+                  else
+                    {
+                      r_local[i] -= m * N[node[i]] * a_local[i];
+                      if (with_matrix)
+                        k_local(i, i) += c_mass * m * N[node[i]];
+                    }
+                }
+              if (use_fbar)
+                continue; // internal forces of the cell below
+
               // Increment gradient, total deformation gradient.
               dealii::Tensor<2, dim> H;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 H[comp[i]] += du_local[i] * dN[node[i]];
-              const dealii::Tensor<2, dim> F_n =
-                read_tensor<dim>(props, Properties::deformation);
               dealii::Tensor<2, dim> F_new = F_n + H * F_n;
 
               try
@@ -636,31 +857,15 @@ namespace Talus
                     for (unsigned int i = 0; i < dim; ++i)
                       G[a][J] += F_n[i][J] * dN[a][i];
                 }
-              const double V0 = props[Properties::initial_volume];
-              const double m  = props[Properties::mass];
-
-              // Particle acceleration for the (consistent) inertia term.
-              dealii::Tensor<1, dim> a_p;
-              if (with_inertia && consistent_mass)
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  a_p[comp[i]] += N[node[i]] * a_local[i];
 
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const unsigned int ci = comp[i];
                   const auto        &Gi = G[node[i]];
-                  r_local[i] += N[node[i]] * particle_forces[k][ci];
-                  double f = 0.;
+                  double             f  = 0.;
                   for (unsigned int J = 0; J < dim; ++J)
                     f += P[ci][J] * Gi[J];
                   r_local[i] -= V0 * f;
-                  if (with_inertia)
-                    {
-                      if (consistent_mass)
-                        r_local[i] -= m * N[node[i]] * a_p[ci];
-                      else
-                        r_local[i] -= m * N[node[i]] * a_local[i];
-                    }
                   if (!with_matrix)
                     continue;
                   for (unsigned int j = 0; j < dofs_per_cell; ++j)
@@ -673,22 +878,45 @@ namespace Talus
                           kij += Gi[J] * A[ci][J][cj][L] * Gj[L];
                       k_local(i, j) += V0 * kij;
                     }
-                  if (with_inertia)
+                }
+            }
+          if (ok && use_fbar)
+            ok = fbar_cell(
+              c, du_local, r_local, with_matrix ? &k_local : nullptr, failure);
+          if (!ok)
+            break;
+
+          if (!grid.friction_boundaries.empty() &&
+              cell_touches_friction[c.cell->active_cell_index()])
+            {
+              // Unconstrained residual for the contact reactions, then the
+              // Coulomb force of slipping nodes as a combination of rows:
+              // r_t += mu * inward * s_t * r_n (exactly linearized).
+              raw_residual.add(c.dofs, r_local);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const auto it = friction_node_of.find(c.dofs[i]);
+                  if (it == friction_node_of.end())
+                    continue;
+                  const FrictionNode &fn = friction_nodes[it->second];
+                  if (fn.state != ContactState::slip || fn.mu == 0.)
+                    continue;
+                  for (const auto t : fn.tangential_dofs)
                     {
-                      if (consistent_mass)
-                        {
-                          for (unsigned int j = 0; j < dofs_per_cell; ++j)
-                            if (comp[j] == ci)
-                              k_local(i, j) +=
-                                c_mass * m * N[node[i]] * N[node[j]];
-                        }
-                      else
-                        k_local(i, i) += c_mass * m * N[node[i]];
+                      unsigned int j = 0;
+                      while (j < dofs_per_cell && c.dofs[j] != t)
+                        ++j;
+                      Assert(j < dofs_per_cell, dealii::ExcInternalError());
+                      const double factor =
+                        fn.mu * fn.inward * fn.slip_direction[comp[j]];
+                      r_local[j] += factor * r_local[i];
+                      if (with_matrix)
+                        for (unsigned int l = 0; l < dofs_per_cell; ++l)
+                          k_local(j, l) += factor * k_local(i, l);
                     }
                 }
             }
-          if (!ok)
-            break;
+
           if (with_matrix)
             constraints.distribute_local_to_global(
               k_local, r_local, c.dofs, matrix, residual);
@@ -697,6 +925,8 @@ namespace Talus
         }
 
       residual.compress(dealii::VectorOperation::add);
+      if (!grid.friction_boundaries.empty())
+        raw_residual.compress(dealii::VectorOperation::add);
       // Constrained rows keep the external force they were initialized
       // with: clear them (owned entries, written directly).
       {
@@ -718,6 +948,43 @@ namespace Talus
             dealii::Utilities::MPI::max(max_diagonal, grid.mpi_communicator);
           if (max_diagonal == 0.)
             max_diagonal = 1.;
+          // 3D slip: derivative of the direction s = v_t/|v_t| of the
+          // friction force -mu p s with respect to the tangential
+          // increments, mu p (I - s s)/|v_t| dv/du (p lagged).
+          if (dim == 3 && !grid.friction_boundaries.empty())
+            {
+              const double dv_du =
+                quasi_static ? 1. / dt : newmark.gamma / (newmark.beta * dt);
+              for (const auto &fn : friction_nodes)
+                if (fn.owned && fn.state == ContactState::slip && fn.mu > 0. &&
+                    fn.tangential_dofs.size() == 2)
+                  {
+                    const double p = -fn.inward * raw_residual(fn.normal_dof);
+                    dealii::Tensor<1, dim> v_t;
+                    for (unsigned int k = 0; k < 2; ++k)
+                      v_t[fn.tangential_components[k]] =
+                        new_velocity(fn.tangential_dofs[k],
+                                     du(fn.tangential_dofs[k]));
+                    const double speed = v_t.norm();
+                    if (!(p > 0.) || !(speed > 0.))
+                      continue;
+                    for (unsigned int k = 0; k < 2; ++k)
+                      for (unsigned int l = 0; l < 2; ++l)
+                        {
+                          const auto   ck = fn.tangential_components[k];
+                          const auto   cl = fn.tangential_components[l];
+                          const double value =
+                            fn.mu * p *
+                            ((k == l ? 1. : 0.) -
+                             fn.slip_direction[ck] * fn.slip_direction[cl]) /
+                            speed * dv_du;
+                          matrix.add(fn.tangential_dofs[k],
+                                     fn.tangential_dofs[l],
+                                     value);
+                        }
+                  }
+              matrix.compress(dealii::VectorOperation::add);
+            }
           for (const auto i : grid.locally_owned_dofs)
             if (constraints.is_constrained(i) && matrix.diag_element(i) == 0.)
               matrix.set(i, i, max_diagonal);
@@ -739,6 +1006,497 @@ namespace Talus
               }
         }
       return all_ok;
+    }
+
+
+    template <int dim>
+    bool
+    MPMSolver<dim>::fbar_cell(const CellCache            &c,
+                              const std::vector<double>  &du_local,
+                              dealii::Vector<double>     &r_local,
+                              dealii::FullMatrix<double> *k_local,
+                              std::string                &failure) const
+    {
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      const unsigned int n_history     = points.n_history();
+
+      std::vector<unsigned int> comp(dofs_per_cell), node(dofs_per_cell);
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          comp[i] = fe.system_to_component_index(i).first;
+          node[i] = fe.system_to_component_index(i).second;
+        }
+      std::vector<dealii::Tensor<2, dim>> F_n(c.n);
+      std::vector<double>                 V0(c.n);
+      for (unsigned int q = 0; q < c.n; ++q)
+        {
+          const auto props = particles[c.first + q]->get_properties();
+          F_n[q]           = read_tensor<dim>(props, Properties::deformation);
+          V0[q]            = props[Properties::initial_volume];
+        }
+
+      std::vector<double> history_new(n_history);
+      const auto          model_call = [&](const unsigned int            q,
+                                  const dealii::Tensor<2, dim> &F,
+                                  dealii::Tensor<2, 3>         &P,
+                                  dealii::Tensor<4, 3>         *A) -> bool {
+        const auto props = particles[c.first + q]->get_properties();
+        try
+          {
+            model.compute_stress(
+              embed<dim>(F_n[q]),
+              embed<dim>(F),
+              dealii::ArrayView<const double>(props.data() +
+                                                Properties::history,
+                                              n_history),
+              dealii::ArrayView<double>(history_new.data(), n_history),
+              P,
+              A);
+          }
+        catch (const std::exception &e)
+          {
+            std::ostringstream msg;
+            msg << "constitutive update failed at the material point near "
+                << particles[c.first + q]->get_location() << ": " << e.what();
+            failure = msg.str();
+            return false;
+          }
+        for (unsigned int d = 0; d < 3; ++d)
+          for (unsigned int e = 0; e < 3; ++e)
+            if (!std::isfinite(P[d][e]))
+              {
+                failure = "non-finite stress at a material point";
+                return false;
+              }
+        return true;
+      };
+
+      const dealii::Tensor<1, dim> *dN = &shape_gradients[c.first * n_nodes];
+      bool                          ok = true;
+      if (k_local != nullptr)
+        {
+          using AD = CellAD<dim>;
+          std::vector<AD> u(dofs_per_cell), f_int(dofs_per_cell);
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              u[i]     = AD(dofs_per_cell, i, du_local[i]);
+              f_int[i] = 0.;
+            }
+          ok = fbar_internal_forces<dim>(c.n,
+                                         n_nodes,
+                                         comp,
+                                         node,
+                                         u,
+                                         dN,
+                                         F_n,
+                                         V0,
+                                         model_call,
+                                         f_int,
+                                         nullptr);
+          if (ok)
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              {
+                r_local[i] -= f_int[i].val();
+                for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                  (*k_local)(i, j) += f_int[i].dx(j);
+              }
+        }
+      else
+        {
+          std::vector<double> f_int(dofs_per_cell, 0.);
+          ok = fbar_internal_forces<dim>(c.n,
+                                         n_nodes,
+                                         comp,
+                                         node,
+                                         du_local,
+                                         dN,
+                                         F_n,
+                                         V0,
+                                         model_call,
+                                         f_int,
+                                         nullptr);
+          if (ok)
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              r_local[i] -= f_int[i];
+        }
+      if (!ok && failure.empty())
+        {
+          std::ostringstream msg;
+          msg << "a material point in the cell near " << c.cell->center()
+              << " was inverted (det of the step's deformation gradient <= 0)";
+          failure = msg.str();
+        }
+      return ok;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::cell_deformation_gradients(
+      const CellCache                     &c,
+      const std::vector<double>           &du_local,
+      std::vector<dealii::Tensor<2, dim>> &F_new) const
+    {
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      F_new.resize(c.n);
+      std::vector<dealii::Tensor<2, dim>> f(c.n);
+      std::vector<double>                 J(c.n), v(c.n);
+      double                              J_bar = 0., v_sum = 0.;
+      for (unsigned int q = 0; q < c.n; ++q)
+        {
+          const auto props = particles[c.first + q]->get_properties();
+          const auto F_n   = read_tensor<dim>(props, Properties::deformation);
+          const dealii::Tensor<1, dim> *dN =
+            &shape_gradients[(c.first + q) * n_nodes];
+          for (unsigned int d = 0; d < dim; ++d)
+            f[q][d][d] = 1.;
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              const auto ci = fe.system_to_component_index(i);
+              f[q][ci.first] += du_local[i] * dN[ci.second];
+            }
+          F_new[q] = f[q] * F_n;
+          J[q]     = dealii::determinant(f[q]);
+          v[q] = props[Properties::initial_volume] * dealii::determinant(F_n);
+          v_sum += v[q];
+          J_bar += v[q] * J[q];
+        }
+      if (!use_fbar)
+        return;
+      J_bar /= v_sum;
+      for (unsigned int q = 0; q < c.n; ++q)
+        F_new[q] *= std::pow(J_bar / J[q], 1. / dim);
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::setup_friction_nodes()
+    {
+      friction_nodes.clear();
+      friction_node_of.clear();
+      const auto &dof_handler = grid.dof_handler;
+      cell_touches_friction.assign(grid.triangulation.n_active_cells(), false);
+      friction_corner_dofs = dealii::IndexSet(dof_handler.n_dofs());
+      if (grid.friction_boundaries.empty())
+        return;
+
+      // Per grid vertex (keyed by its x dof): the friction boundaries it
+      // lies on, as (axis, inward sign, mu), and its dofs.
+      struct Candidate
+      {
+        std::vector<std::tuple<unsigned int, double, double>> faces;
+        std::array<dealii::types::global_dof_index, dim>      dofs;
+      };
+      std::map<dealii::types::global_dof_index, Candidate> candidates;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int f : cell->face_indices())
+            {
+              const auto face = cell->face(f);
+              if (!face->at_boundary())
+                continue;
+              const auto mu_it =
+                grid.friction_boundaries.find(face->boundary_id());
+              if (mu_it == grid.friction_boundaries.end())
+                continue;
+              dealii::Tensor<1, dim> n = face->center() - cell->center();
+              n /= n.norm();
+              int axis = -1;
+              for (unsigned int d = 0; d < dim; ++d)
+                if (std::abs(std::abs(n[d]) - 1.) < 1e-8)
+                  axis = d;
+              if (axis < 0)
+                InputFile::reject("Background grid",
+                                  "friction boundaries",
+                                  std::to_string(face->boundary_id()) + ": " +
+                                    std::to_string(mu_it->second),
+                                  "friction is only possible on axis-aligned "
+                                  "boundaries; boundary " +
+                                    std::to_string(face->boundary_id()) +
+                                    " is not axis aligned");
+              const double inward = n[axis] > 0. ? -1. : 1.;
+              cell_touches_friction[cell->active_cell_index()] = true;
+              for (const unsigned int v : face->vertex_indices())
+                {
+                  Candidate &cand = candidates[face->vertex_dof_index(v, 0)];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    cand.dofs[d] = face->vertex_dof_index(v, d);
+                  bool known = false;
+                  for (const auto &e : cand.faces)
+                    known = known || (std::get<0>(e) == unsigned(axis) &&
+                                      std::get<1>(e) == inward);
+                  if (!known)
+                    cand.faces.emplace_back(axis, inward, mu_it->second);
+                }
+            }
+      // Cells that touch a friction node through a vertex only (not a face)
+      // must combine rows too.
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int v : cell->vertex_indices())
+            if (candidates.count(cell->vertex_dof_index(v, 0)))
+              cell_touches_friction[cell->active_cell_index()] = true;
+
+      for (const auto &[key, cand] : candidates)
+        {
+          (void)key;
+          if (cand.faces.size() > 1)
+            {
+              for (const auto d : cand.dofs)
+                friction_corner_dofs.add_index(d);
+              continue;
+            }
+          const unsigned int axis = std::get<0>(cand.faces[0]);
+          if (fixed_dofs.is_element(cand.dofs[axis]) ||
+              slip_dofs[axis].is_element(cand.dofs[axis]))
+            continue; // governed by the other condition
+          FrictionNode fn;
+          fn.normal_dof       = cand.dofs[axis];
+          fn.normal_component = axis;
+          fn.inward           = std::get<1>(cand.faces[0]);
+          fn.mu               = std::get<2>(cand.faces[0]);
+          fn.owned    = grid.locally_owned_dofs.is_element(fn.normal_dof);
+          fn.state    = ContactState::free;
+          fn.switches = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            if (d != axis && !fixed_dofs.is_element(cand.dofs[d]) &&
+                !slip_dofs[d].is_element(cand.dofs[d]))
+              {
+                fn.tangential_dofs.push_back(cand.dofs[d]);
+                fn.tangential_components.push_back(d);
+              }
+          friction_node_of[fn.normal_dof] = friction_nodes.size();
+          friction_nodes.push_back(fn);
+        }
+      friction_corner_dofs.compress();
+    }
+
+
+    template <int dim>
+    double
+    MPMSolver<dim>::new_velocity(const dealii::types::global_dof_index i,
+                                 const double du_i) const
+    {
+      if (quasi_static)
+        return du_i / dt;
+      const double a =
+        newmark.acceleration(du_i, velocity_n(i), acceleration_n(i), dt);
+      return newmark.velocity(velocity_n(i), acceleration_n(i), a, dt);
+    }
+
+
+    template <int dim>
+    double
+    MPMSolver<dim>::resting_increment(
+      const dealii::types::global_dof_index i) const
+    {
+      if (quasi_static)
+        return 0.;
+      const double v = velocity_n(i);
+      const double a = acceleration_n(i);
+      // v_{n+1} = v + dt ((1 - gamma) a + gamma a_new) = 0
+      const double a_new =
+        -(v + dt * (1. - newmark.gamma) * a) / (newmark.gamma * dt);
+      return dt * v +
+             dt * dt * ((0.5 - newmark.beta) * a + newmark.beta * a_new);
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::exchange_friction_states()
+    {
+      // Owners write the state code at the normal dof (0 free, 1 stick,
+      // 2 slip) and the slip direction at the tangential dofs; every rank
+      // reads them for the nodes its cells touch.
+      dealii::TrilinosWrappers::MPI::Vector owned(grid.locally_owned_dofs,
+                                                  grid.mpi_communicator);
+      Epetra_FEVector                      &e = owned.trilinos_vector();
+      const auto set = [&](const dealii::types::global_dof_index i,
+                           const double                          value) {
+        e[0][e.Map().LID(static_cast<int>(i))] = value;
+      };
+      for (const auto &fn : friction_nodes)
+        if (fn.owned)
+          {
+            set(fn.normal_dof,
+                fn.state == ContactState::free  ? 0. :
+                fn.state == ContactState::stick ? 1. :
+                                                  2.);
+            for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
+              set(fn.tangential_dofs[k],
+                  fn.slip_direction[fn.tangential_components[k]]);
+          }
+      dealii::TrilinosWrappers::MPI::Vector ghosted(grid.locally_owned_dofs,
+                                                    grid.locally_relevant_dofs,
+                                                    grid.mpi_communicator);
+      ghosted = owned;
+      for (auto &fn : friction_nodes)
+        if (!fn.owned)
+          {
+            const double code = ghosted(fn.normal_dof);
+            fn.state          = code < 0.5 ? ContactState::free :
+                                code < 1.5 ? ContactState::stick :
+                                             ContactState::slip;
+            fn.slip_direction = 0.;
+            for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
+              fn.slip_direction[fn.tangential_components[k]] =
+                ghosted(fn.tangential_dofs[k]);
+          }
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::initialize_friction_states()
+    {
+      if (grid.friction_boundaries.empty())
+        return;
+      frozen_nodes = 0;
+      for (auto &fn : friction_nodes)
+        if (fn.owned)
+          {
+            fn.switches       = 0;
+            fn.slip_direction = 0.;
+            if (nodal_mass(fn.normal_dof) <= 0.)
+              {
+                fn.state = ContactState::free;
+                continue;
+              }
+            // In contact at the start of the step (the grid is reset onto
+            // the boundary); slipping if it carries a tangential velocity.
+            // (or accelerates: starting to slide from rest).
+            dealii::Tensor<1, dim> v_t, a_t;
+            for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
+              {
+                v_t[fn.tangential_components[k]] =
+                  velocity_n(fn.tangential_dofs[k]);
+                a_t[fn.tangential_components[k]] =
+                  acceleration_n(fn.tangential_dofs[k]);
+              }
+            const dealii::Tensor<1, dim> direction =
+              v_t.norm() > 0. ? v_t : a_t;
+            if (fn.mu == 0. || fn.tangential_dofs.empty())
+              fn.state = ContactState::slip;
+            else
+              fn.state = direction.norm() > 0. ? ContactState::slip :
+                                                 ContactState::stick;
+            if (direction.norm() > 0.)
+              fn.slip_direction = direction / direction.norm();
+          }
+      exchange_friction_states();
+    }
+
+
+    template <int dim>
+    unsigned int
+    MPMSolver<dim>::update_friction_states(
+      dealii::TrilinosWrappers::MPI::Vector &du)
+    {
+      if (grid.friction_boundaries.empty())
+        return 0;
+      constexpr unsigned int max_switches = 4;
+      // Tolerances against chattering on round-off: a stuck node slips
+      // when the needed force exceeds mu p by 1e-6 relative, a slipping
+      // node sticks when its velocity reverses by more than 1e-9 cell
+      // sizes per step, contact opens below -1e-10 times the node weight.
+      const double length_tol = 1e-10 * grid.minimal_cell_diameter;
+      const double speed_tol  = 1e-9 * grid.minimal_cell_diameter / dt;
+      unsigned int changed    = 0;
+      std::vector<std::pair<dealii::types::global_dof_index, double>> values;
+      for (auto &fn : friction_nodes)
+        {
+          if (!fn.owned || nodal_mass(fn.normal_dof) <= 0.)
+            continue;
+          const ContactState           old_state     = fn.state;
+          const dealii::Tensor<1, dim> old_direction = fn.slip_direction;
+          // contact pressure (force) and tangential reaction
+          const double p = -fn.inward * raw_residual(fn.normal_dof);
+          const double pressure_tol =
+            1e-10 * nodal_mass(fn.normal_dof) * gravity_vector.norm();
+          dealii::Tensor<1, dim> R_t, v_t;
+          for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
+            {
+              const auto t = fn.tangential_dofs[k];
+              const auto d = fn.tangential_components[k];
+              R_t[d]       = -raw_residual(t);
+              v_t[d]       = new_velocity(t, du(t));
+            }
+          switch (fn.state)
+            {
+              case ContactState::free:
+                if (fn.inward * du(fn.normal_dof) < -length_tol)
+                  fn.state = (fn.mu == 0. || fn.tangential_dofs.empty()) ?
+                               ContactState::slip :
+                               ContactState::stick;
+                break;
+              case ContactState::stick:
+                if (p < -pressure_tol)
+                  fn.state = ContactState::free;
+                else if (R_t.norm() > fn.mu * p * (1. + 1e-6))
+                  {
+                    fn.state          = ContactState::slip;
+                    fn.slip_direction = -R_t / R_t.norm();
+                  }
+                break;
+              case ContactState::slip:
+                if (p < -pressure_tol)
+                  fn.state = ContactState::free;
+                else if (fn.mu > 0. && !fn.tangential_dofs.empty())
+                  {
+                    if (v_t * fn.slip_direction < -speed_tol)
+                      fn.state = ContactState::stick;
+                    else if (dim == 3)
+                      fn.slip_direction = v_t / v_t.norm();
+                  }
+                break;
+            }
+          const bool state_changed = fn.state != old_state;
+          if (std::getenv("TALUS_DEBUG_FRICTION") && state_changed)
+            std::cerr << "node " << fn.normal_dof << " " << int(old_state)
+                      << " -> " << int(fn.state) << " p = " << p
+                      << " R_t = " << R_t << " v_t = " << v_t
+                      << " du_n = " << du(fn.normal_dof) << std::endl;
+          const bool direction_changed =
+            fn.state == ContactState::slip &&
+            (fn.slip_direction - old_direction).norm() > 1e-8;
+          if (!state_changed && !direction_changed)
+            continue;
+          if (state_changed && ++fn.switches > max_switches)
+            {
+              // Cycling between states: keep the previous one (reported).
+              fn.state          = old_state;
+              fn.slip_direction = old_direction;
+              ++frozen_nodes;
+              continue;
+            }
+          ++changed;
+          // Project the increment onto the new constraints.
+          if (fn.state != ContactState::free)
+            values.emplace_back(fn.normal_dof, 0.);
+          if (fn.state == ContactState::stick)
+            for (const auto t : fn.tangential_dofs)
+              values.emplace_back(t, resting_increment(t));
+        }
+      changed = dealii::Utilities::MPI::sum(changed, grid.mpi_communicator);
+      if (changed == 0)
+        return 0;
+      {
+        Epetra_FEVector &e = du.trilinos_vector();
+        for (const auto &[i, value] : values)
+          e[0][e.Map().LID(static_cast<int>(i))] = value;
+      }
+      exchange_friction_states();
+      make_constraints();
+      amg_current = false;
+      return changed;
     }
 
 
@@ -864,6 +1622,10 @@ namespace Talus
       const double f_ext_norm     = external_force.l2_norm();
       double       reference      = 0.;
       double       last_increment = 0.;
+      // contact states are updated only from a solution of the current
+      // linear system
+      bool         solved_since_update = false;
+      unsigned int contact_rounds      = 0;
 
       for (unsigned int it = 0; it <= max_newton_iterations; ++it)
         {
@@ -884,6 +1646,19 @@ namespace Talus
               result.failure = "the residual is not finite";
               return result;
             }
+          // Contact states (after the first correction): a change
+          // re-assembles with the new constraints.
+          if (solved_since_update && !grid.friction_boundaries.empty() &&
+              update_friction_states(du) > 0)
+            {
+              displacement        = du;
+              solved_since_update = false;
+              // re-assembly rounds do not count as Newton iterations (at
+              // most 2 * maximum Newton iterations of them)
+              if (++contact_rounds <= 2 * max_newton_iterations)
+                --it;
+              continue;
+            }
           if (it == 0)
             reference = std::max(r, f_ext_norm);
           result.residual          = reference > 0. ? r / reference : r;
@@ -891,13 +1666,15 @@ namespace Talus
           const double du_norm     = du.l2_norm();
           const bool   residual_ok = r <= residual_tolerance * reference ||
                                    r <= absolute_residual_tolerance;
-          // The increment criterion may be waived when the residual is far
+          // The increment criterion (relative to |du|, or to the cell size
+          // for bodies at rest) may be waived when the residual is far
           // below its tolerance (quadratic convergence: the last correction
           // is then still large relative to the current error).
           const bool increment_ok =
-            it > 0 &&
-            (last_increment <= increment_tolerance * du_norm || du_norm == 0. ||
-             r <= 1e-4 * residual_tolerance * reference);
+            it > 0 && (last_increment <=
+                         increment_tolerance *
+                           std::max(du_norm, grid.minimal_cell_diameter) ||
+                       r <= 1e-4 * residual_tolerance * reference);
           if (residual_ok &&
               (it == 0 ? r <= absolute_residual_tolerance || reference == 0. :
                          increment_ok))
@@ -923,11 +1700,15 @@ namespace Talus
           result.linear_iterations += n_linear;
           last_increment = increment.l2_norm();
           du += increment;
-          displacement = du;
+          solved_since_update = true;
+          displacement        = du;
         }
       std::ostringstream msg;
       msg << "no convergence in " << max_newton_iterations
           << " Newton iterations (relative residual " << result.residual << ")";
+      if (!grid.friction_boundaries.empty())
+        msg << "; contact states on friction boundaries may still be "
+               "changing";
       result.failure = msg.str();
       return result;
     }
@@ -951,6 +1732,33 @@ namespace Talus
       for (const auto i : grid.locally_owned_dofs)
         if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
           a(i) = residual(i) / nodal_mass(i);
+      // Friction nodes (lumped mass: node by node): held normally while
+      // pressed, tangentially while the needed force is within mu p,
+      // otherwise accelerated by the net force minus the Coulomb force.
+      for (const auto &fn : friction_nodes)
+        if (fn.owned && nodal_mass(fn.normal_dof) > 0.)
+          {
+            const double           m = nodal_mass(fn.normal_dof);
+            const double           p = -fn.inward * raw_residual(fn.normal_dof);
+            dealii::Tensor<1, dim> r_t;
+            for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
+              r_t[fn.tangential_components[k]] =
+                raw_residual(fn.tangential_dofs[k]);
+            if (p < 0.)
+              {
+                a(fn.normal_dof) = raw_residual(fn.normal_dof) / m;
+                for (const auto t : fn.tangential_dofs)
+                  a(t) = raw_residual(t) / m;
+                continue;
+              }
+            a(fn.normal_dof)    = 0.;
+            const double excess = r_t.norm() - fn.mu * p;
+            for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
+              a(fn.tangential_dofs[k]) =
+                excess > 0. ?
+                  excess / r_t.norm() * r_t[fn.tangential_components[k]] / m :
+                  0.;
+          }
       a.compress(dealii::VectorOperation::insert);
       acceleration_new = a;
 
@@ -1014,10 +1822,41 @@ namespace Talus
         grid.mpi_communicator);
       dv_ghosted = dv;
 
+      // Contact forces and friction work of the friction boundaries (from
+      // the unconstrained residual of the converged iterate).
+      {
+        dealii::Tensor<1, dim> force;
+        double                 work = 0.;
+        for (const auto &fn : friction_nodes)
+          if (fn.owned && fn.state != ContactState::free &&
+              nodal_mass(fn.normal_dof) > 0.)
+            {
+              force[fn.normal_component] -= raw_residual(fn.normal_dof);
+              for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
+                {
+                  const auto   t = fn.tangential_dofs[k];
+                  const double R = -raw_residual(t);
+                  force[fn.tangential_components[k]] += R;
+                  work += R * displacement(t);
+                }
+            }
+        contact_force =
+          dealii::Utilities::MPI::sum(force, grid.mpi_communicator);
+        friction_dissipation -=
+          dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
+        if (frozen_nodes > 0)
+          std::cerr << "Warning: " << frozen_nodes
+                    << " grid node(s) on friction boundaries kept their "
+                       "contact state after 4 changes in one step (the "
+                       "Coulomb conditions may be violated there)."
+                    << std::endl;
+      }
+
       std::vector<double> history_new(n_history);
       std::vector<double> du_local(dofs_per_cell), a_local(dofs_per_cell),
         dv_local(dofs_per_cell);
-      dealii::Tensor<2, 3> P;
+      std::vector<dealii::Tensor<2, dim>> F_cell;
+      dealii::Tensor<2, 3>                P;
       for (const auto &c : cells)
         {
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -1026,6 +1865,7 @@ namespace Talus
               a_local[i]  = acceleration_new(c.dofs[i]);
               dv_local[i] = dv_ghosted(c.dofs[i]);
             }
+          cell_deformation_gradients(c, du_local, F_cell);
           for (unsigned int q = 0; q < c.n; ++q)
             {
               const unsigned int k     = c.first + q;
@@ -1045,8 +1885,8 @@ namespace Talus
                 }
               const dealii::Tensor<2, dim> F_n =
                 read_tensor<dim>(props, Properties::deformation);
-              const dealii::Tensor<2, dim> F_new = F_n + H * F_n;
-              const dealii::Tensor<2, 3>   F3    = embed<dim>(F_new);
+              const dealii::Tensor<2, dim> &F_new = F_cell[q];
+              const dealii::Tensor<2, 3>    F3    = embed<dim>(F_new);
               model.compute_stress(
                 embed<dim>(F_n),
                 F3,
@@ -1097,9 +1937,20 @@ namespace Talus
     {
       using Properties = MaterialPointProperties<dim>;
       Diagnostics<dim>   d;
-      const unsigned int n_history = points.n_history();
+      const unsigned int n_history         = points.n_history();
+      int                dissipation_index = -1;
+      {
+        const auto names = model.history_names();
+        for (unsigned int h = 0; h < names.size(); ++h)
+          if (names[h] == "plastic dissipation")
+            dissipation_index = h;
+      }
       for (const auto &p : points.particle_handler())
         {
+          if (dissipation_index >= 0)
+            d.plastic_dissipation +=
+              p.get_properties()[Properties::initial_volume] *
+              p.get_properties()[Properties::history + dissipation_index];
           const auto   props = p.get_properties();
           const double m     = props[Properties::mass];
           d.mass += m;
@@ -1128,6 +1979,10 @@ namespace Talus
       d.strain_energy     = dealii::Utilities::MPI::sum(d.strain_energy, comm);
       d.gravitational_energy =
         dealii::Utilities::MPI::sum(d.gravitational_energy, comm);
+      d.plastic_dissipation =
+        dealii::Utilities::MPI::sum(d.plastic_dissipation, comm);
+      d.friction_dissipation = friction_dissipation;
+      d.contact_force        = contact_force;
       return d;
     }
 

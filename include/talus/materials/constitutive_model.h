@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace Talus
 {
@@ -51,6 +52,15 @@ namespace Talus
       /** Number of history variables per material point (may be 0). */
       virtual unsigned int
       n_history_variables() const;
+
+      /**
+       * Names of the history variables (size n_history_variables(), or
+       * empty if they have no names). The solver adds the variable named
+       * "plastic dissipation" [J/m^3 of reference volume] to the energy
+       * balance.
+       */
+      virtual std::vector<std::string>
+      history_names() const;
 
       /** Write the history of a stress-free, undeformed material point. */
       virtual void

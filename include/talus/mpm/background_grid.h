@@ -11,6 +11,7 @@
 
 #include <deal.II/distributed/tria.h>
 
+#include <map>
 #include <set>
 #include <string>
 
@@ -75,6 +76,13 @@ namespace Talus
       /** Boundary ids where the normal displacement is zero (the boundary
        * must be axis aligned). */
       std::set<dealii::types::boundary_id> slip_boundaries;
+
+      /**
+       * Axis-aligned boundaries with Coulomb friction: boundary id ->
+       * friction coefficient mu [-] (contact with separation, stick/slip;
+       * see MPMSolver).
+       */
+      std::map<dealii::types::boundary_id, double> friction_boundaries;
 
     private:
       std::string               type;

@@ -12,12 +12,15 @@
 #include <deal.II/base/timer.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
 
 #include <Epetra_MultiVector.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,6 +48,23 @@ namespace Talus
       double                 kinetic_energy       = 0.;
       double                 strain_energy        = 0.;
       double                 gravitational_energy = 0.;
+      /**
+       * Energy dissipated by plastic flow since the start [J]: the sum
+       * over the points of V_0 times the history variable named "plastic
+       * dissipation" (0 for models without it).
+       */
+      double plastic_dissipation = 0.;
+      /**
+       * Energy dissipated by friction on the grid's friction boundaries
+       * since the start [J]: minus the work of the tangential contact
+       * forces on the nodal displacement increments.
+       */
+      double friction_dissipation = 0.;
+      /**
+       * Resultant force of all friction boundaries on the material at the
+       * end of the last step [N] (normal and tangential contact forces).
+       */
+      dealii::Tensor<1, dim> contact_force;
     };
 
     /**
@@ -170,6 +190,62 @@ namespace Talus
       dealii::Tensor<1, dim>
       external_acceleration(const dealii::Point<dim> &X, const double t) const;
 
+      /**
+       * Internal force and (if @p k_local is not nullptr) its derivative
+       * for the points of cell @p c with the F-bar treatment: the
+       * incremental deformation gradient f_p = I + grad(du) of every point
+       * is replaced by (J_bar/J_p)^(1/dim) f_p with the volume-weighted
+       * cell average J_bar of J_p = det f_p; the derivative (Sacado forward
+       * AD around the model's analytic tangent) is exact. Returns false
+       * (and @p failure) if a constitutive update fails.
+       */
+      bool
+      fbar_cell(const CellCache            &c,
+                const std::vector<double>  &du_local,
+                dealii::Vector<double>     &r_local,
+                dealii::FullMatrix<double> *k_local,
+                std::string                &failure) const;
+
+      /**
+       * Deformation gradients F_bar of the points of cell @p c for the
+       * displacement increment @p du_local (F-bar or plain).
+       */
+      void
+      cell_deformation_gradients(
+        const CellCache                     &c,
+        const std::vector<double>           &du_local,
+        std::vector<dealii::Tensor<2, dim>> &F_new) const;
+
+      /** Grid nodes on friction boundaries; see setup(). */
+      void
+      setup_friction_nodes();
+
+      /** Contact states at the beginning of a step. */
+      void
+      initialize_friction_states();
+
+      /**
+       * Update the contact states from the unconstrained residual and the
+       * displacement increment; returns the number of changed nodes (all
+       * ranks) and, if any, updates the constraints and projects the
+       * displacement increment onto them.
+       */
+      unsigned int
+      update_friction_states(dealii::TrilinosWrappers::MPI::Vector &du);
+
+      /** Send the owners' states to the ranks that see the node. */
+      void
+      exchange_friction_states();
+
+      /** Tangential velocity at t_{n+1} of dof i for increment du_i. */
+      double
+      new_velocity(const dealii::types::global_dof_index i,
+                   const double                          du_i) const;
+
+      /** Increment that makes the velocity of dof i zero at t_{n+1}. */
+      double
+      resting_increment(const dealii::types::global_dof_index i) const;
+
       BackgroundGrid<dim>                &grid;
       MaterialPoints<dim>                &points;
       const Materials::ConstitutiveModel &model;
@@ -211,6 +287,47 @@ namespace Talus
       std::vector<unsigned int>           owned_components;
       bool                                reuse_preconditioner = true;
       std::vector<std::vector<bool>>      constant_modes;
+
+      /** Anti-locking treatment ("none" or "F-bar"). */
+      bool use_fbar = false;
+
+      /** Contact state of a grid node on a friction boundary. */
+      enum class ContactState
+      {
+        free,  ///< separated: no constraint
+        stick, ///< normal and tangential increments prescribed
+        slip   ///< normal prescribed, Coulomb force tangentially
+      };
+
+      /** A grid node on a friction boundary (seen by this rank). */
+      struct FrictionNode
+      {
+        dealii::types::global_dof_index normal_dof;
+        unsigned int                    normal_component;
+        /** Tangential dofs not constrained by other boundaries. */
+        std::vector<dealii::types::global_dof_index> tangential_dofs;
+        /** Direction (component) of each tangential dof. */
+        std::vector<unsigned int> tangential_components;
+        double                    inward; ///< +1 or -1
+        double                    mu;
+        bool                      owned;
+        ContactState              state;
+        dealii::Tensor<1, dim>    slip_direction;
+        unsigned int              switches;
+      };
+      std::vector<FrictionNode> friction_nodes;
+      /** normal dof -> index in friction_nodes */
+      std::map<dealii::types::global_dof_index, unsigned int> friction_node_of;
+      /** Cells (active_cell_index) with a friction node. */
+      std::vector<bool> cell_touches_friction;
+      /** Dofs of nodes on two friction boundaries: fixed. */
+      dealii::IndexSet friction_corner_dofs;
+      /** Residual without constraints at the friction nodes (owned). */
+      dealii::TrilinosWrappers::MPI::Vector raw_residual;
+      /** Accumulated friction dissipation [J] (all ranks). */
+      double                 friction_dissipation = 0.;
+      dealii::Tensor<1, dim> contact_force;
+      unsigned int           frozen_nodes = 0;
 
       dealii::TrilinosWrappers::MPI::Vector nodal_mass;       // ghosted
       dealii::TrilinosWrappers::MPI::Vector velocity_n;       // ghosted
