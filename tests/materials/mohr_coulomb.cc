@@ -384,6 +384,23 @@ namespace
         if (type != c.expected_type)
           out << " UNEXPECTED (expected " << return_type_name(c.expected_type)
               << ")";
+        if (type != 0)
+          {
+            // which surfaces the returned stress lies on
+            const Tensor<1, 3> tau = principal_kirchhoff(st.P, c.F);
+            const double       tol = 1e-9 * (max_abs(tau) + 1e4);
+            const double       t   = c.strength.tension_cutoff;
+            out << ", on:";
+            if (std::abs(model.yield_function(tau, st.history[6])) < tol)
+              out << " MC";
+            if (std::abs(tau[0] - tau[1]) < tol)
+              out << " tau_1=tau_2";
+            if (std::abs(tau[1] - tau[2]) < tol)
+              out << " tau_2=tau_3";
+            for (unsigned int a = 0; a < 3; ++a)
+              if (std::abs(tau[a] - t) < tol)
+                out << " tau_" << a + 1 << "=t";
+          }
         out << std::endl;
         report(out, "  tangent", tangent_error(model, p, c.F), 1e-6);
       }
