@@ -1,7 +1,10 @@
 #include <talus/base/input.h>
 #include <talus/materials/constitutive_model.h>
+#include <talus/materials/drucker_prager.h>
+#include <talus/materials/granular_plasticity.h>
 #include <talus/materials/hencky_elastic.h>
 #include <talus/materials/linear_elastic.h>
+#include <talus/materials/mohr_coulomb.h>
 #include <talus/materials/neo_hookean.h>
 
 #include <functional>
@@ -34,6 +37,22 @@ namespace Talus
     ConstitutiveModel::initialize_history(
       const dealii::ArrayView<double> & /*history*/) const
     {}
+
+
+
+    std::string
+    ConstitutiveModel::description() const
+    {
+      return name();
+    }
+
+
+
+    std::vector<std::string>
+    ConstitutiveModel::history_names() const
+    {
+      return {};
+    }
 
 
 
@@ -124,6 +143,95 @@ namespace Talus
       }
 
 
+      void
+      declare_mohr_coulomb(dealii::ParameterHandler &prm)
+      {
+        prm.enter_subsection("Mohr-Coulomb");
+        declare_granular_strength(
+          prm,
+          "Rankine cut-off of the maximum principal (Kirchhoff) stress, "
+          "tension positive: sigma_max <= t.");
+        prm.leave_subsection();
+      }
+
+
+      std::unique_ptr<ConstitutiveModel>
+      create_mohr_coulomb(dealii::ParameterHandler &prm)
+      {
+        const IsotropicElasticity e = read_isotropic_elasticity(prm);
+        prm.enter_subsection("Mohr-Coulomb");
+        try
+          {
+            const GranularStrength s =
+              read_granular_strength(prm, subsection_name + "/Mohr-Coulomb");
+            prm.leave_subsection();
+            return std::make_unique<MohrCoulomb>(e, s);
+          }
+        catch (...)
+          {
+            prm.leave_subsection();
+            throw;
+          }
+      }
+
+
+      void
+      declare_drucker_prager(dealii::ParameterHandler &prm)
+      {
+        prm.enter_subsection("Drucker-Prager");
+        prm.declare_entry(
+          "cone fit",
+          "plane strain",
+          dealii::Patterns::Selection(
+            "plane strain|triaxial compression|triaxial extension"),
+          "How the Drucker-Prager cone sqrt(J2) + eta p = xi c (p mean "
+          "stress, tension positive) is matched to the Mohr-Coulomb "
+          "parameters phi, c (and psi for the plastic potential) [no unit]: "
+          "'plane strain': same plane-strain limit load, eta = 3 tan(phi)/"
+          "sqrt(9 + 12 tan^2(phi)), xi = 3/sqrt(9 + 12 tan^2(phi)); "
+          "'triaxial compression' (outer cone, through the compressive "
+          "meridian of the Mohr-Coulomb pyramid): eta = 6 sin(phi)/"
+          "(sqrt(3) (3 - sin(phi))), xi = 6 cos(phi)/(sqrt(3) (3 - "
+          "sin(phi))); 'triaxial extension' (inner cone, through the "
+          "extension meridian): the same with 3 + sin(phi). At phi = 19.8 "
+          "deg, c = 0 the ratio sqrt(J2)/(-p) is 0.332, 0.441 and 0.351.");
+        declare_granular_strength(
+          prm,
+          "Cut-off of the mean stress (tension positive): p = tr(tau)/3 <= "
+          "t (a plane normal to the hydrostatic axis, not a Rankine "
+          "surface).");
+        prm.leave_subsection();
+      }
+
+
+      std::unique_ptr<ConstitutiveModel>
+      create_drucker_prager(dealii::ParameterHandler &prm)
+      {
+        const IsotropicElasticity e = read_isotropic_elasticity(prm);
+        prm.enter_subsection("Drucker-Prager");
+        try
+          {
+            const GranularStrength s =
+              read_granular_strength(prm, subsection_name + "/Drucker-Prager");
+            const std::string fit = prm.get("cone fit");
+            prm.leave_subsection();
+            return std::make_unique<DruckerPrager>(
+              e,
+              s,
+              fit == "plane strain" ?
+                DruckerPrager::ConeFit::plane_strain :
+                (fit == "triaxial compression" ?
+                   DruckerPrager::ConeFit::triaxial_compression :
+                   DruckerPrager::ConeFit::triaxial_extension));
+          }
+        catch (...)
+          {
+            prm.leave_subsection();
+            throw;
+          }
+      }
+
+
       /**
        * All available models. To add a model (e.g. "Mohr-Coulomb"), include
        * its header above and add one entry here: a function declaring its
@@ -140,6 +248,9 @@ namespace Talus
                 {&no_parameters, &create_elastic<LinearElastic>});
           r.add("neo-Hookean", {&no_parameters, &create_elastic<NeoHookean>});
           r.add("Hencky", {&no_parameters, &create_elastic<HenckyElastic>});
+          r.add("Mohr-Coulomb", {&declare_mohr_coulomb, &create_mohr_coulomb});
+          r.add("Drucker-Prager",
+                {&declare_drucker_prager, &create_drucker_prager});
           return r;
         }();
         return models;
@@ -200,7 +311,15 @@ namespace Talus
           "compressible neo-Hookean hyperelasticity, "
           "psi = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2. 'Hencky': "
           "hyperelasticity linear between Kirchhoff stress and logarithmic "
-          "strain, tau = lambda tr(eps) I + 2 mu eps with eps = 1/2 ln(F F^T).");
+          "strain, tau = lambda tr(eps) I + 2 mu eps with eps = 1/2 ln(F F^T). "
+          "'Mohr-Coulomb': finite-strain elastoplasticity for granular "
+          "materials, Hencky elasticity with multiplicative plasticity "
+          "(return mapping in principal logarithmic elastic strains), "
+          "Mohr-Coulomb yield surface with dilatancy angle, Rankine tension "
+          "cut-off and exponential softening (parameters in subsection "
+          "Material/Mohr-Coulomb). 'Drucker-Prager': the same with a "
+          "Drucker-Prager cone matched to the Mohr-Coulomb parameters "
+          "(subsection Material/Drucker-Prager, 'cone fit').");
       prm.declare_entry(
         "density",
         "1000",

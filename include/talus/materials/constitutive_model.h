@@ -49,6 +49,13 @@ namespace Talus
       virtual std::string
       name() const = 0;
 
+      /**
+       * One line describing the model and its parameters, for the log of a
+       * run. The default returns name().
+       */
+      virtual std::string
+      description() const;
+
       /** Number of history variables per material point (may be 0). */
       virtual unsigned int
       n_history_variables() const;
@@ -65,6 +72,14 @@ namespace Talus
       /** Write the history of a stress-free, undeformed material point. */
       virtual void
       initialize_history(const dealii::ArrayView<double> &history) const;
+
+      /**
+       * Names of the history variables (identifiers without spaces, for
+       * output), n_history_variables() of them. The default returns an
+       * empty vector (no names: the solver numbers them).
+       */
+      virtual std::vector<std::string>
+      history_names() const;
 
       /**
        * Stress update.

@@ -1,0 +1,574 @@
+#include <talus/base/input.h>
+#include <talus/materials/exceptions.h>
+#include <talus/materials/granular_plasticity.h>
+#include <talus/materials/hencky_elastic.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <string>
+
+namespace Talus
+{
+  namespace Materials
+  {
+    namespace
+    {
+      constexpr double degree = M_PI / 180.;
+
+      GranularStrength::Value
+      soften(const double peak,
+             const double residual,
+             const double eta,
+             const double eps_p)
+      {
+        if (peak == residual)
+          return {peak, 0.};
+        const double e = std::exp(-eps_p / eta);
+        return {residual + (peak - residual) * e, -(peak - residual) / eta * e};
+      }
+    } // namespace
+
+
+
+    bool
+    GranularStrength::softening() const
+    {
+      return residual_friction_angle != friction_angle ||
+             residual_cohesion != cohesion ||
+             residual_dilatancy_angle != dilatancy_angle;
+    }
+
+
+
+    GranularStrength::Value
+    GranularStrength::phi(const double eps_p) const
+    {
+      return soften(friction_angle,
+                    residual_friction_angle,
+                    softening_strain,
+                    eps_p);
+    }
+
+
+
+    GranularStrength::Value
+    GranularStrength::c(const double eps_p) const
+    {
+      return soften(cohesion, residual_cohesion, softening_strain, eps_p);
+    }
+
+
+
+    GranularStrength::Value
+    GranularStrength::psi(const double eps_p) const
+    {
+      return soften(dilatancy_angle,
+                    residual_dilatancy_angle,
+                    softening_strain,
+                    eps_p);
+    }
+
+
+
+    std::string
+    GranularStrength::to_string() const
+    {
+      std::ostringstream s;
+      s << "phi = " << friction_angle / degree << " deg, c = " << cohesion
+        << " Pa, psi = " << dilatancy_angle / degree << " deg, ";
+      if (softening())
+        s << "softening to phi_r = " << residual_friction_angle / degree
+          << " deg, c_r = " << residual_cohesion
+          << " Pa, psi_r = " << residual_dilatancy_angle / degree
+          << " deg with softening plastic strain " << softening_strain;
+      else
+        s << "no softening";
+      s << ", tension cut-off = " << tension_cutoff << " Pa";
+      return s.str();
+    }
+
+
+
+    GranularPlasticity::GranularPlasticity(const IsotropicElasticity &elastic,
+                                           const GranularStrength    &strength)
+      : elastic(elastic)
+      , strength_parameters(strength)
+    {
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = 0; b < 3; ++b)
+          D[a][b] = elastic.lambda + (a == b ? 2. * elastic.mu : 0.);
+      C = dealii::invert(D);
+    }
+
+
+
+    unsigned int
+    GranularPlasticity::n_history_variables() const
+    {
+      return 9;
+    }
+
+
+
+    void
+    GranularPlasticity::initialize_history(
+      const dealii::ArrayView<double> &history) const
+    {
+      AssertDimension(history.size(), n_history_variables());
+      std::fill(history.begin(), history.end(), 0.);
+      history[0] = history[1] = history[2] = 1.;
+    }
+
+
+
+    std::vector<std::string>
+    GranularPlasticity::history_names() const
+    {
+      return {"Cp_inv_xx",
+              "Cp_inv_yy",
+              "Cp_inv_zz",
+              "Cp_inv_xy",
+              "Cp_inv_yz",
+              "Cp_inv_xz",
+              "plastic_strain",
+              "plastic_dissipation",
+              "return_type"};
+    }
+
+
+
+    double
+    GranularPlasticity::p_wave_modulus() const
+    {
+      return elastic.p_wave_modulus();
+    }
+
+
+
+    const IsotropicElasticity &
+    GranularPlasticity::elasticity() const
+    {
+      return elastic;
+    }
+
+
+
+    const GranularStrength &
+    GranularPlasticity::strength() const
+    {
+      return strength_parameters;
+    }
+
+
+
+    namespace
+    {
+      dealii::Tensor<2, 3>
+      history_to_G(const dealii::ArrayView<const double> &h)
+      {
+        dealii::Tensor<2, 3> G;
+        G[0][0] = h[0];
+        G[1][1] = h[1];
+        G[2][2] = h[2];
+        G[0][1] = G[1][0] = h[3];
+        G[1][2] = G[2][1] = h[4];
+        G[0][2] = G[2][0] = h[5];
+        return G;
+      }
+
+
+      /** Trial state: b_e = F G F^T, spectral decomposition, log strains. */
+      struct TrialState
+      {
+        dealii::Tensor<2, 3>                     b_e;
+        LogarithmicStrain::SpectralDecomposition spectral;
+        std::array<double, 3>                    eps;
+      };
+
+
+      TrialState
+      trial_state(const std::string          &model,
+                  const dealii::Tensor<2, 3> &F,
+                  const dealii::Tensor<2, 3> &G)
+      {
+        const double J = dealii::determinant(F);
+        if (!(J > 0.) || !std::isfinite(J))
+          throw ExcInvertedMaterialPoint(model, J);
+        TrialState                 s;
+        const dealii::Tensor<2, 3> FG = F * G;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i; j < 3; ++j)
+            {
+              double sum = 0.;
+              for (unsigned int k = 0; k < 3; ++k)
+                sum += FG[i][k] * F[j][k];
+              s.b_e[i][j] = s.b_e[j][i] = sum;
+            }
+        s.spectral = LogarithmicStrain::spectral_decomposition(s.b_e);
+        for (unsigned int a = 0; a < 3; ++a)
+          {
+            if (!(s.spectral.eigenvalues[a] > 0.))
+              throw ExcInvertedMaterialPoint(model, J);
+            s.eps[a] = 0.5 * std::log(s.spectral.eigenvalues[a]);
+          }
+        return s;
+      }
+    } // namespace
+
+
+
+    void
+    GranularPlasticity::compute_stress(
+      const dealii::Tensor<2, 3> & /*F_old*/,
+      const dealii::Tensor<2, 3>            &F,
+      const dealii::ArrayView<const double> &history_old,
+      const dealii::ArrayView<double>       &history_new,
+      dealii::Tensor<2, 3>                  &P,
+      dealii::Tensor<4, 3>                  *A) const
+    {
+      AssertDimension(history_old.size(), n_history_variables());
+      AssertDimension(history_new.size(), n_history_variables());
+
+      const TrialState s = trial_state(name(), F, history_to_G(history_old));
+
+      // sort the principal directions: order[k] = index of the k-th largest
+      std::array<unsigned int, 3> order = {{0, 1, 2}};
+      std::sort(order.begin(),
+                order.end(),
+                [&](const unsigned int a, const unsigned int b) {
+                  return s.eps[a] > s.eps[b];
+                });
+      dealii::Tensor<1, 3> eps_sorted;
+      for (unsigned int k = 0; k < 3; ++k)
+        eps_sorted[k] = s.eps[order[k]];
+
+      const double plastic_strain_old = history_old[plastic_strain_index];
+      const PrincipalReturn r =
+        principal_return(eps_sorted, plastic_strain_old);
+
+      std::array<double, 3> tau;
+      dealii::Tensor<2, 3>  dtau_deps;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          tau[order[k]] = r.tau[k];
+          for (unsigned int l = 0; l < 3; ++l)
+            dtau_deps[order[k]][order[l]] = r.dtau_deps[k][l];
+        }
+      LogarithmicStrain::principal_kirchhoff_to_piola(
+        F, s.b_e, s.spectral, tau, dtau_deps, P, A);
+
+      // history
+      if (r.return_type == 0)
+        {
+          for (unsigned int i = 0; i < 6; ++i)
+            history_new[i] = history_old[i];
+          history_new[dissipation_index] = history_old[dissipation_index];
+        }
+      else
+        {
+          const dealii::Tensor<1, 3> eps_new     = C * r.tau;
+          double                     dissipation = 0.;
+          dealii::Tensor<2, 3>       b_e_new;
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              dissipation += r.tau[k] * (eps_sorted[k] - eps_new[k]);
+              const dealii::Tensor<1, 3> &n = s.spectral.eigenvectors[order[k]];
+              b_e_new +=
+                std::exp(2. * eps_new[k]) * dealii::outer_product(n, n);
+            }
+          const dealii::Tensor<2, 3> F_inv = dealii::invert(F);
+          const dealii::Tensor<2, 3> G_new =
+            F_inv * b_e_new * dealii::transpose(F_inv);
+          history_new[0] = G_new[0][0];
+          history_new[1] = G_new[1][1];
+          history_new[2] = G_new[2][2];
+          history_new[3] = 0.5 * (G_new[0][1] + G_new[1][0]);
+          history_new[4] = 0.5 * (G_new[1][2] + G_new[2][1]);
+          history_new[5] = 0.5 * (G_new[0][2] + G_new[2][0]);
+          history_new[dissipation_index] =
+            history_old[dissipation_index] + dissipation;
+        }
+      history_new[plastic_strain_index] = r.plastic_strain;
+      history_new[return_type_index]    = r.return_type;
+    }
+
+
+
+    double
+    GranularPlasticity::energy_density(
+      const dealii::Tensor<2, 3>            &F,
+      const dealii::ArrayView<const double> &history) const
+    {
+      const TrialState s  = trial_state(name(), F, history_to_G(history));
+      const double     tr = s.eps[0] + s.eps[1] + s.eps[2];
+      return 0.5 * elastic.lambda * tr * tr +
+             elastic.mu * (s.eps[0] * s.eps[0] + s.eps[1] * s.eps[1] +
+                           s.eps[2] * s.eps[2]);
+    }
+
+
+
+    void
+    GranularPlasticity::fail(const std::string          &what,
+                             const dealii::Tensor<1, 3> &eps_trial,
+                             const double                plastic_strain_old,
+                             const std::string          &reason) const
+    {
+      std::ostringstream         msg;
+      const dealii::Tensor<1, 3> tau = D * eps_trial;
+      msg << "The " << name() << " return mapping (" << what
+          << ") failed: " << reason << ". Trial principal Kirchhoff stresses "
+          << tau[0] << ", " << tau[1] << ", " << tau[2]
+          << " Pa, accumulated plastic strain " << plastic_strain_old << ".";
+      throw ExcReturnMappingFailed(msg.str());
+    }
+
+
+
+    PrincipalReturn
+    GranularPlasticity::prescribed_stress_return(
+      const dealii::Tensor<1, 3>                        &eps_trial,
+      const double                                       plastic_strain_old,
+      const std::function<void(const double,
+                               const dealii::Tensor<1, 3> &,
+                               dealii::Tensor<1, 3> &,
+                               dealii::Tensor<1, 3> &,
+                               dealii::Tensor<2, 3> &)> &stress,
+      const unsigned int                                 return_type,
+      const std::string                                 &what) const
+    {
+      const double         k     = std::sqrt(2. / 3.);
+      double               eps_p = plastic_strain_old;
+      dealii::Tensor<1, 3> T, dT_dp, m_hat;
+      dealii::Tensor<2, 3> dT_deps;
+      double               dr_dp     = 1.;
+      bool                 converged = false;
+      for (unsigned int it = 0; it < 50; ++it)
+        {
+          stress(eps_p, eps_trial, T, dT_dp, dT_deps);
+          const dealii::Tensor<1, 3> m    = eps_trial - C * T;
+          const double               norm = m.norm();
+          m_hat          = (norm > 0. ? m / norm : dealii::Tensor<1, 3>());
+          const double r = eps_p - plastic_strain_old - k * norm;
+          dr_dp          = 1. + k * (m_hat * (C * dT_dp));
+          if (!std::isfinite(r) || !std::isfinite(dr_dp) || dr_dp <= 0.)
+            fail(what,
+                 eps_trial,
+                 plastic_strain_old,
+                 "non-finite or non-positive derivative in the local Newton "
+                 "iteration");
+          if (std::abs(r) <= 1e-14 * (1. + eps_p))
+            {
+              converged = true;
+              break;
+            }
+          eps_p -= r / dr_dp;
+        }
+      if (!converged)
+        fail(what,
+             eps_trial,
+             plastic_strain_old,
+             "the local Newton iteration did not converge in 50 iterations");
+
+      PrincipalReturn result;
+      result.tau            = T;
+      result.plastic_strain = eps_p;
+      result.return_type    = return_type;
+      // d eps_p/d eps = k m_hat^T (I - C dT/deps) / dr_dp
+      dealii::Tensor<2, 3> I;
+      for (unsigned int a = 0; a < 3; ++a)
+        I[a][a] = 1.;
+      const dealii::Tensor<1, 3> dp_deps =
+        k / dr_dp * (m_hat * dealii::Tensor<2, 3>(I - C * dT_deps));
+      result.dtau_deps = dT_deps + dealii::outer_product(dT_dp, dp_deps);
+      return result;
+    }
+
+
+
+    void
+    declare_granular_strength(dealii::ParameterHandler &prm,
+                              const std::string        &tension_cutoff_meaning)
+    {
+      prm.declare_entry(
+        "friction angle",
+        "30",
+        dealii::Patterns::Double(),
+        "Peak angle of internal friction phi [deg]; 0 < phi < 90.");
+      prm.declare_entry("cohesion",
+                        "0",
+                        dealii::Patterns::Double(),
+                        "Peak cohesion c [Pa]; >= 0 (0: cohesionless).");
+      prm.declare_entry(
+        "dilatancy angle",
+        "0",
+        dealii::Patterns::Double(),
+        "Peak dilatancy angle psi [deg] of the plastic potential (flow "
+        "rule); 0 <= psi <= phi. psi = phi: associative flow; psi = 0: "
+        "isochoric plastic flow (no plastic volume change).");
+      prm.declare_entry("tension cut-off",
+                        "1e30",
+                        dealii::Patterns::Double(),
+                        "Tension cut-off t [Pa]; >= 0. " +
+                          tension_cutoff_meaning +
+                          " It only has an effect if t < c cot(phi) (the "
+                          "tensile strength of the cone or pyramid apex); "
+                          "the default 1e30 disables it. Not softened.");
+      prm.declare_entry(
+        "residual friction angle",
+        "peak",
+        dealii::Patterns::Anything(),
+        "Residual friction angle phi_r [deg] reached after large plastic "
+        "strains; 0 < phi_r <= phi, or 'peak' (= friction angle: no "
+        "softening of phi). Softening law: X = X_r + (X_p - X_r) "
+        "exp(-eps_p/eta) for X = phi, c, psi, with eps_p the accumulated "
+        "equivalent plastic strain and eta the softening plastic strain.");
+      prm.declare_entry(
+        "residual cohesion",
+        "peak",
+        dealii::Patterns::Anything(),
+        "Residual cohesion c_r [Pa]; 0 <= c_r <= c, or 'peak' (= cohesion: "
+        "no softening of c).");
+      prm.declare_entry(
+        "residual dilatancy angle",
+        "peak",
+        dealii::Patterns::Anything(),
+        "Residual dilatancy angle psi_r [deg]; 0 <= psi_r <= psi and "
+        "psi_r <= phi_r, or 'peak' (= dilatancy angle: no softening of psi).");
+      prm.declare_entry(
+        "softening plastic strain",
+        "0.1",
+        dealii::Patterns::Double(),
+        "Softening plastic strain eta [-] of the exponential softening law "
+        "(the accumulated equivalent plastic strain over which the "
+        "difference between peak and residual values decays by the factor "
+        "e); > 0. Only used if a residual value differs from its peak "
+        "value.");
+    }
+
+
+
+    namespace
+    {
+      /** A residual value: "peak" or a number. */
+      double
+      read_residual(const dealii::ParameterHandler &prm,
+                    const std::string              &subsection_path,
+                    const std::string              &entry,
+                    const double                    peak)
+      {
+        const std::string text    = prm.get(entry);
+        std::string       trimmed = text;
+        trimmed.erase(0, trimmed.find_first_not_of(" \t"));
+        trimmed.erase(trimmed.find_last_not_of(" \t") + 1);
+        if (trimmed == "peak")
+          return peak;
+        try
+          {
+            std::size_t  used  = 0;
+            const double value = std::stod(trimmed, &used);
+            if (used == trimmed.size() && std::isfinite(value))
+              return value;
+          }
+        catch (const std::exception &)
+          {}
+        InputFile::reject(subsection_path,
+                          entry,
+                          text,
+                          "it must be a number or 'peak'");
+      }
+
+
+      std::string
+      number(const double x)
+      {
+        std::ostringstream s;
+        s << x;
+        return s.str();
+      }
+    } // namespace
+
+
+
+    GranularStrength
+    read_granular_strength(const dealii::ParameterHandler &prm,
+                           const std::string              &subsection_path)
+    {
+      const std::string &sub = subsection_path;
+      GranularStrength   s;
+
+      const double phi = prm.get_double("friction angle");
+      if (!(phi > 0. && phi < 90.))
+        InputFile::reject(sub,
+                          "friction angle",
+                          prm.get("friction angle"),
+                          "it must lie strictly between 0 and 90 degrees");
+      const double c = prm.get_double("cohesion");
+      if (!(c >= 0.) || !std::isfinite(c))
+        InputFile::reject(sub,
+                          "cohesion",
+                          prm.get("cohesion"),
+                          "it must be >= 0 Pa");
+      const double psi = prm.get_double("dilatancy angle");
+      if (!(psi >= 0. && psi <= phi))
+        InputFile::reject(sub,
+                          "dilatancy angle",
+                          prm.get("dilatancy angle"),
+                          "it must lie between 0 and the friction angle (" +
+                            number(phi) + " degrees)");
+      const double t = prm.get_double("tension cut-off");
+      if (!(t >= 0.))
+        InputFile::reject(sub,
+                          "tension cut-off",
+                          prm.get("tension cut-off"),
+                          "it must be >= 0 Pa");
+
+      const double phi_r =
+        read_residual(prm, sub, "residual friction angle", phi);
+      if (!(phi_r > 0. && phi_r <= phi))
+        InputFile::reject(sub,
+                          "residual friction angle",
+                          prm.get("residual friction angle"),
+                          "it must be > 0 and not above the (peak) friction "
+                          "angle " +
+                            number(phi) + " degrees");
+      const double c_r = read_residual(prm, sub, "residual cohesion", c);
+      if (!(c_r >= 0. && c_r <= c))
+        InputFile::reject(sub,
+                          "residual cohesion",
+                          prm.get("residual cohesion"),
+                          "it must be >= 0 and not above the (peak) cohesion " +
+                            number(c) + " Pa");
+      const double psi_r =
+        read_residual(prm, sub, "residual dilatancy angle", psi);
+      if (!(psi_r >= 0. && psi_r <= psi && psi_r <= phi_r))
+        InputFile::reject(sub,
+                          "residual dilatancy angle",
+                          prm.get("residual dilatancy angle"),
+                          "it must be >= 0 and not above the (peak) dilatancy "
+                          "angle " +
+                            number(psi) +
+                            " degrees nor the residual friction angle " +
+                            number(phi_r) + " degrees");
+
+      s.friction_angle           = phi * degree;
+      s.cohesion                 = c;
+      s.dilatancy_angle          = psi * degree;
+      s.tension_cutoff           = t;
+      s.residual_friction_angle  = phi_r * degree;
+      s.residual_cohesion        = c_r;
+      s.residual_dilatancy_angle = psi_r * degree;
+      s.softening_strain         = prm.get_double("softening plastic strain");
+      if (s.softening() && !(s.softening_strain > 0.))
+        InputFile::reject(sub,
+                          "softening plastic strain",
+                          prm.get("softening plastic strain"),
+                          "it must be > 0 when a residual value differs "
+                          "from its peak value (softening)");
+      return s;
+    }
+  } // namespace Materials
+} // namespace Talus

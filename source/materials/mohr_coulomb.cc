@@ -1,0 +1,372 @@
+#include <talus/materials/mohr_coulomb.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace Talus
+{
+  namespace Materials
+  {
+    namespace
+    {
+      /** A plane a . tau = r with flow direction n, and their derivatives
+       * with respect to the accumulated plastic strain. */
+      struct PlaneData
+      {
+        dealii::Tensor<1, 3> a, da, n, dn;
+        double               r, dr;
+      };
+
+
+      PlaneData
+      plane_data(const MohrCoulomb::Plane plane,
+                 const GranularStrength  &s,
+                 const double             eps_p)
+      {
+        PlaneData d;
+        if (plane == MohrCoulomb::Plane::cutoff_1 ||
+            plane == MohrCoulomb::Plane::cutoff_2 ||
+            plane == MohrCoulomb::Plane::cutoff_3)
+          {
+            const unsigned int i =
+              (plane == MohrCoulomb::Plane::cutoff_1 ?
+                 0 :
+                 (plane == MohrCoulomb::Plane::cutoff_2 ? 1 : 2));
+            d.a[i] = d.n[i] = 1.;
+            d.r             = s.tension_cutoff;
+            d.dr            = 0.;
+            return d;
+          }
+        // (tau_i - tau_j) + (tau_i + tau_j) sin(phi) = 2 c cos(phi)
+        unsigned int i = 0, j = 2;
+        if (plane == MohrCoulomb::Plane::right_edge)
+          j = 1;
+        else if (plane == MohrCoulomb::Plane::left_edge)
+          i = 1;
+        const auto   phi  = s.phi(eps_p);
+        const auto   c    = s.c(eps_p);
+        const auto   psi  = s.psi(eps_p);
+        const double sphi = std::sin(phi.value), cphi = std::cos(phi.value);
+        const double spsi = std::sin(psi.value), cpsi = std::cos(psi.value);
+        d.a[i]  = 1. + sphi;
+        d.a[j]  = -(1. - sphi);
+        d.da[i] = d.da[j] = cphi * phi.derivative;
+        d.n[i]            = 1. + spsi;
+        d.n[j]            = -(1. - spsi);
+        d.dn[i] = d.dn[j] = cpsi * psi.derivative;
+        d.r               = 2. * c.value * cphi;
+        d.dr = 2. * c.derivative * cphi - 2. * c.value * sphi * phi.derivative;
+        return d;
+      }
+
+
+      std::string
+      plane_names(const std::vector<MohrCoulomb::Plane> &planes)
+      {
+        static const char *names[] = {"main plane",
+                                      "right edge",
+                                      "left edge",
+                                      "tension cut-off 1",
+                                      "tension cut-off 2",
+                                      "tension cut-off 3"};
+        std::string        result;
+        for (const auto p : planes)
+          result += (result.empty() ? "" : " + ") +
+                    std::string(names[static_cast<int>(p)]);
+        return result;
+      }
+    } // namespace
+
+
+
+    MohrCoulomb::MohrCoulomb(const IsotropicElasticity &elastic,
+                             const GranularStrength    &strength)
+      : GranularPlasticity(elastic, strength)
+    {}
+
+
+
+    std::string
+    MohrCoulomb::name() const
+    {
+      return "Mohr-Coulomb";
+    }
+
+
+
+    std::string
+    MohrCoulomb::description() const
+    {
+      std::ostringstream s;
+      s << "Mohr-Coulomb (finite strain, Hencky elasticity E = "
+        << elastic.youngs_modulus << " Pa, nu = " << elastic.poissons_ratio
+        << "): " << strength_parameters.to_string()
+        << " (Rankine: max principal stress <= t)";
+      return s.str();
+    }
+
+
+
+    double
+    MohrCoulomb::yield_function(const dealii::Tensor<1, 3> &tau,
+                                const double                eps_p) const
+    {
+      const double t1  = std::max({tau[0], tau[1], tau[2]});
+      const double t3  = std::min({tau[0], tau[1], tau[2]});
+      const double phi = strength_parameters.phi(eps_p).value;
+      const double c   = strength_parameters.c(eps_p).value;
+      return (t1 - t3) + (t1 + t3) * std::sin(phi) - 2. * c * std::cos(phi);
+    }
+
+
+
+    bool
+    MohrCoulomb::return_to_planes(const std::vector<Plane>   &planes,
+                                  const dealii::Tensor<1, 3> &eps_trial,
+                                  const double     plastic_strain_old,
+                                  const double     stress_scale,
+                                  PrincipalReturn &result) const
+    {
+      const unsigned int     m = planes.size();
+      const double           k = std::sqrt(2. / 3.);
+      std::vector<double>    dgamma(m, 0.);
+      double                 eps_p = plastic_strain_old;
+      std::vector<PlaneData> p(m);
+      const auto             update_planes = [&]() {
+        for (unsigned int i = 0; i < m; ++i)
+          p[i] = plane_data(planes[i], strength_parameters, eps_p);
+      };
+
+      // Initial guess: perfectly plastic return at the old plastic strain
+      // (exact without softening), then eps_p from it.
+      update_planes();
+      {
+        dealii::FullMatrix<double> J0(m, m);
+        dealii::Vector<double>     rhs(m), x(m);
+        const dealii::Tensor<1, 3> tau_trial = D * eps_trial;
+        for (unsigned int i = 0; i < m; ++i)
+          {
+            rhs(i) = p[i].a * tau_trial - p[i].r;
+            for (unsigned int j = 0; j < m; ++j)
+              J0(i, j) = p[i].a * (D * p[j].n);
+          }
+        J0.gauss_jordan();
+        J0.vmult(x, rhs);
+        dealii::Tensor<1, 3> flow;
+        for (unsigned int i = 0; i < m; ++i)
+          {
+            dgamma[i] = x(i);
+            flow += dgamma[i] * p[i].n;
+          }
+        eps_p = plastic_strain_old + k * flow.norm();
+      }
+
+      dealii::FullMatrix<double> J(m + 1, m + 1);
+      dealii::Vector<double>     R(m + 1);
+      dealii::Tensor<1, 3>       tau, flow, dflow;
+      double                     residual = 0.;
+      // residual R and Jacobian J of the local equations at the current
+      // (dgamma, eps_p); returns the scaled residual norm
+      const auto evaluate = [&]() {
+        update_planes();
+        flow  = dealii::Tensor<1, 3>();
+        dflow = dealii::Tensor<1, 3>();
+        for (unsigned int i = 0; i < m; ++i)
+          {
+            flow += dgamma[i] * p[i].n;
+            dflow += dgamma[i] * p[i].dn;
+          }
+        tau                                = D * (eps_trial - flow);
+        const dealii::Tensor<1, 3> dtau_dp = -(D * dflow);
+        const double               norm    = flow.norm();
+        const dealii::Tensor<1, 3> m_hat =
+          (norm > 0. ? flow / norm : dealii::Tensor<1, 3>());
+        double r = 0.;
+        for (unsigned int i = 0; i < m; ++i)
+          {
+            R(i) = p[i].a * tau - p[i].r;
+            r    = std::max(r, std::abs(R(i)) / stress_scale);
+            for (unsigned int j = 0; j < m; ++j)
+              J(i, j) = -(p[i].a * (D * p[j].n));
+            J(i, m) = p[i].da * tau + p[i].a * dtau_dp - p[i].dr;
+          }
+        R(m) = eps_p - plastic_strain_old - k * norm;
+        for (unsigned int j = 0; j < m; ++j)
+          J(m, j) = -k * (m_hat * p[j].n);
+        J(m, m) = 1. - k * (m_hat * dflow);
+        if (!std::isfinite(r) || !std::isfinite(R(m)))
+          fail(plane_names(planes),
+               eps_trial,
+               plastic_strain_old,
+               "non-finite values in the local Newton iteration");
+        return std::max(r, std::abs(R(m)) / (1. + eps_p));
+      };
+
+      bool converged = false;
+      for (unsigned int it = 0; it < 50; ++it)
+        {
+          residual = evaluate();
+          if (residual <= 1e-13)
+            {
+              converged = true;
+              break;
+            }
+          J.gauss_jordan();
+          dealii::Vector<double> dx(m + 1);
+          J.vmult(dx, R);
+          for (unsigned int i = 0; i < m; ++i)
+            dgamma[i] -= dx(i);
+          eps_p -= dx(m);
+        }
+      if (!converged)
+        {
+          // accept a stagnating iteration only if it is close to round-off
+          residual = evaluate();
+          if (!(residual <= 1e-10))
+            fail(plane_names(planes),
+                 eps_trial,
+                 plastic_strain_old,
+                 "the local Newton iteration did not converge in 50 "
+                 "iterations");
+        }
+
+      // Admissibility: dgamma >= 0, order of the principal stresses kept,
+      // no yield surface violated.
+      const double tol_stress = 1e-10 * stress_scale;
+      const double tol_strain = 1e-10 * stress_scale / elastic.mu;
+      for (unsigned int i = 0; i < m; ++i)
+        if (dgamma[i] < -tol_strain)
+          return false;
+      if (tau[0] < tau[1] - tol_stress || tau[1] < tau[2] - tol_stress)
+        return false;
+      if (yield_function(tau, eps_p) > tol_stress)
+        return false;
+      if (tau[0] - strength_parameters.tension_cutoff > tol_stress)
+        return false;
+
+      // Consistent tangent: dx/deps = -J^{-1} dR/deps, with J evaluated at
+      // the converged state (J was not inverted after the last evaluation).
+      J.gauss_jordan();
+      std::vector<dealii::Tensor<1, 3>> dgamma_deps(m);
+      dealii::Tensor<1, 3>              dp_deps;
+      for (unsigned int row = 0; row <= m; ++row)
+        {
+          dealii::Tensor<1, 3> dx;
+          for (unsigned int i = 0; i < m; ++i)
+            dx -= J(row, i) * (D * p[i].a); // dR_i/deps = D a_i
+          if (row < m)
+            dgamma_deps[row] = dx;
+          else
+            dp_deps = dx;
+        }
+      dealii::Tensor<2, 3> dflow_deps = dealii::outer_product(dflow, dp_deps);
+      for (unsigned int i = 0; i < m; ++i)
+        dflow_deps += dealii::outer_product(p[i].n, dgamma_deps[i]);
+
+      result.tau            = tau;
+      result.dtau_deps      = D - D * dflow_deps;
+      result.plastic_strain = eps_p;
+      return true;
+    }
+
+
+
+    PrincipalReturn
+    MohrCoulomb::principal_return(const dealii::Tensor<1, 3> &eps_trial,
+                                  const double plastic_strain_old) const
+    {
+      const dealii::Tensor<1, 3> tau_trial = D * eps_trial;
+      const GranularStrength    &s         = strength_parameters;
+      const double               t         = s.tension_cutoff;
+      const double stress_scale            = std::max({std::abs(tau_trial[0]),
+                                                       std::abs(tau_trial[1]),
+                                                       std::abs(tau_trial[2])}) +
+                                  s.cohesion + 1e-12 * elastic.mu;
+
+      const double f_trial     = yield_function(tau_trial, plastic_strain_old);
+      const bool   mc_violated = f_trial > 1e-14 * stress_scale;
+      const bool   cutoff_violated = tau_trial[0] > t;
+      if (!mc_violated && !cutoff_violated)
+        return {tau_trial, D, plastic_strain_old, 0};
+
+      struct Candidate
+      {
+        std::vector<Plane> planes;
+        unsigned int       type;
+      };
+      std::vector<Candidate> candidates;
+      if (mc_violated)
+        {
+          candidates.push_back({{Plane::main}, 1});
+          const double spsi        = std::sin(s.psi(plastic_strain_old).value);
+          const bool   right_first = (1. - spsi) * tau_trial[0] -
+                                     2. * tau_trial[1] +
+                                     (1. + spsi) * tau_trial[2] >
+                                   0.;
+          candidates.push_back(
+            {{Plane::main, right_first ? Plane::right_edge : Plane::left_edge},
+             2});
+          candidates.push_back(
+            {{Plane::main, right_first ? Plane::left_edge : Plane::right_edge},
+             2});
+        }
+      if (cutoff_violated)
+        {
+          candidates.push_back({{Plane::cutoff_1}, 4});
+          candidates.push_back({{Plane::cutoff_1, Plane::cutoff_2}, 4});
+          candidates.push_back({{Plane::main, Plane::cutoff_1}, 4});
+          candidates.push_back(
+            {{Plane::main, Plane::right_edge, Plane::cutoff_1}, 4});
+          candidates.push_back(
+            {{Plane::main, Plane::left_edge, Plane::cutoff_1}, 4});
+          candidates.push_back(
+            {{Plane::cutoff_1, Plane::cutoff_2, Plane::cutoff_3}, 4});
+        }
+
+      PrincipalReturn result;
+      for (const Candidate &candidate : candidates)
+        if (return_to_planes(candidate.planes,
+                             eps_trial,
+                             plastic_strain_old,
+                             stress_scale,
+                             result))
+          {
+            result.return_type = candidate.type;
+            return result;
+          }
+
+      // Apex: tau = min(c cot(phi), t) (1, 1, 1)
+      const auto apex = [&s, t](const double eps_p,
+                                const dealii::Tensor<1, 3> &,
+                                dealii::Tensor<1, 3> &T,
+                                dealii::Tensor<1, 3> &dT_dp,
+                                dealii::Tensor<2, 3> &dT_deps) {
+        const auto   phi    = s.phi(eps_p);
+        const auto   c      = s.c(eps_p);
+        const double cot    = std::cos(phi.value) / std::sin(phi.value);
+        double       p_apex = c.value * cot, dp_apex = 0.;
+        if (p_apex < t)
+          dp_apex = c.derivative * cot -
+                    c.value * phi.derivative / std::pow(std::sin(phi.value), 2);
+        else
+          p_apex = t;
+        for (unsigned int a = 0; a < 3; ++a)
+          {
+            T[a]     = p_apex;
+            dT_dp[a] = dp_apex;
+          }
+        dT_deps = dealii::Tensor<2, 3>();
+      };
+      const double apex_stress = s.c(plastic_strain_old).value /
+                                 std::tan(s.phi(plastic_strain_old).value);
+      return prescribed_stress_return(
+        eps_trial, plastic_strain_old, apex, apex_stress <= t ? 3 : 4, "apex");
+    }
+  } // namespace Materials
+} // namespace Talus

@@ -1,0 +1,235 @@
+// Helpers shared by the unit tests of the granular models (mohr_coulomb.cc,
+// drucker_prager.cc): tensors, one material-point step, finite-difference
+// tangent, deterministic pseudo-random numbers.
+
+#ifndef talus_tests_granular_test_tools_h
+#define talus_tests_granular_test_tools_h
+
+#include <talus/base/input.h>
+#include <talus/materials/constitutive_model.h>
+#include <talus/materials/granular_plasticity.h>
+#include <talus/materials/hencky_elastic.h>
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace GranularTest
+{
+  using dealii::Tensor;
+  using Talus::Materials::ConstitutiveModel;
+
+  inline Tensor<2, 3>
+  unit_tensor()
+  {
+    Tensor<2, 3> I;
+    for (unsigned int i = 0; i < 3; ++i)
+      I[i][i] = 1.;
+    return I;
+  }
+
+  inline Tensor<2, 3>
+  diagonal(const double a, const double b, const double c)
+  {
+    Tensor<2, 3> D;
+    D[0][0] = a;
+    D[1][1] = b;
+    D[2][2] = c;
+    return D;
+  }
+
+  // F = diag(exp(eps_a)): principal logarithmic strains eps
+  inline Tensor<2, 3>
+  stretch(const double e0, const double e1, const double e2)
+  {
+    return diagonal(std::exp(e0), std::exp(e1), std::exp(e2));
+  }
+
+  inline Tensor<1, 3>
+  vector(const double x, const double y, const double z)
+  {
+    Tensor<1, 3> v;
+    v[0] = x;
+    v[1] = y;
+    v[2] = z;
+    return v;
+  }
+
+  // Rotation by angle about the (normalized) axis (Rodrigues' formula).
+  inline Tensor<2, 3>
+  rotation(Tensor<1, 3> axis, const double angle)
+  {
+    axis /= axis.norm();
+    Tensor<2, 3> K;
+    K[0][1] = -axis[2];
+    K[0][2] = axis[1];
+    K[1][0] = axis[2];
+    K[1][2] = -axis[0];
+    K[2][0] = -axis[1];
+    K[2][1] = axis[0];
+    return unit_tensor() + std::sin(angle) * K + (1. - std::cos(angle)) * K * K;
+  }
+
+  template <int rank>
+  double
+  max_abs(const Tensor<rank, 3> &T)
+  {
+    double m = 0.;
+    for (unsigned int i = 0; i < Tensor<rank, 3>::n_independent_components; ++i)
+      m = std::max(m, std::abs(T[T.unrolled_to_component_indices(i)]));
+    return m;
+  }
+
+  // A material point: accepted history and the deformation gradient
+  struct MaterialPoint
+  {
+    std::vector<double> history;
+    Tensor<2, 3>        F;
+
+    explicit MaterialPoint(const ConstitutiveModel &model)
+      : history(model.n_history_variables())
+      , F(unit_tensor())
+    {
+      model.initialize_history(dealii::make_array_view(history));
+    }
+  };
+
+  // One trial evaluation from the accepted state of p (p is not changed)
+  struct Step
+  {
+    Tensor<2, 3>        P;
+    Tensor<4, 3>        A;
+    std::vector<double> history;
+  };
+
+  inline Step
+  evaluate(const ConstitutiveModel &model,
+           const MaterialPoint     &p,
+           const Tensor<2, 3>      &F,
+           const bool               tangent = true)
+  {
+    Step s;
+    s.history.resize(p.history.size());
+    model.compute_stress(p.F,
+                         F,
+                         dealii::make_array_view(p.history),
+                         dealii::make_array_view(s.history),
+                         s.P,
+                         tangent ? &s.A : nullptr);
+    return s;
+  }
+
+  // Accept the step to F.
+  inline Step
+  advance(const ConstitutiveModel &model,
+          MaterialPoint           &p,
+          const Tensor<2, 3>      &F)
+  {
+    const Step s = evaluate(model, p, F);
+    p.history    = s.history;
+    p.F          = F;
+    return s;
+  }
+
+  // Principal Kirchhoff stresses tau = P F^T, sorted largest first
+  inline Tensor<1, 3>
+  principal_kirchhoff(const Tensor<2, 3> &P, const Tensor<2, 3> &F)
+  {
+    const Tensor<2, 3> tau = P * dealii::transpose(F);
+    Tensor<2, 3>       sym = 0.5 * (tau + dealii::transpose(tau));
+    const auto         sd =
+      Talus::Materials::LogarithmicStrain::spectral_decomposition(sym);
+    std::vector<double> v(sd.eigenvalues.begin(), sd.eigenvalues.end());
+    std::sort(v.begin(), v.end(), std::greater<double>());
+    return vector(v[0], v[1], v[2]);
+  }
+
+  // max |A - A_fd| / max |A| with central differences of P
+  inline double
+  tangent_error(const ConstitutiveModel &model,
+                const MaterialPoint     &p,
+                const Tensor<2, 3>      &F,
+                const double             relative_step = 1e-7)
+  {
+    const Tensor<4, 3> A = evaluate(model, p, F).A;
+    const double       h = relative_step * std::max(1., max_abs(F));
+    Tensor<4, 3>       A_fd;
+    for (unsigned int k = 0; k < 3; ++k)
+      for (unsigned int L = 0; L < 3; ++L)
+        {
+          Tensor<2, 3> F_plus = F, F_minus = F;
+          F_plus[k][L] += h;
+          F_minus[k][L] -= h;
+          const Tensor<2, 3> dP = (evaluate(model, p, F_plus, false).P -
+                                   evaluate(model, p, F_minus, false).P) /
+                                  (2. * h);
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int J = 0; J < 3; ++J)
+              A_fd[i][J][k][L] = dP[i][J];
+        }
+    const double scale = max_abs(A);
+    return scale > 0. ? max_abs(Tensor<4, 3>(A - A_fd)) / scale : max_abs(A_fd);
+  }
+
+  // Deterministic pseudo-random numbers in [-1, 1] (same on every platform)
+  class Random
+  {
+  public:
+    double
+    operator()()
+    {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      return static_cast<double>(state >> 11) / 4503599627370496. - 1.;
+    }
+
+  private:
+    std::uint64_t state = 12345;
+  };
+
+  // prints "what: ok" to out (the number to the screen only)
+  inline void
+  report(std::ostream      &out,
+         const std::string &what,
+         const double       error,
+         const double       tolerance)
+  {
+    std::cout << what << ": " << error << std::endl;
+    out << what << ": ";
+    if (error < tolerance)
+      out << "ok" << std::endl;
+    else
+      out << "FAILED, error " << std::scientific << std::setprecision(3)
+          << error << std::defaultfloat << std::endl;
+  }
+
+  inline std::string
+  return_type_name(const double t)
+  {
+    switch (static_cast<int>(std::lround(t)))
+      {
+        case 0:
+          return "elastic";
+        case 1:
+          return "plane/cone";
+        case 2:
+          return "edge";
+        case 3:
+          return "apex";
+        case 4:
+          return "tension cut-off";
+        default:
+          return "?";
+      }
+  }
+} // namespace GranularTest
+
+#endif
