@@ -25,14 +25,6 @@ namespace Talus
 
 
 
-    std::vector<std::string>
-    ConstitutiveModel::history_names() const
-    {
-      return {};
-    }
-
-
-
     void
     ConstitutiveModel::initialize_history(
       const dealii::ArrayView<double> & /*history*/) const

@@ -1942,7 +1942,7 @@ namespace Talus
       {
         const auto names = model.history_names();
         for (unsigned int h = 0; h < names.size(); ++h)
-          if (names[h] == "plastic dissipation")
+          if (names[h] == "plastic_dissipation")
             dissipation_index = h;
       }
       for (const auto &p : points.particle_handler())

@@ -60,15 +60,6 @@ namespace Talus
       virtual unsigned int
       n_history_variables() const;
 
-      /**
-       * Names of the history variables (size n_history_variables(), or
-       * empty if they have no names). The solver adds the variable named
-       * "plastic dissipation" [J/m^3 of reference volume] to the energy
-       * balance.
-       */
-      virtual std::vector<std::string>
-      history_names() const;
-
       /** Write the history of a stress-free, undeformed material point. */
       virtual void
       initialize_history(const dealii::ArrayView<double> &history) const;
@@ -76,7 +67,9 @@ namespace Talus
       /**
        * Names of the history variables (identifiers without spaces, for
        * output), n_history_variables() of them. The default returns an
-       * empty vector (no names: the solver numbers them).
+       * empty vector (no names: the solver numbers them). The solver adds
+       * the variable named "plastic_dissipation" [J/m^3 of reference
+       * volume] to the energy balance.
        */
       virtual std::vector<std::string>
       history_names() const;
