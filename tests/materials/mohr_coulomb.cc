@@ -82,17 +82,17 @@ namespace
       out << ' ' << n;
     out << std::endl;
 
-    for (const std::string &bad : {"set friction angle = 0",
-                                   "set friction angle = 90",
-                                   "set dilatancy angle = -1",
-                                   "set dilatancy angle = 31",
-                                   "set cohesion = -1",
-                                   "set tension cut-off = -1",
-                                   "set residual friction angle = 31",
-                                   "set residual cohesion = 2",
-                                   "set residual dilatancy angle = 11",
-                                   "set residual cohesion = soft",
-                                   "set softening plastic strain = 0"})
+    for (const std::string bad : {"set friction angle = 0",
+                                  "set friction angle = 90",
+                                  "set dilatancy angle = -1",
+                                  "set dilatancy angle = 31",
+                                  "set cohesion = -1",
+                                  "set tension cut-off = -1",
+                                  "set residual friction angle = 31",
+                                  "set residual cohesion = 2",
+                                  "set residual dilatancy angle = 11",
+                                  "set residual cohesion = soft",
+                                  "set softening plastic strain = 0"})
       {
         ParameterHandler p;
         declare_parameters(p);
