@@ -13,6 +13,7 @@
 //  - (e) softening to the residual strength
 //  - (f) isochoric plastic flow for psi = 0, dilatancy for psi > 0
 //  - (h) objectivity, energy density of the elastic strain
+//  - (i) ExcReturnMappingFailed when the local problem has no solution
 // Numbers that depend on round-off are printed as "ok" only.
 
 #include <talus/materials/exceptions.h>
@@ -594,6 +595,34 @@ namespace
                1e-8);
       }
   }
+
+  void
+  check_failure()
+  {
+    out << std::endl
+        << "(i) local return that cannot be solved (snap-back)" << std::endl;
+    // extreme softening of the cohesion (1e6 -> 0 Pa over eps_p ~ 1e-6):
+    // the apex equation has no solution for a tensile trial state
+    const MohrCoulomb model(IsotropicElasticity(E, nu),
+                            strength(30., 1e6, 10., 1e30, 30., 0., 10., 1e-6));
+    MaterialPoint     p(model);
+    try
+      {
+        evaluate(model, p, stretch(0.2, 0.2, 0.2));
+        out << "FAILED, no exception" << std::endl;
+      }
+    catch (const ExcReturnMappingFailed &e)
+      {
+        const std::string what = e.what();
+        std::cout << what << std::endl;
+        out << "ExcReturnMappingFailed"
+            << (what.find("Mohr-Coulomb return mapping (apex)") !=
+                    std::string::npos ?
+                  " naming the model and the return" :
+                  "")
+            << std::endl;
+      }
+  }
 } // namespace
 
 
@@ -610,6 +639,7 @@ main()
   check_softening();
   check_volume_change();
   check_objectivity_and_energy();
+  check_failure();
   out << std::endl << "done" << std::endl;
   return 0;
 }
