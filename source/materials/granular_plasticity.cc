@@ -408,7 +408,9 @@ namespace Talus
         dealii::Patterns::Double(),
         "Peak dilatancy angle psi [deg] of the plastic potential (flow "
         "rule); 0 <= psi <= phi. psi = phi: associative flow; psi = 0: "
-        "isochoric plastic flow (no plastic volume change).");
+        "isochoric plastic flow (no plastic volume change). psi < phi (and "
+        "softening) make the consistent tangent non-symmetric: use "
+        "Solver/linear solver = GMRES or direct, not CG.");
       prm.declare_entry("tension cut-off",
                         "1e30",
                         dealii::Patterns::Double(),

@@ -117,11 +117,11 @@ namespace
                                 "end\n");
     const auto model = create_model(prm);
     out << "created: " << model->description() << std::endl;
-    for (const std::string &bad : {"set friction angle = -5",
-                                   "set dilatancy angle = 45",
-                                   "set cohesion = -1",
-                                   "set tension cut-off = -1",
-                                   "set residual friction angle = 40"})
+    for (const std::string bad : {"set friction angle = -5",
+                                  "set dilatancy angle = 45",
+                                  "set cohesion = -1",
+                                  "set tension cut-off = -1",
+                                  "set residual friction angle = 40"})
       {
         ParameterHandler p;
         declare_parameters(p);

@@ -13,6 +13,8 @@
 //  - (e) softening to the residual strength
 //  - (f) isochoric plastic flow for psi = 0, dilatancy for psi > 0
 //  - (h) objectivity, energy density of the elastic strain
+//  - (i) ExcReturnMappingFailed when the local problem has no solution
+//  - (j) major symmetry of the tangent for associative flow only
 // Numbers that depend on round-off are printed as "ok" only.
 
 #include <talus/materials/exceptions.h>
@@ -82,17 +84,17 @@ namespace
       out << ' ' << n;
     out << std::endl;
 
-    for (const std::string &bad : {"set friction angle = 0",
-                                   "set friction angle = 90",
-                                   "set dilatancy angle = -1",
-                                   "set dilatancy angle = 31",
-                                   "set cohesion = -1",
-                                   "set tension cut-off = -1",
-                                   "set residual friction angle = 31",
-                                   "set residual cohesion = 2",
-                                   "set residual dilatancy angle = 11",
-                                   "set residual cohesion = soft",
-                                   "set softening plastic strain = 0"})
+    for (const std::string bad : {"set friction angle = 0",
+                                  "set friction angle = 90",
+                                  "set dilatancy angle = -1",
+                                  "set dilatancy angle = 31",
+                                  "set cohesion = -1",
+                                  "set tension cut-off = -1",
+                                  "set residual friction angle = 31",
+                                  "set residual cohesion = 2",
+                                  "set residual dilatancy angle = 11",
+                                  "set residual cohesion = soft",
+                                  "set softening plastic strain = 0"})
       {
         ParameterHandler p;
         declare_parameters(p);
@@ -594,6 +596,74 @@ namespace
                1e-8);
       }
   }
+
+  // max |A_iJkL - A_kLiJ| / max |A|
+  double
+  asymmetry(const Tensor<4, 3> &A)
+  {
+    double m = 0.;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int J = 0; J < 3; ++J)
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int L = 0; L < 3; ++L)
+            m = std::max(m, std::abs(A[i][J][k][L] - A[k][L][i][J]));
+    return m / max_abs(A);
+  }
+
+
+  void
+  check_symmetry()
+  {
+    out << std::endl
+        << "(j) major symmetry of the tangent (which linear solver)"
+        << std::endl;
+    const Tensor<2, 3> Q = rotation(vector(0.3, -1., 0.7), 0.8);
+    for (const auto &[name, F] :
+         std::vector<std::pair<std::string, Tensor<2, 3>>>{
+           {"main plane", Q * stretch(0.002, -0.001, -0.006)},
+           {"left edge", Q * stretch(0.0015, 0.0012, -0.006)},
+           {"right edge", Q * stretch(0.004, -0.006, -0.0064)}})
+      for (const double psi : {30., 10.})
+        {
+          const MohrCoulomb model(IsotropicElasticity(E, nu),
+                                  strength(30., 1e4, psi));
+          const double      a =
+            asymmetry(evaluate(model, MaterialPoint(model), F).A);
+          out << name << ", psi = " << psi << ": "
+              << (a < 1e-10 ? "symmetric" :
+                              (a > 1e-3 ? "not symmetric" : "UNCLEAR"))
+              << std::endl;
+        }
+  }
+
+
+  void
+  check_failure()
+  {
+    out << std::endl
+        << "(i) local return that cannot be solved (snap-back)" << std::endl;
+    // extreme softening of the cohesion (1e6 -> 0 Pa over eps_p ~ 1e-6):
+    // the apex equation has no solution for a tensile trial state
+    const MohrCoulomb model(IsotropicElasticity(E, nu),
+                            strength(30., 1e6, 10., 1e30, 30., 0., 10., 1e-6));
+    MaterialPoint     p(model);
+    try
+      {
+        evaluate(model, p, stretch(0.2, 0.2, 0.2));
+        out << "FAILED, no exception" << std::endl;
+      }
+    catch (const ExcReturnMappingFailed &e)
+      {
+        const std::string what = e.what();
+        std::cout << what << std::endl;
+        out << "ExcReturnMappingFailed"
+            << (what.find("Mohr-Coulomb return mapping (apex)") !=
+                    std::string::npos ?
+                  " naming the model and the return" :
+                  "")
+            << std::endl;
+      }
+  }
 } // namespace
 
 
@@ -610,6 +680,8 @@ main()
   check_softening();
   check_volume_change();
   check_objectivity_and_energy();
+  check_failure();
+  check_symmetry();
   out << std::endl << "done" << std::endl;
   return 0;
 }

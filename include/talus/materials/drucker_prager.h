@@ -41,7 +41,7 @@ namespace Talus
      * @f$p \le t@f$ (a plane normal to the hydrostatic axis, associative),
      * not the maximum principal stress as in MohrCoulomb.
      *
-     * Return mapping (de Souza Neto et al. 2008, box 8.9 with softening,
+     * Return mapping (de Souza Neto et al. 2008, section 8.3, with softening,
      * in principal logarithmic strains): cone (type 1: the deviatoric
      * direction is kept, @f$\sqrt{J_2} = \sqrt{J_2^{tr}} - \mu\Delta\gamma@f$,
      * @f$p = p^{tr} - K\bar\eta\Delta\gamma@f$, solved with the accumulated

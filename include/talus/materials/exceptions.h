@@ -52,6 +52,23 @@ namespace Talus
 
       double det_F_value;
     };
+
+
+    /**
+     * Thrown when the local (material point) return mapping of an
+     * elastoplastic model fails: the local Newton iteration did not
+     * converge, produced non-finite values, or no admissible return was
+     * found. Like ExcInvertedMaterialPoint this is not an input error: the
+     * solver catches it (as an std::exception) and rejects the step, e.g.
+     * by cutting the time step.
+     */
+    class ExcReturnMappingFailed : public std::runtime_error
+    {
+    public:
+      explicit ExcReturnMappingFailed(const std::string &message)
+        : std::runtime_error(message)
+      {}
+    };
   } // namespace Materials
 } // namespace Talus
 

@@ -2,13 +2,13 @@
 #define talus_materials_granular_plasticity_h
 
 #include <talus/materials/constitutive_model.h>
+#include <talus/materials/exceptions.h>
 #include <talus/materials/linear_elastic.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
 #include <functional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,23 +16,6 @@ namespace Talus
 {
   namespace Materials
   {
-    /**
-     * Thrown when the local (material point) return mapping of an
-     * elastoplastic model fails: the local Newton iteration did not
-     * converge, produced non-finite values, or no admissible return was
-     * found. Like ExcInvertedMaterialPoint this is not an input error: the
-     * solver catches it (as an std::exception) and rejects the step, e.g.
-     * by cutting the time step.
-     */
-    class ExcReturnMappingFailed : public std::runtime_error
-    {
-    public:
-      explicit ExcReturnMappingFailed(const std::string &message)
-        : std::runtime_error(message)
-      {}
-    };
-
-
     /**
      * Strength parameters of the granular (Mohr-Coulomb type) models, with
      * exponential softening of the friction angle, the cohesion and the

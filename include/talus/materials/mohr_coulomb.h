@@ -33,7 +33,8 @@ namespace Talus
      * @f$\tau_1 \le t@f$, with associative flow.
      *
      * Return mapping (E.A. de Souza Neto, D. Peric, D.R.J. Owen,
-     * Computational Methods for Plasticity, Wiley 2008, boxes 8.4-8.5, in
+     * Computational Methods for Plasticity, Wiley 2008, section 8.2, boxes
+     * 8.1-8.5, in
      * principal logarithmic elastic strains as in ch. 14): the trial
      * state is returned to the first admissible of: the main plane
      * (return type 1); the right edge (@f$\tau_2 = \tau_3@f$) or the left
