@@ -2,6 +2,7 @@
 #include <talus/base/input.h>
 #include <talus/base/parsed_functions.h>
 #include <talus/base/time_control.h>
+#include <talus/io/deposit_profile.h>
 #include <talus/io/time_series.h>
 #include <talus/io/visualization_output.h>
 #include <talus/materials/constitutive_model.h>
@@ -180,6 +181,7 @@ namespace Talus
                       "table.");
     prm.leave_subsection();
     declare_verification_parameters<dim>(prm);
+    IO::DepositProfile<dim>::declare_parameters(prm);
   }
 
 
@@ -239,6 +241,9 @@ namespace Talus
     IO::VisualizationOutput<dim> output;
     output.parse_parameters(prm);
 
+    IO::DepositProfile<dim> deposit(communicator);
+    deposit.parse_parameters(prm);
+
     // Verification.
     prm.enter_subsection("Verification");
     const bool          compare = prm.get_bool("compare with exact solution");
@@ -292,6 +297,7 @@ namespace Talus
     MPM::NewtonResult none;
     series.write(0, 0., 0., none, initial, 0.);
     output.write(0., grid, points);
+    deposit.initialize(points, output.directory());
 
     // Errors against the exact solution at the current state.
     std::vector<VerificationErrors> errors;
@@ -450,6 +456,7 @@ namespace Talus
                      result,
                      diagnostics,
                      lost_mass);
+        deposit.step(time_control.step, time_control.time, points);
 
         if (output.due(time_control.time) || time_control.finished())
           {
@@ -631,6 +638,14 @@ namespace Talus
                   period_tolerance);
           }
       }
+    const bool deposit_passed =
+      deposit.finalize(points, pcout.get_stream(), test_mode);
+    if (!deposit_passed)
+      throw ExcVerificationFailed(
+        passed ? "the deposit misses the reference values given in "
+                 "subsection <Deposit profile> (table above)." :
+                 "the results miss the reference values given in "
+                 "subsections <Verification> and <Deposit profile>.");
     if (!passed)
       throw ExcVerificationFailed("the results miss the reference values "
                                   "given in subsection <Verification>.");

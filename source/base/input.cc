@@ -201,6 +201,21 @@ namespace Talus
 
 
   double
+  get_non_negative(const dealii::ParameterHandler &prm,
+                   const std::string              &subsection,
+                   const std::string              &entry)
+  {
+    const double value = prm.get_double(entry);
+    if (!(value >= 0.))
+      InputFile::reject(subsection,
+                        entry,
+                        prm.get(entry),
+                        "it must not be negative");
+    return value;
+  }
+
+
+  double
   get_in_open_interval(const dealii::ParameterHandler &prm,
                        const std::string              &subsection,
                        const std::string              &entry,

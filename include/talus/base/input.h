@@ -74,6 +74,14 @@ namespace Talus
                const std::string              &entry);
 
   /**
+   * Read a double from @p prm and require it to be >= 0.
+   */
+  double
+  get_non_negative(const dealii::ParameterHandler &prm,
+                   const std::string              &subsection,
+                   const std::string              &entry);
+
+  /**
    * Read a double from @p prm and require lower < value < upper (strict).
    */
   double
