@@ -27,7 +27,7 @@ namespace Talus
               "momentum_x,momentum_y,momentum_z,kinetic_energy,strain_energy,"
               "gravitational_energy,total_energy,lost_mass,plastic_dissipation,"
               "friction_dissipation,energy_balance,contact_force_x,"
-              "contact_force_y,contact_force_z\n";
+              "contact_force_y,contact_force_z,volume\n";
       file << std::setprecision(12);
     }
 
@@ -56,7 +56,7 @@ namespace Talus
                 d.plastic_dissipation + d.friction_dissipation;
       for (unsigned int i = 0; i < 3; ++i)
         file << ',' << (i < dim ? d.contact_force[i] : 0.);
-      file << '\n';
+      file << ',' << d.volume << '\n';
       file.flush();
     }
 

@@ -302,7 +302,7 @@ namespace Talus
                           "Newton also requires |d(du)| <= tol * max(|du|, h) "
                           "for the last correction [-] (h: smallest cell "
                           "diameter, for bodies at rest), unless the "
-                          "residual is already below 1e-4 times its "
+                          "residual is already below 1e-2 times its "
                           "tolerance.");
         prm.declare_entry("linear solver",
                           "CG",
@@ -341,6 +341,20 @@ namespace Talus
           "Q1 cells with several points per cell (Coombs et al. 2018, "
           "CMAME 333; variational form and exact tangent: doc/theory.md). "
           "Use it for granular materials.");
+        prm.declare_entry(
+          "line search",
+          "false",
+          Patterns::Bool(),
+          "Backtracking line search in the Newton iteration: the correction "
+          "is halved (up to 'maximum line search halvings' times) while it "
+          "increases the residual norm. Recommended for plasticity (Mohr-"
+          "Coulomb, Drucker-Prager), whose pre-asymptotic Newton iterates "
+          "can oscillate; each trial costs one residual assembly.");
+        prm.declare_entry("maximum line search halvings",
+                          "4",
+                          Patterns::Integer(1, 20),
+                          "Halvings of the Newton correction in the line "
+                          "search [-], 1 to 20.");
         prm.declare_entry("abort on lost material points",
                           "false",
                           Patterns::Bool(),
@@ -379,7 +393,9 @@ namespace Talus
       linear_tolerance      = get_positive(prm, sub, "linear solver tolerance");
       max_linear_iterations = prm.get_integer("maximum linear iterations");
       abort_on_lost_points  = prm.get_bool("abort on lost material points");
-      use_fbar = prm.get("volumetric locking treatment") == "F-bar";
+      use_fbar        = prm.get("volumetric locking treatment") == "F-bar";
+      line_search     = prm.get_bool("line search");
+      max_line_search = prm.get_integer("maximum line search halvings");
       prm.leave_subsection();
     }
 
@@ -1661,7 +1677,10 @@ namespace Talus
             }
           if (it == 0)
             reference = std::max(r, f_ext_norm);
-          result.residual          = reference > 0. ? r / reference : r;
+          result.residual = reference > 0. ? r / reference : r;
+          if (std::getenv("TALUS_DEBUG_NEWTON"))
+            std::cerr << "  Newton " << it << ": " << result.residual
+                      << std::endl;
           result.iterations        = it;
           const double du_norm     = du.l2_norm();
           const bool   residual_ok = r <= residual_tolerance * reference ||
@@ -1674,7 +1693,7 @@ namespace Talus
             it > 0 && (last_increment <=
                          increment_tolerance *
                            std::max(du_norm, grid.minimal_cell_diameter) ||
-                       r <= 1e-4 * residual_tolerance * reference);
+                       r <= 1e-2 * residual_tolerance * reference);
           if (residual_ok &&
               (it == 0 ? r <= absolute_residual_tolerance || reference == 0. :
                          increment_ok))
@@ -1698,10 +1717,29 @@ namespace Talus
               return result;
             }
           result.linear_iterations += n_linear;
-          last_increment = increment.l2_norm();
           du += increment;
+          displacement       = du;
+          double step_length = 1.;
+          if (line_search)
+            {
+              // Backtracking on the residual norm: halve the correction
+              // while the residual grows (at most max_line_search times).
+              dealii::TimerOutput::Scope s(timer, "line search");
+              for (unsigned int k = 0; k < max_line_search; ++k)
+                {
+                  std::string trial_failure;
+                  const bool  trial_ok =
+                    assemble(displacement, false, !quasi_static, trial_failure);
+                  const double r_trial = residual.l2_norm();
+                  if (trial_ok && std::isfinite(r_trial) && r_trial < r)
+                    break;
+                  step_length *= 0.5;
+                  du.add(-step_length, increment);
+                  displacement = du;
+                }
+            }
+          last_increment      = step_length * increment.l2_norm();
           solved_since_update = true;
-          displacement        = du;
         }
       std::ostringstream msg;
       msg << "no convergence in " << max_newton_iterations
@@ -1844,8 +1882,11 @@ namespace Talus
           dealii::Utilities::MPI::sum(force, grid.mpi_communicator);
         friction_dissipation -=
           dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
-        if (frozen_nodes > 0)
-          std::cerr << "Warning: " << frozen_nodes
+        const unsigned int frozen =
+          dealii::Utilities::MPI::sum(frozen_nodes, grid.mpi_communicator);
+        if (frozen > 0 && dealii::Utilities::MPI::this_mpi_process(
+                            grid.mpi_communicator) == 0)
+          std::cerr << "Warning: " << frozen
                     << " grid node(s) on friction boundaries kept their "
                        "contact state after 4 changes in one step (the "
                        "Coulomb conditions may be violated there)."
@@ -1964,6 +2005,9 @@ namespace Talus
                 m * gravity_vector[i] * p.get_location()[i];
             }
           d.kinetic_energy += 0.5 * m * v2;
+          d.volume += props[Properties::initial_volume] *
+                      dealii::determinant(
+                        read_tensor<dim>(props, Properties::deformation));
           d.strain_energy +=
             props[Properties::initial_volume] *
             model.energy_density(
@@ -1981,6 +2025,7 @@ namespace Talus
         dealii::Utilities::MPI::sum(d.gravitational_energy, comm);
       d.plastic_dissipation =
         dealii::Utilities::MPI::sum(d.plastic_dissipation, comm);
+      d.volume               = dealii::Utilities::MPI::sum(d.volume, comm);
       d.friction_dissipation = friction_dissipation;
       d.contact_force        = contact_force;
       return d;

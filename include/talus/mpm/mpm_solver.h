@@ -54,6 +54,8 @@ namespace Talus
        * dissipation" (0 for models without it).
        */
       double plastic_dissipation = 0.;
+      /** Current volume of the material, sum of V_0 det F [m^3]. */
+      double volume = 0.;
       /**
        * Energy dissipated by friction on the grid's friction boundaries
        * since the start [J]: minus the work of the tangential contact
@@ -290,6 +292,10 @@ namespace Talus
 
       /** Anti-locking treatment ("none" or "F-bar"). */
       bool use_fbar = false;
+
+      /** Backtracking line search in Newton's method. */
+      bool         line_search     = false;
+      unsigned int max_line_search = 4;
 
       /** Contact state of a grid node on a friction boundary. */
       enum class ContactState
