@@ -355,6 +355,14 @@ namespace Talus
                           Patterns::Integer(1, 20),
                           "Halvings of the Newton correction in the line "
                           "search [-], 1 to 20.");
+        prm.declare_entry(
+          "FLIP fraction",
+          "1",
+          Patterns::Double(0, 1),
+          "Velocity update of the material points [-], 0 to 1: 1 = FLIP "
+          "(v_p += interpolated grid velocity increment; no numerical "
+          "dissipation), 0 = PIC (v_p = interpolated grid velocity; "
+          "dissipative), in between a blend.");
         prm.declare_entry("abort on lost material points",
                           "false",
                           Patterns::Bool(),
@@ -395,6 +403,7 @@ namespace Talus
       abort_on_lost_points  = prm.get_bool("abort on lost material points");
       use_fbar        = prm.get("volumetric locking treatment") == "F-bar";
       line_search     = prm.get_bool("line search");
+      flip_fraction   = prm.get_double("FLIP fraction");
       max_line_search = prm.get_integer("maximum line search halvings");
       prm.leave_subsection();
     }
@@ -1895,7 +1904,7 @@ namespace Talus
 
       std::vector<double> history_new(n_history);
       std::vector<double> du_local(dofs_per_cell), a_local(dofs_per_cell),
-        dv_local(dofs_per_cell);
+        dv_local(dofs_per_cell), v_local(dofs_per_cell);
       std::vector<dealii::Tensor<2, dim>> F_cell;
       dealii::Tensor<2, 3>                P;
       for (const auto &c : cells)
@@ -1905,6 +1914,7 @@ namespace Talus
               du_local[i] = displacement(c.dofs[i]);
               a_local[i]  = acceleration_new(c.dofs[i]);
               dv_local[i] = dv_ghosted(c.dofs[i]);
+              v_local[i]  = velocity_n(c.dofs[i]) + dv_local[i];
             }
           cell_deformation_gradients(c, du_local, F_cell);
           for (unsigned int q = 0; q < c.n; ++q)
@@ -1914,11 +1924,12 @@ namespace Talus
               const double      *N     = &shape_values[k * n_nodes];
               const auto        *dN    = &shape_gradients[k * n_nodes];
 
-              dealii::Tensor<1, dim> du_p, a_p, dv_p;
+              dealii::Tensor<1, dim> du_p, a_p, dv_p, v_pic;
               dealii::Tensor<2, dim> H;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const auto ci = fe.system_to_component_index(i);
+                  v_pic[ci.first] += N[ci.second] * v_local[i];
                   du_p[ci.first] += N[ci.second] * du_local[i];
                   a_p[ci.first] += N[ci.second] * a_local[i];
                   dv_p[ci.first] += N[ci.second] * dv_local[i];
@@ -1952,9 +1963,13 @@ namespace Talus
                 {
                   for (unsigned int j = 0; j < dim; ++j)
                     props[Properties::deformation + i * dim + j] = F_new[i][j];
+                  // FLIP (increment) blended with PIC (grid velocity)
                   props[Properties::velocity + i] =
-                    quasi_static ? 0. :
-                                   props[Properties::velocity + i] + dv_p[i];
+                    quasi_static ?
+                      0. :
+                      flip_fraction *
+                          (props[Properties::velocity + i] + dv_p[i]) +
+                        (1. - flip_fraction) * v_pic[i];
                   props[Properties::acceleration + i] =
                     quasi_static ? 0. : a_p[i];
                 }

@@ -295,6 +295,7 @@ namespace Talus
 
       /** Backtracking line search in Newton's method. */
       bool         line_search     = false;
+      double       flip_fraction   = 1.;
       unsigned int max_line_search = 4;
 
       /** Contact state of a grid node on a friction boundary. */
