@@ -180,42 +180,6 @@ namespace Talus
       }
 
 
-      /** Trial state: b_e = F G F^T, spectral decomposition, log strains. */
-      struct TrialState
-      {
-        dealii::Tensor<2, 3>                     b_e;
-        LogarithmicStrain::SpectralDecomposition spectral;
-        std::array<double, 3>                    eps;
-      };
-
-
-      TrialState
-      trial_state(const std::string          &model,
-                  const dealii::Tensor<2, 3> &F,
-                  const dealii::Tensor<2, 3> &G)
-      {
-        const double J = dealii::determinant(F);
-        if (!(J > 0.) || !std::isfinite(J))
-          throw ExcInvertedMaterialPoint(model, J);
-        TrialState                 s;
-        const dealii::Tensor<2, 3> FG = F * G;
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = i; j < 3; ++j)
-            {
-              double sum = 0.;
-              for (unsigned int k = 0; k < 3; ++k)
-                sum += FG[i][k] * F[j][k];
-              s.b_e[i][j] = s.b_e[j][i] = sum;
-            }
-        s.spectral = LogarithmicStrain::spectral_decomposition(s.b_e);
-        for (unsigned int a = 0; a < 3; ++a)
-          {
-            if (!(s.spectral.eigenvalues[a] > 0.))
-              throw ExcInvertedMaterialPoint(model, J);
-            s.eps[a] = 0.5 * std::log(s.spectral.eigenvalues[a]);
-          }
-        return s;
-      }
     } // namespace
 
 
@@ -232,7 +196,8 @@ namespace Talus
       AssertDimension(history_old.size(), n_history_variables());
       AssertDimension(history_new.size(), n_history_variables());
 
-      const TrialState s = trial_state(name(), F, history_to_G(history_old));
+      const auto s =
+        LogarithmicStrain::elastic_state(name(), F, history_to_G(history_old));
 
       // sort the principal directions: order[k] = index of the k-th largest
       std::array<unsigned int, 3> order = {{0, 1, 2}};
@@ -302,8 +267,9 @@ namespace Talus
       const dealii::Tensor<2, 3>            &F,
       const dealii::ArrayView<const double> &history) const
     {
-      const TrialState s  = trial_state(name(), F, history_to_G(history));
-      const double     tr = s.eps[0] + s.eps[1] + s.eps[2];
+      const auto s =
+        LogarithmicStrain::elastic_state(name(), F, history_to_G(history));
+      const double tr = s.eps[0] + s.eps[1] + s.eps[2];
       return 0.5 * elastic.lambda * tr * tr +
              elastic.mu * (s.eps[0] * s.eps[0] + s.eps[1] * s.eps[1] +
                            s.eps[2] * s.eps[2]);

@@ -99,6 +99,38 @@ namespace Talus
 
 
 
+      ElasticState
+      elastic_state(const std::string          &model,
+                    const dealii::Tensor<2, 3> &F,
+                    const dealii::Tensor<2, 3> &G)
+      {
+        const double J = dealii::determinant(F);
+        if (!(J > 0.) || !std::isfinite(J))
+          throw ExcInvertedMaterialPoint(model, J);
+        ElasticState               s;
+        const dealii::Tensor<2, 3> FG = F * G;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i; j < 3; ++j)
+            {
+              double sum = 0.;
+              for (unsigned int k = 0; k < 3; ++k)
+                sum += FG[i][k] * F[j][k];
+              s.b_e[i][j] = s.b_e[j][i] = sum;
+            }
+        s.spectral = spectral_decomposition(s.b_e);
+        for (unsigned int a = 0; a < 3; ++a)
+          {
+            // b_e is positive definite in exact arithmetic; a non-positive
+            // eigenvalue means F is numerically singular.
+            if (!(s.spectral.eigenvalues[a] > 0.))
+              throw ExcInvertedMaterialPoint(model, J);
+            s.eps[a] = 0.5 * std::log(s.spectral.eigenvalues[a]);
+          }
+        return s;
+      }
+
+
+
       void
       principal_kirchhoff_to_piola(const dealii::Tensor<2, 3>  &F,
                                    const dealii::Tensor<2, 3>  &b_e,
@@ -188,6 +220,20 @@ namespace Talus
 
 
 
+    namespace
+    {
+      dealii::Tensor<2, 3>
+      identity()
+      {
+        dealii::Tensor<2, 3> I;
+        for (unsigned int i = 0; i < 3; ++i)
+          I[i][i] = 1.;
+        return I;
+      }
+    } // namespace
+
+
+
     HenckyElastic::HenckyElastic(const double youngs_modulus,
                                  const double poissons_ratio)
       : elastic(youngs_modulus, poissons_ratio)
@@ -227,51 +273,6 @@ namespace Talus
 
 
 
-    namespace
-    {
-      /**
-       * b = F F^T (exactly symmetric), its spectral decomposition and the
-       * principal logarithmic strains; throws for inverted points.
-       */
-      struct LogStrainState
-      {
-        dealii::Tensor<2, 3>                     b;
-        LogarithmicStrain::SpectralDecomposition spectral;
-        std::array<double, 3>                    eps;
-      };
-
-
-      LogStrainState
-      log_strain_state(const std::string &model, const dealii::Tensor<2, 3> &F)
-      {
-        const double J = dealii::determinant(F);
-        if (!(J > 0.) || !std::isfinite(J))
-          throw ExcInvertedMaterialPoint(model, J);
-
-        LogStrainState s;
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = i; j < 3; ++j)
-            {
-              double sum = 0.;
-              for (unsigned int k = 0; k < 3; ++k)
-                sum += F[i][k] * F[j][k];
-              s.b[i][j] = s.b[j][i] = sum;
-            }
-        s.spectral = LogarithmicStrain::spectral_decomposition(s.b);
-        for (unsigned int a = 0; a < 3; ++a)
-          {
-            // b is positive definite in exact arithmetic; a non-positive
-            // eigenvalue means F is numerically singular.
-            if (!(s.spectral.eigenvalues[a] > 0.))
-              throw ExcInvertedMaterialPoint(model, J);
-            s.eps[a] = 0.5 * std::log(s.spectral.eigenvalues[a]);
-          }
-        return s;
-      }
-    } // namespace
-
-
-
     void
     HenckyElastic::compute_stress(
       const dealii::Tensor<2, 3> & /*F_old*/,
@@ -281,9 +282,14 @@ namespace Talus
       dealii::Tensor<2, 3> &P,
       dealii::Tensor<4, 3> *A) const
     {
-      const LogStrainState s = log_strain_state(name(), F);
-      LogarithmicStrain::principal_kirchhoff_to_piola(
-        F, s.b, s.spectral, principal_stress(s.eps), principal_moduli(), P, A);
+      const auto s = LogarithmicStrain::elastic_state(name(), F, identity());
+      LogarithmicStrain::principal_kirchhoff_to_piola(F,
+                                                      s.b_e,
+                                                      s.spectral,
+                                                      principal_stress(s.eps),
+                                                      principal_moduli(),
+                                                      P,
+                                                      A);
     }
 
 
@@ -293,8 +299,8 @@ namespace Talus
       const dealii::Tensor<2, 3> &F,
       const dealii::ArrayView<const double> & /*history*/) const
     {
-      const LogStrainState s  = log_strain_state(name(), F);
-      const double         tr = s.eps[0] + s.eps[1] + s.eps[2];
+      const auto   s  = LogarithmicStrain::elastic_state(name(), F, identity());
+      const double tr = s.eps[0] + s.eps[1] + s.eps[2];
       return 0.5 * elastic.lambda * tr * tr +
              elastic.mu * (s.eps[0] * s.eps[0] + s.eps[1] * s.eps[1] +
                            s.eps[2] * s.eps[2]);

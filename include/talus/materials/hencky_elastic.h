@@ -92,6 +92,29 @@ namespace Talus
        * @param P  first Piola-Kirchhoff stress [Pa] (output)
        * @param A  if not nullptr: dP/dF [Pa] (output)
        */
+      /**
+       * The elastic left Cauchy-Green tensor b_e = F G F^T (exactly
+       * symmetric), its spectral decomposition and the principal elastic
+       * logarithmic strains eps_a = 1/2 ln b_a.
+       */
+      struct ElasticState
+      {
+        dealii::Tensor<2, 3>  b_e;
+        SpectralDecomposition spectral;
+        std::array<double, 3> eps;
+      };
+
+      /**
+       * ElasticState for the deformation gradient @p F and the inverse
+       * plastic right Cauchy-Green tensor @p G (identity for pure
+       * elasticity). Throws ExcInvertedMaterialPoint (naming @p model) if
+       * det F <= 0 or b_e is numerically not positive definite.
+       */
+      ElasticState
+      elastic_state(const std::string          &model,
+                    const dealii::Tensor<2, 3> &F,
+                    const dealii::Tensor<2, 3> &G);
+
       void
       principal_kirchhoff_to_piola(const dealii::Tensor<2, 3>  &F,
                                    const dealii::Tensor<2, 3>  &b_e,
