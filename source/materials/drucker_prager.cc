@@ -295,18 +295,12 @@ namespace Talus
                             dealii::Tensor<1, 3> &T,
                             dealii::Tensor<1, 3> &dT_dp,
                             dealii::Tensor<2, 3> &dT_deps) {
-        const auto   phi    = s.phi(eps_p);
-        const auto   c      = s.c(eps_p);
-        const double cot    = std::cos(phi.value) / std::sin(phi.value);
-        double       p_apex = c.value * cot, dp_apex = 0.;
-        if (p_apex < t)
-          dp_apex = c.derivative * cot -
-                    c.value * phi.derivative / std::pow(std::sin(phi.value), 2);
-        else
-          p_apex = t;
-        T       = p_apex * one;
-        dT_dp   = dp_apex * one;
-        dT_deps = dealii::Tensor<2, 3>();
+        const auto   apex_p  = s.apex_pressure(eps_p);
+        const double p_apex  = apex_p.value;
+        const double dp_apex = apex_p.derivative;
+        T                    = p_apex * one;
+        dT_dp                = dp_apex * one;
+        dT_deps              = dealii::Tensor<2, 3>();
       };
       const double apex_stress = s.c(plastic_strain_old).value /
                                  std::tan(s.phi(plastic_strain_old).value);

@@ -63,6 +63,21 @@ namespace Talus
 
 
     GranularStrength::Value
+    GranularStrength::apex_pressure(const double eps_p) const
+    {
+      const Value  f   = phi(eps_p);
+      const Value  k   = c(eps_p);
+      const double cot = std::cos(f.value) / std::sin(f.value);
+      if (k.value * cot >= tension_cutoff)
+        return {tension_cutoff, 0.};
+      return {k.value * cot,
+              k.derivative * cot -
+                k.value * f.derivative / std::pow(std::sin(f.value), 2)};
+    }
+
+
+
+    GranularStrength::Value
     GranularStrength::psi(const double eps_p) const
     {
       return soften(dilatancy_angle,

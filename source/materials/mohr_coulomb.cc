@@ -342,20 +342,14 @@ namespace Talus
           }
 
       // Apex: tau = min(c cot(phi), t) (1, 1, 1)
-      const auto apex = [&s, t](const double eps_p,
-                                const dealii::Tensor<1, 3> &,
-                                dealii::Tensor<1, 3> &T,
-                                dealii::Tensor<1, 3> &dT_dp,
-                                dealii::Tensor<2, 3> &dT_deps) {
-        const auto   phi    = s.phi(eps_p);
-        const auto   c      = s.c(eps_p);
-        const double cot    = std::cos(phi.value) / std::sin(phi.value);
-        double       p_apex = c.value * cot, dp_apex = 0.;
-        if (p_apex < t)
-          dp_apex = c.derivative * cot -
-                    c.value * phi.derivative / std::pow(std::sin(phi.value), 2);
-        else
-          p_apex = t;
+      const auto apex = [&s](const double eps_p,
+                             const dealii::Tensor<1, 3> &,
+                             dealii::Tensor<1, 3> &T,
+                             dealii::Tensor<1, 3> &dT_dp,
+                             dealii::Tensor<2, 3> &dT_deps) {
+        const auto   apex_p  = s.apex_pressure(eps_p);
+        const double p_apex  = apex_p.value;
+        const double dp_apex = apex_p.derivative;
         for (unsigned int a = 0; a < 3; ++a)
           {
             T[a]     = p_apex;

@@ -71,6 +71,13 @@ namespace Talus
       Value
       psi(const double eps_p) const;
 
+      /**
+       * Mean stress of the apex, p = min(c cot(phi), t) [Pa], and its
+       * derivative with respect to eps_p (the cut-off t does not soften).
+       */
+      Value
+      apex_pressure(const double eps_p) const;
+
       /** One line with all values (angles in degrees). */
       std::string
       to_string() const;
