@@ -2,6 +2,7 @@
 #include <talus/base/input.h>
 #include <talus/base/parsed_functions.h>
 #include <talus/base/time_control.h>
+#include <talus/boundaries/boundary_particles.h>
 #include <talus/io/deposit_profile.h>
 #include <talus/io/time_series.h>
 #include <talus/io/visualization_output.h>
@@ -85,6 +86,13 @@ namespace Talus
                           "material point at the end exceeds this value "
                           "[m/s] (e.g. a body that must come to or stay at "
                           "rest).");
+        prm.declare_entry("maximum penetration",
+                          "0",
+                          Patterns::Double(0),
+                          "If > 0: the run fails when the largest "
+                          "penetration of the material into a boundary of "
+                          "subsection <Boundary particles> during the run "
+                          "exceeds this value [m].");
         prm.declare_entry("energy balance tolerance",
                           "0",
                           Patterns::Double(0),
@@ -170,6 +178,7 @@ namespace Talus
     MPM::MaterialPoints<dim>::declare_parameters(prm);
     Materials::declare_parameters(prm);
     MPM::MPMSolver<dim>::declare_parameters(prm);
+    Boundaries::BoundaryParticles<dim>::declare_parameters(prm);
     TimeControl::declare_parameters(prm);
     IO::VisualizationOutput<dim>::declare_parameters(prm);
     prm.enter_subsection("Output");
@@ -238,6 +247,9 @@ namespace Talus
       grid, points, *model, time_control.newmark, timer);
     solver.parse_parameters(prm);
 
+    Boundaries::BoundaryParticles<dim> boundaries(grid);
+    boundaries.parse_parameters(prm);
+
     IO::VisualizationOutput<dim> output;
     output.parse_parameters(prm);
 
@@ -261,6 +273,7 @@ namespace Talus
     const double drift_tolerance   = prm.get_double("energy drift tolerance");
     const double speed_limit       = prm.get_double("maximum final speed");
     const double balance_tolerance = prm.get_double("energy balance tolerance");
+    const double penetration_limit = prm.get_double("maximum penetration");
     dealii::Functions::ParsedFunction<dim> exact_stress(dim == 2 ? 3 : 6);
     prm.enter_subsection("Exact stress");
     parse_function(prm, exact_stress, "Verification/Exact stress");
@@ -275,10 +288,17 @@ namespace Talus
                       model->initialize_history(h);
                     });
     solver.setup();
+    boundaries.generate(model->p_wave_modulus());
+    solver.attach_boundary_particles(boundaries);
     output.initialize(communicator);
 
     IO::TimeSeries<dim> series;
-    series.open(output.directory() + "/time_series.csv", communicator);
+    {
+      std::vector<std::string> names;
+      for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
+        names.push_back(boundaries.boundary(b).name);
+      series.open(output.directory() + "/time_series.csv", communicator, names);
+    }
 
     pcout << "Talus: " << dim << "D implicit MPM, "
           << dealii::Utilities::MPI::n_mpi_processes(communicator)
@@ -288,6 +308,40 @@ namespace Talus
           << "  material points: " << points.n_global_points() << '\n'
           << "  material: " << model->name() << ", density " << density
           << " kg/m^3\n";
+    if (!boundaries.empty())
+      {
+        std::vector<unsigned int> count(boundaries.n_boundaries(), 0);
+        for (const auto &p : boundaries.particle_handler())
+          ++count[static_cast<unsigned int>(
+            p.get_properties()
+              [Boundaries::BoundaryParticleProperties<dim>::boundary])];
+        MPI_Allreduce(MPI_IN_PLACE,
+                      count.data(),
+                      count.size(),
+                      MPI_UNSIGNED,
+                      MPI_SUM,
+                      communicator);
+        for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
+          {
+            const auto &desc = boundaries.boundary(b);
+            pcout << "  boundary " << desc.name << ": " << desc.geometry << ", "
+                  << count[b] << " boundary particles, "
+                  << (desc.condition == Boundaries::Condition::fixed ?
+                        "fixed" :
+                      desc.condition == Boundaries::Condition::slip ?
+                        "slip" :
+                      desc.condition == Boundaries::Condition::contact ?
+                        "contact" :
+                        "friction mu = " +
+                          [](const double mu) {
+                            std::ostringstream o;
+                            o << mu;
+                            return o.str();
+                          }(desc.friction_coefficient))
+                  << ", " << desc.method << " beta = " << std::setprecision(4)
+                  << desc.beta << " Pa/m" << std::defaultfloat << '\n';
+          }
+      }
     if (!test_mode)
       pcout << "  time: end " << time_control.end_time << " s, step "
             << time_control.initial_dt << " s\n";
@@ -364,7 +418,8 @@ namespace Talus
     };
     double              max_drift          = 0.;
     double              max_balance_change = 0., max_released = 0.;
-    double              last_momentum = initial.momentum[0];
+    double              max_penetration = 0.;
+    double              last_momentum   = initial.momentum[0];
     std::vector<double> crossings;
     double              total_lost_mass = 0.;
     unsigned long       total_newton    = 0;
@@ -441,10 +496,12 @@ namespace Talus
           const double b = e + diagnostics.plastic_dissipation +
                            diagnostics.friction_dissipation;
           max_balance_change = std::max(max_balance_change, std::abs(b - b0));
-          max_released       = std::max(max_released,
+          for (const auto &b : diagnostics.boundaries)
+            max_penetration = std::max(max_penetration, b.penetration);
+          max_released   = std::max(max_released,
                                   std::abs(diagnostics.gravitational_energy -
                                            initial.gravitational_energy));
-          const double p     = diagnostics.momentum[0];
+          const double p = diagnostics.momentum[0];
           if (p * last_momentum < 0.)
             crossings.push_back(time_control.time -
                                 dt_taken * p / (p - last_momentum));
@@ -602,6 +659,20 @@ namespace Talus
               max_balance_change / std::max(scale, 1e-300),
               balance_tolerance);
       }
+    if (!boundaries.empty())
+      for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
+        {
+          const auto &r = final_state.boundaries[b];
+          pcout << "  boundary " << boundaries.boundary(b).name << ": reaction";
+          for (unsigned int d = 0; d < dim; ++d)
+            pcout << ' ' << std::setprecision(6)
+                  << (std::abs(r.force[d]) < 1e-8 ? 0. : r.force[d]);
+          pcout << " N, normal " << r.normal_force << " N, tangential "
+                << (r.tangential_force < 1e-8 ? 0. : r.tangential_force)
+                << " N, " << r.active << " particles in contact\n";
+        }
+    if (penetration_limit > 0.)
+      check("penetration", max_penetration, penetration_limit);
     if (speed_limit > 0.)
       {
         double v_end = 0.;

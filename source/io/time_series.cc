@@ -9,8 +9,9 @@ namespace Talus
   {
     template <int dim>
     void
-    TimeSeries<dim>::open(const std::string &filename,
-                          const MPI_Comm     communicator)
+    TimeSeries<dim>::open(const std::string              &filename,
+                          const MPI_Comm                  communicator,
+                          const std::vector<std::string> &boundary_names)
     {
       is_root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
       if (is_root)
@@ -27,7 +28,16 @@ namespace Talus
               "momentum_x,momentum_y,momentum_z,kinetic_energy,strain_energy,"
               "gravitational_energy,total_energy,lost_mass,plastic_dissipation,"
               "friction_dissipation,energy_balance,contact_force_x,"
-              "contact_force_y,contact_force_z,volume\n";
+              "contact_force_y,contact_force_z,volume";
+      for (const auto &name : boundary_names)
+        {
+          for (unsigned int d = 0; d < dim; ++d)
+            file << ',' << name << "_force_"
+                 << "xyz"[d];
+          file << ',' << name << "_normal_force," << name
+               << "_tangential_force," << name << "_penetration";
+        }
+      file << '\n';
       file << std::setprecision(12);
     }
 
@@ -56,7 +66,15 @@ namespace Talus
                 d.plastic_dissipation + d.friction_dissipation;
       for (unsigned int i = 0; i < 3; ++i)
         file << ',' << (i < dim ? d.contact_force[i] : 0.);
-      file << ',' << d.volume << '\n';
+      file << ',' << d.volume;
+      for (const auto &b : d.boundaries)
+        {
+          for (unsigned int i = 0; i < dim; ++i)
+            file << ',' << b.force[i];
+          file << ',' << b.normal_force << ',' << b.tangential_force << ','
+               << b.penetration;
+        }
+      file << '\n';
       file.flush();
     }
 

@@ -719,6 +719,7 @@ namespace Talus
       time = new_time;
       dt   = step;
       cache_particles();
+      cache_boundary_particles();
       project_to_grid();
       initialize_friction_states();
       make_constraints();
@@ -910,6 +911,25 @@ namespace Talus
               c, du_local, r_local, with_matrix ? &k_local : nullptr, failure);
           if (!ok)
             break;
+
+          // Boundary particles of the cell: penalty forces on the material.
+          for (unsigned int b = 0; b < c.n_boundary; ++b)
+            {
+              const BoundaryPoint   &bp = boundary_points[c.first_boundary + b];
+              dealii::Tensor<1, dim> du_b;
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                du_b[comp[i]] += bp.N[node[i]] * du_local[i];
+              const BoundaryForce bf = boundary_force(bp, du_b);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const double Ni = bp.N[node[i]];
+                  r_local[i] += Ni * bf.force[comp[i]];
+                  if (with_matrix)
+                    for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                      k_local(i, j) -=
+                        Ni * bp.N[node[j]] * bf.dforce_du[comp[i]][comp[j]];
+                }
+            }
 
           if (!grid.friction_boundaries.empty() &&
               cell_touches_friction[c.cell->active_cell_index()])
@@ -1807,6 +1827,8 @@ namespace Talus
                   0.;
           }
       a.compress(dealii::VectorOperation::insert);
+      if (boundary_particles != nullptr)
+        initial_acceleration_with_boundaries(a);
       acceleration_new = a;
 
       using Properties           = MaterialPointProperties<dim>;
@@ -1976,14 +1998,327 @@ namespace Talus
               particles[k]->set_location(particles[k]->get_location() + du_p);
             }
         }
+      // Boundary particles: new gaps, reactions and states; friction work.
+      if (boundary_particles != nullptr)
+        {
+          using BP = Boundaries::BoundaryParticleProperties<dim>;
+          for (auto &p : boundary_particles->particle_handler())
+            {
+              auto props = p.get_properties();
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  props[BP::gap + d]      = 0.;
+                  props[BP::reaction + d] = 0.;
+                }
+              props[BP::state] = 0.;
+            }
+          double work = 0.;
+          for (const auto &c : cells)
+            for (unsigned int b = 0; b < c.n_boundary; ++b)
+              {
+                const BoundaryPoint &bp = boundary_points[c.first_boundary + b];
+                dealii::Tensor<1, dim> du_b;
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  {
+                    const auto ci = fe.system_to_component_index(i);
+                    du_b[ci.first] += bp.N[ci.second] * displacement(c.dofs[i]);
+                  }
+                const BoundaryForce bf = boundary_force(bp, du_b);
+                // dissipated: -f . (relative increment - elastic gap change)
+                work -= bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
+                auto particle = bp.particle;
+                auto props    = particle->get_properties();
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    props[BP::gap + d]      = bf.gap[d];
+                    props[BP::reaction + d] = -bf.force[d];
+                  }
+                props[BP::state] = bf.state;
+              }
+          friction_dissipation +=
+            dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
+          boundary_points.clear();
+        }
+
       cells.clear();
       particles.clear();
       {
         dealii::TimerOutput::Scope s(timer, "sort particles");
         points.particle_handler().sort_particles_into_subdomains_and_cells();
+        if (boundary_particles != nullptr)
+          boundary_particles->move_to(time);
       }
       prepared = false;
       solved   = false;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::initial_acceleration_with_boundaries(
+      dealii::TrilinosWrappers::MPI::Vector &a)
+    {
+      // The boundary conditions act on the accelerations as on the
+      // displacements: solve M a = r0 + N^T f_b(tau^2 N a) with the lumped
+      // mass M, r0 = f_ext - f_int at the initial state and the penalty
+      // forces of the boundary particles for the "displacement" tau^2 a
+      // (no prescribed motion, no gap). tau^2 makes the penalty 1e4 times
+      // stiffer than the heaviest node, so that the constraints hold to
+      // about 1e-4 (bonded, slip, contact, Coulomb friction on the
+      // acceleration). Newton on this piecewise linear system.
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      double             max_mass = 0., min_stiffness = 1e300;
+      for (const auto i : grid.locally_owned_dofs)
+        max_mass = std::max(max_mass, static_cast<double>(nodal_mass(i)));
+      for (const auto &b : boundary_points)
+        min_stiffness = std::min(min_stiffness, b.beta * b.weight);
+      max_mass = dealii::Utilities::MPI::max(max_mass, grid.mpi_communicator);
+      min_stiffness =
+        dealii::Utilities::MPI::min(min_stiffness, grid.mpi_communicator);
+      if (!(min_stiffness < 1e300) || !(max_mass > 0.))
+        return; // no boundary particle touches the material
+      const double tau2 = 1e4 * max_mass / min_stiffness;
+
+      const dealii::TrilinosWrappers::MPI::Vector r0 = residual;
+      const double r0_norm = std::max(r0.l2_norm(), 1e-300);
+      dealii::TrilinosWrappers::MPI::Vector a_ghosted(
+        grid.locally_owned_dofs,
+        grid.locally_relevant_dofs,
+        grid.mpi_communicator);
+      dealii::FullMatrix<double> k_local(dofs_per_cell, dofs_per_cell);
+      dealii::Vector<double>     r_local(dofs_per_cell);
+      for (unsigned int it = 0; it < 30; ++it)
+        {
+          a_ghosted = a;
+          matrix    = 0.;
+          residual  = 0.;
+          for (const auto &c : cells)
+            {
+              if (c.n_boundary == 0)
+                continue;
+              k_local = 0.;
+              r_local = 0.;
+              for (unsigned int b = 0; b < c.n_boundary; ++b)
+                {
+                  BoundaryPoint bp = boundary_points[c.first_boundary + b];
+                  bp.du_bar        = 0.;
+                  bp.gap_old       = 0.;
+                  dealii::Tensor<1, dim> a_b;
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    {
+                      const auto ci = fe.system_to_component_index(i);
+                      a_b[ci.first] += bp.N[ci.second] * a_ghosted(c.dofs[i]);
+                    }
+                  const BoundaryForce bf = boundary_force(bp, tau2 * a_b);
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    {
+                      const auto   ci = fe.system_to_component_index(i);
+                      const double Ni = bp.N[ci.second];
+                      r_local[i] += Ni * bf.force[ci.first];
+                      for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                        {
+                          const auto cj = fe.system_to_component_index(j);
+                          k_local(i, j) -= tau2 * Ni * bp.N[cj.second] *
+                                           bf.dforce_du[ci.first][cj.first];
+                        }
+                    }
+                }
+              constraints.distribute_local_to_global(
+                k_local, r_local, c.dofs, matrix, residual);
+            }
+          residual.compress(dealii::VectorOperation::add);
+          matrix.compress(dealii::VectorOperation::add);
+          {
+            // owned entries, written directly (no compress per entry)
+            Epetra_FEVector          &r   = residual.trilinos_vector();
+            const Epetra_MultiVector &r0v = r0.trilinos_vector();
+            const Epetra_MultiVector &av  = a.trilinos_vector();
+            for (const auto i : grid.locally_owned_dofs)
+              {
+                const int l = r.Map().LID(static_cast<int>(i));
+                if (constraints.is_constrained(i) || !(nodal_mass(i) > 0.))
+                  {
+                    r[0][l] = 0.;
+                    matrix.add(i, i, max_mass);
+                    continue;
+                  }
+                r[0][l] += r0v[0][l] - nodal_mass(i) * av[0][l];
+                matrix.add(i, i, static_cast<double>(nodal_mass(i)));
+              }
+          }
+          matrix.compress(dealii::VectorOperation::add);
+          const double r = residual.l2_norm();
+          if (std::getenv("TALUS_DEBUG_NEWTON"))
+            std::cerr << "  initial acceleration " << it << ": " << r / r0_norm
+                      << std::endl;
+          if (r <= 1e-10 * r0_norm)
+            break;
+          dealii::SolverControl                  control(1, 0.);
+          dealii::TrilinosWrappers::SolverDirect solver(control);
+          increment = 0.;
+          solver.solve(matrix, increment, residual);
+          a += increment;
+        }
+      (void)n_nodes;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::attach_boundary_particles(
+      Boundaries::BoundaryParticles<dim> &boundaries)
+    {
+      boundary_particles = boundaries.empty() ? nullptr : &boundaries;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::cache_boundary_particles()
+    {
+      boundary_points.clear();
+      if (boundary_particles == nullptr)
+        return;
+      using BP                   = Boundaries::BoundaryParticleProperties<dim>;
+      auto              &handler = boundary_particles->particle_handler();
+      const auto        &base    = grid.fe.base_element(0);
+      const unsigned int n_nodes = base.dofs_per_cell;
+      for (auto &c : cells)
+        {
+          const typename dealii::Triangulation<dim>::active_cell_iterator
+                             tria_cell(c.cell);
+          const unsigned int n = handler.n_particles_in_cell(tria_cell);
+          c.first_boundary     = boundary_points.size();
+          c.n_boundary         = n;
+          if (n == 0)
+            continue;
+          std::vector<dealii::Point<dim>> reference_points;
+          for (auto p = handler.particles_in_cell(tria_cell).begin();
+               p != handler.particles_in_cell(tria_cell).end();
+               ++p)
+            {
+              BoundaryPoint bp;
+              bp.particle      = p;
+              const auto props = p->get_properties();
+              bp.boundary      = static_cast<unsigned int>(props[BP::boundary]);
+              const auto &desc = boundary_particles->boundary(bp.boundary);
+              bp.weight        = props[BP::weight];
+              bp.beta          = desc.beta;
+              bp.mu            = desc.friction_coefficient;
+              bp.condition     = desc.condition;
+              dealii::Point<dim> X;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  bp.normal[d]  = props[BP::normal + d];
+                  bp.gap_old[d] = props[BP::gap + d];
+                  X[d]          = props[BP::reference_position + d];
+                }
+              bp.du_bar =
+                boundary_particles->prescribed_displacement(bp.boundary,
+                                                            X,
+                                                            time) -
+                boundary_particles->prescribed_displacement(bp.boundary,
+                                                            X,
+                                                            time - dt);
+              reference_points.push_back(p->get_reference_location());
+              boundary_points.push_back(std::move(bp));
+            }
+          if (grid.is_cartesian)
+            for (unsigned int q = 0; q < n; ++q)
+              {
+                auto &N = boundary_points[c.first_boundary + q].N;
+                N.resize(n_nodes);
+                for (unsigned int k = 0; k < n_nodes; ++k)
+                  N[k] = base.shape_value(k, reference_points[q]);
+              }
+          else
+            {
+              const dealii::Quadrature<dim> quadrature(reference_points);
+              dealii::FEValues<dim>         fe_values(grid.mapping,
+                                              base,
+                                              quadrature,
+                                              dealii::update_values);
+              fe_values.reinit(tria_cell);
+              for (unsigned int q = 0; q < n; ++q)
+                {
+                  auto &N = boundary_points[c.first_boundary + q].N;
+                  N.resize(n_nodes);
+                  for (unsigned int k = 0; k < n_nodes; ++k)
+                    N[k] = fe_values.shape_value(k, q);
+                }
+            }
+        }
+    }
+
+
+    template <int dim>
+    typename MPMSolver<dim>::BoundaryForce
+    MPMSolver<dim>::boundary_force(const BoundaryPoint          &b,
+                                   const dealii::Tensor<1, dim> &du) const
+    {
+      using Boundaries::Condition;
+      BoundaryForce                 r;
+      const double                  k  = b.beta * b.weight;
+      const dealii::Tensor<1, dim>  g  = b.gap_old + du - b.du_bar;
+      const dealii::Tensor<1, dim> &n  = b.normal;
+      const double                  gn = g * n;
+      const dealii::Tensor<2, dim>  I  = dealii::unit_symmetric_tensor<dim>();
+      const dealii::Tensor<2, dim>  nn = dealii::outer_product(n, n);
+      switch (b.condition)
+        {
+          case Condition::fixed:
+            r.force     = -k * g;
+            r.dforce_du = -k * I;
+            r.gap       = g;
+            r.state     = 1;
+            break;
+          case Condition::slip:
+            r.force     = -k * gn * n;
+            r.dforce_du = -k * nn;
+            r.gap       = gn * n;
+            r.state     = 1;
+            break;
+          case Condition::contact:
+            if (gn < 0.)
+              {
+                r.force     = -k * gn * n;
+                r.dforce_du = -k * nn;
+                r.gap       = gn * n;
+                r.state     = 1;
+              }
+            break;
+          case Condition::friction:
+            if (gn < 0.)
+              {
+                const double                 fn      = -k * gn; // > 0
+                const dealii::Tensor<1, dim> g_t     = g - gn * n;
+                const dealii::Tensor<1, dim> f_trial = -k * g_t;
+                const double                 norm    = f_trial.norm();
+                const double                 limit   = b.mu * fn;
+                if (norm <= limit)
+                  {
+                    r.force     = fn * n + f_trial;
+                    r.dforce_du = -k * I;
+                    r.gap       = g;
+                    r.state     = 1;
+                  }
+                else
+                  {
+                    const dealii::Tensor<1, dim> s = f_trial / norm;
+                    r.force                        = fn * n + limit * s;
+                    r.dforce_du =
+                      -k * nn - k * b.mu * dealii::outer_product(s, n) -
+                      (limit * k / norm) *
+                        ((I - dealii::outer_product(s, s)) * (I - nn));
+                    r.gap   = gn * n - (limit / k) * s;
+                    r.state = 2;
+                  }
+              }
+            break;
+        }
+      return r;
     }
 
 
@@ -2043,6 +2378,8 @@ namespace Talus
       d.volume               = dealii::Utilities::MPI::sum(d.volume, comm);
       d.friction_dissipation = friction_dissipation;
       d.contact_force        = contact_force;
+      if (boundary_particles != nullptr)
+        d.boundaries = boundary_particles->resultants();
       return d;
     }
 

@@ -7,6 +7,7 @@
 
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace Talus
 {
@@ -23,8 +24,18 @@ namespace Talus
     class TimeSeries
     {
     public:
+      /**
+       * Open the file and write the header; every boundary in
+       * @p boundary_names adds the columns <name>_force_x, _y, (_z),
+       * <name>_normal_force, <name>_tangential_force, <name>_penetration
+       * (reaction of the material on the boundary [N], its normal
+       * (compression positive) and tangential resultants [N], largest
+       * penetration [m]).
+       */
       void
-      open(const std::string &filename, const MPI_Comm communicator);
+      open(const std::string              &filename,
+           const MPI_Comm                  communicator,
+           const std::vector<std::string> &boundary_names = {});
 
       void
       write(const unsigned int           step,

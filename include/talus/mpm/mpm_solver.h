@@ -2,6 +2,7 @@
 #define talus_mpm_mpm_solver_h
 
 #include <talus/base/time_control.h>
+#include <talus/boundaries/boundary_particles.h>
 #include <talus/materials/constitutive_model.h>
 #include <talus/mpm/background_grid.h>
 #include <talus/mpm/material_points.h>
@@ -67,6 +68,8 @@ namespace Talus
        * end of the last step [N] (normal and tangential contact forces).
        */
       dealii::Tensor<1, dim> contact_force;
+      /** Resultants of the boundaries imposed by boundary particles. */
+      std::vector<Boundaries::BoundaryResultant<dim>> boundaries;
     };
 
     /**
@@ -156,6 +159,13 @@ namespace Talus
       /** Throw an error instead of a warning when points leave the grid. */
       bool abort_on_lost_points = false;
 
+      /**
+       * Impose the boundaries of @p boundaries (weakly, on their particles)
+       * from the next step on. Call after setup().
+       */
+      void
+      attach_boundary_particles(Boundaries::BoundaryParticles<dim> &boundaries);
+
     private:
       /** Material points of one cell with cached shape data. */
       struct CellCache
@@ -164,7 +174,61 @@ namespace Talus
         std::vector<dealii::types::global_dof_index>           dofs;
         unsigned int                                           first;
         unsigned int                                           n;
+        /** Boundary particles of the cell in boundary_points. */
+        unsigned int first_boundary = 0;
+        unsigned int n_boundary     = 0;
       };
+
+      /** A boundary particle in a cell with material, for one step. */
+      struct BoundaryPoint
+      {
+        typename dealii::Particles::ParticleIterator<dim> particle;
+        unsigned int                                      boundary;
+        double                                            weight;
+        double                                            beta;
+        double                                            mu;
+        Boundaries::Condition                             condition;
+        dealii::Tensor<1, dim>                            normal;
+        /** Prescribed displacement increment of the step [m]. */
+        dealii::Tensor<1, dim> du_bar;
+        /** Gap at the start of the step [m]. */
+        dealii::Tensor<1, dim> gap_old;
+        /** Shape values of the cell's nodes at the particle. */
+        std::vector<double> N;
+      };
+
+      /** Force of a boundary particle on the material and its state. */
+      struct BoundaryForce
+      {
+        dealii::Tensor<1, dim> force; ///< on the material [N]
+        dealii::Tensor<2, dim> dforce_du;
+        dealii::Tensor<1, dim> gap; ///< new elastic gap [m]
+        int                    state = 0;
+      };
+
+      /**
+       * Penalty force of boundary particle @p b for the material
+       * displacement increment @p du at the particle (see doc/theory.md):
+       * f = -beta w g with the gap g = g_old + du - du_bar (all components
+       * for fixed, the normal part for slip and for contact in
+       * compression), Coulomb return mapping of the tangential part for
+       * friction; with its exact derivative.
+       */
+      BoundaryForce
+      boundary_force(const BoundaryPoint          &b,
+                     const dealii::Tensor<1, dim> &du) const;
+
+      /**
+       * Initial accelerations @p a (owned) that obey the conditions of the
+       * boundary particles (called by initialize_acceleration()).
+       */
+      void
+      initial_acceleration_with_boundaries(
+        dealii::TrilinosWrappers::MPI::Vector &a);
+
+      /** Boundary particles in the cells with material (prepare_step). */
+      void
+      cache_boundary_particles();
 
       void
       cache_particles();
@@ -344,6 +408,9 @@ namespace Talus
       dealii::TrilinosWrappers::MPI::Vector increment;        // owned
       dealii::TrilinosWrappers::MPI::Vector displacement;     // ghosted du
       dealii::TrilinosWrappers::MPI::Vector acceleration_new; // ghosted
+
+      Boundaries::BoundaryParticles<dim> *boundary_particles = nullptr;
+      std::vector<BoundaryPoint>          boundary_points;
 
       dealii::types::global_dof_index n_active;
       bool                            prepared;

@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""Write the rotated-incline inputs of tests/boundaries (VERIFICATION.md 2.3).
+
+A block (0.4 m x 0.2 m, neo-Hookean, 2000 kg/m^3) slides on a 30 degree
+incline with Coulomb friction mu. The whole problem (incline line and gravity)
+is rotated by rho against the axis-aligned background grid; the incline is a
+'line' boundary imposed by boundary particles. Reference: the block slides
+along t = (cos rho, sin rho) by s(t) = a t^2 / 2 with
+a = g (sin 30 - mu cos 30) when tan 30 > mu, and stays at rest otherwise.
+
+    usage: make_rotated_incline.py <output dir>
+"""
+import math
+import sys
+
+G, THETA = 9.81, math.radians(30.)
+H = 0.05  # background cell size [m]
+
+
+def write(path, rho_deg, mu, condition, method_lines="", end_time=1.0,
+          mpi_note=""):
+    rho = math.radians(rho_deg)
+    t = (math.cos(rho), math.sin(rho))
+    n = (-math.sin(rho), math.cos(rho))
+    # incline line through o, from s = -0.2 to s = 3.2
+    o = (0.3 + 0.2 * math.sin(rho), 0.137)
+    line = [(o[0] + s * t[0], o[1] + s * t[1]) for s in (-0.2, 3.2)]
+    # block corners: s in [0.1, 0.5], normal offset in [0, 0.2]
+    corners = []
+    for s, h in ((0.1, 0.), (0.5, 0.), (0.5, 0.2), (0.1, 0.2)):
+        corners.append((o[0] + s * t[0] + h * n[0], o[1] + s * t[1] + h * n[1]))
+    xs = [p[0] for p in line + corners]
+    ys = [p[1] for p in line + corners]
+    upper = (math.ceil((max(xs) + 0.2) / H) * H,
+             math.ceil((max(ys) + 0.3) / H) * H)
+    gvec = (G * (math.sin(THETA) * t[0] - math.cos(THETA) * n[0]),
+            G * (math.sin(THETA) * t[1] - math.cos(THETA) * n[1]))
+    sliding = math.tan(THETA) > mu
+    a = G * (math.sin(THETA) - mu * math.cos(THETA)) if sliding else 0.
+    fmt = lambda p: "%.10g, %.10g" % p
+    with open(path, "w") as f:
+        f.write(f"""# Block on a 30 degree incline rotated by {rho_deg} degrees against the
+# grid, Coulomb friction mu = {mu} ({condition}), imposed by boundary particles
+# (VERIFICATION.md 2.3). Written by contrib/boundaries/make_rotated_incline.py.
+# Reference: a = g (sin 30 - mu cos 30) = {a:.6g} m/s^2 along
+# t = ({t[0]:.6g}, {t[1]:.6g}); s(t) = a t^2 / 2{"" if sliding else " = 0 (stick)"}.
+set dimension = 2
+subsection Background grid
+  set lower corner = 0, 0
+  set upper corner = {fmt(upper)}
+  set subdivisions = {round(upper[0] / H)}, {round(upper[1] / H)}
+end
+subsection Body
+  set geometry = polygon
+  set vertices = {'; '.join(fmt(c) for c in corners)}
+  set points per cell per direction = 2
+end
+subsection Material
+  set model = neo-Hookean
+  set density = 2000
+  set Young's modulus = 1e7
+  set Poisson's ratio = 0.3
+end
+subsection Boundary particles
+  subsection Boundary 1
+    set geometry = line
+    set name = incline
+    set vertices = {'; '.join(fmt(p) for p in line)}
+    set condition = {condition}
+    set friction coefficient = {mu}
+{method_lines}  end
+end
+subsection Solver
+  set gravity = {fmt(gvec)}
+  set linear solver = direct
+end
+subsection Time
+  set end time = {end_time}
+  set time step = 0.01
+  # numerical damping of the acceleration jumps when boundary particles
+  # start or stop acting (doc/theory.md, "Boundary particles")
+  set Newmark gamma = 0.6
+  set Newmark beta = 0.3025
+end
+subsection Output
+  set output directory = output-{path.split('/')[-1].split('.')[0]}
+  set format = none
+  set test mode = true
+end
+subsection Verification
+  set compare with exact solution = true
+  set report times = 0.5
+  subsection Exact displacement
+    set Function expression = {0.5 * a * t[0]:.10g}*t*t; {0.5 * a * t[1]:.10g}*t*t
+  end
+  # 1 % of s(0.5 s) for sliding; 1 % of h for the stick case (the elastic
+  # settlement of the block under its weight is about 1.5e-4 m)
+  set displacement error tolerance = {0.01 * 0.125 * a if sliding else 0.01 * H:.6g}
+  set maximum penetration = {1e-3 * H:.6g}
+{"  set maximum final speed = 1e-4" + chr(10) if not sliding else ""}end
+""")
+
+
+if __name__ == "__main__":
+    out = sys.argv[1] if len(sys.argv) > 1 else "."
+    for rho in (0, 15, 30, 45):
+        write(f"{out}/incline_rotated_{rho}_mu0.prm", rho, 0.0, "contact")
+        write(f"{out}/incline_rotated_{rho}_mu01.prm", rho, 0.1, "friction")
+        write(f"{out}/incline_rotated_{rho}_stick.prm", rho, 0.7, "friction")

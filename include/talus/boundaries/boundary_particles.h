@@ -1,0 +1,232 @@
+#ifndef talus_boundaries_boundary_particles_h
+#define talus_boundaries_boundary_particles_h
+
+#include <talus/mpm/background_grid.h>
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/parsed_function.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace Talus
+{
+  /**
+   * Boundaries that do not follow the background grid (terrain, walls and,
+   * later, the protective net), imposed weakly on boundary particles.
+   */
+  namespace Boundaries
+  {
+    /** How a boundary constrains the material (per boundary). */
+    enum class Condition
+    {
+      fixed,   ///< u = u_bar (all components)
+      slip,    ///< (u - u_bar) . n = 0, tangential motion free
+      contact, ///< (u - u_bar) . n >= 0, released on separation
+      friction ///< contact with Coulomb friction, stick or slip
+    };
+
+    /**
+     * Layout of the properties of one boundary particle in the
+     * Particles::ParticleHandler of BoundaryParticles.
+     */
+    template <int dim>
+    struct BoundaryParticleProperties
+    {
+      /** Index of the boundary the particle belongs to. */
+      static constexpr unsigned int boundary = 0;
+      /** Surface measure the particle represents [m in 2D, m^2 in 3D]. */
+      static constexpr unsigned int weight = 1;
+      /** Unit normal, pointing from the boundary into the material. */
+      static constexpr unsigned int normal = 2;
+      /** Position of the particle in the undisplaced boundary [m]. */
+      static constexpr unsigned int reference_position = normal + dim;
+      /**
+       * Accumulated relative displacement of the material against the
+       * boundary carried by the penalty spring [m] (its normal part is the
+       * penetration when negative).
+       */
+      static constexpr unsigned int gap = reference_position + dim;
+      /** Force the material exerts on the boundary at this particle [N]. */
+      static constexpr unsigned int reaction = gap + dim;
+      /** 0 inactive (no material in the cell or separated), 1 stick or
+       * bonded, 2 slip. */
+      static constexpr unsigned int state        = reaction + dim;
+      static constexpr unsigned int n_properties = state + 1;
+    };
+
+    /** Data of one boundary as read from the parameter file. */
+    template <int dim>
+    struct BoundaryDescription
+    {
+      std::string  name;
+      std::string  geometry;
+      Condition    condition            = Condition::fixed;
+      std::string  method               = "penalty";
+      double       friction_coefficient = 0.;
+      double       penalty_factor       = 100.;
+      double       penalty_parameter    = 0.; ///< [Pa/m], 0: automatic
+      unsigned int particles_per_cell   = 2;
+      std::vector<dealii::Point<dim>> vertices;
+      dealii::Point<dim>              center;
+      double                          radius = 0.;
+      dealii::Point<dim>              lower_corner, upper_corner;
+      bool                            material_inside = true;
+      bool                            flip_normals    = false;
+      std::string                     mesh_file;
+      std::unique_ptr<dealii::Functions::ParsedFunction<dim>> displacement;
+      bool                                                    moving = false;
+      /** Penalty parameter used (automatic or given) [Pa/m]. */
+      double beta = 0.;
+    };
+
+    /** Resultants of one boundary at the end of a step. */
+    template <int dim>
+    struct BoundaryResultant
+    {
+      dealii::Tensor<1, dim> force;                 ///< sum of reactions [N]
+      double                 normal_force     = 0.; ///< sum of R . n [N]
+      double                 tangential_force = 0.; ///< |sum R_t| [N]
+      double                 penetration      = 0.; ///< max of -g . n [m]
+      unsigned int           active           = 0;  ///< particles in contact
+    };
+
+    /**
+     * The boundary particles: a second Particles::ParticleHandler on the
+     * background grid whose particles carry the geometry and the data of
+     * boundaries that do not follow the grid (after Chandra et al. 2021,
+     * "Nonconforming Dirichlet boundary conditions in implicit material
+     * point method by means of penalty augmentation", Acta Geotech. 16, and
+     * Singer et al., the founding paper, section 3).
+     *
+     * Every boundary is first described as a codimension-one
+     * Triangulation<dim-1, dim> (a line or polyline, a circle, a
+     * rectangle, the surface of a box, or a surface mesh read from a file),
+     * refined until its cells are no larger than the smallest background
+     * cell; the particles are the Gauss points of that mesh
+     * (particles per cell per direction), weighted with their surface
+     * measure JxW and carrying the unit normal that points into the
+     * material (as deal.II step-70 makes particles from an immersed mesh).
+     * A boundary may move with a prescribed displacement u_bar(X, t)
+     * (muparser); the particle then sits at X + u_bar(X, t).
+     *
+     * The conditions are imposed by MPM::MPMSolver (see there and
+     * doc/theory.md): the penalty term adds to the residual the force
+     * f = -beta w g of a spring on the accumulated gap g (the relative
+     * displacement of the material against the boundary since the
+     * particle came into contact), restricted to the normal for slip and
+     * contact, with a Coulomb return for friction.
+     */
+    template <int dim>
+    class BoundaryParticles
+    {
+    public:
+      /** Number of boundary slots in the parameter file. */
+      static constexpr unsigned int max_boundaries = 4;
+
+      explicit BoundaryParticles(const MPM::BackgroundGrid<dim> &grid);
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Parse subsection "Boundary particles". */
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+
+      /**
+       * Make the particles of every boundary and insert them into the
+       * grid; @p p_wave_modulus [Pa] scales the automatic penalty
+       * beta = factor * M / h.
+       */
+      void
+      generate(const double p_wave_modulus);
+
+      /** Whether any boundary is described. */
+      bool
+      empty() const
+      {
+        return boundaries.empty();
+      }
+
+      unsigned int
+      n_boundaries() const
+      {
+        return boundaries.size();
+      }
+
+      const BoundaryDescription<dim> &
+      boundary(const unsigned int b) const
+      {
+        return boundaries[b];
+      }
+
+      /** Prescribed displacement of boundary @p b at @p X and time @p t. */
+      dealii::Tensor<1, dim>
+      prescribed_displacement(const unsigned int        b,
+                              const dealii::Point<dim> &X,
+                              const double              t) const;
+
+      /**
+       * Move the particles of moving boundaries to X + u_bar(X, t) and sort
+       * them into cells (particles that leave the grid are counted).
+       */
+      void
+      move_to(const double t);
+
+      dealii::Particles::ParticleHandler<dim> &
+      particle_handler()
+      {
+        return handler;
+      }
+
+      const dealii::Particles::ParticleHandler<dim> &
+      particle_handler() const
+      {
+        return handler;
+      }
+
+      /** Sum the reactions per boundary (all ranks). */
+      std::vector<BoundaryResultant<dim>>
+      resultants() const;
+
+      /** Boundary particles that left the grid so far. */
+      unsigned int
+      n_lost() const
+      {
+        return lost;
+      }
+
+    private:
+      /** The codimension-one mesh of boundary @p b (refined). */
+      void
+      make_surface(const BoundaryDescription<dim>      &b,
+                   const unsigned int                   index,
+                   dealii::Triangulation<dim - 1, dim> &surface) const;
+
+      /** @p x moved off the faces of a Cartesian grid along @p n. */
+      dealii::Point<dim>
+      off_faces(const dealii::Point<dim>     &x,
+                const dealii::Tensor<1, dim> &n) const;
+
+      /** Orient the normal of boundary @p b at @p x into the material. */
+      dealii::Tensor<1, dim>
+      orient(const BoundaryDescription<dim> &b,
+             const dealii::Point<dim>       &x,
+             const dealii::Tensor<1, dim>   &n) const;
+
+      const MPM::BackgroundGrid<dim>         &grid;
+      dealii::Particles::ParticleHandler<dim> handler;
+      std::vector<BoundaryDescription<dim>>   boundaries;
+      unsigned int                            lost = 0;
+    };
+  } // namespace Boundaries
+} // namespace Talus
+
+#endif

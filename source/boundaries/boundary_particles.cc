@@ -1,0 +1,705 @@
+#include <talus/base/input.h>
+#include <talus/base/parsed_functions.h>
+#include <talus/boundaries/boundary_particles.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
+
+#include <deal.II/fe/fe_nothing.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+namespace Talus
+{
+  namespace Boundaries
+  {
+    namespace
+    {
+      std::string
+      slot_name(const unsigned int k)
+      {
+        return "Boundary " + std::to_string(k + 1);
+      }
+
+      template <int dim>
+      std::vector<dealii::Point<dim>>
+      parse_point_list(const dealii::ParameterHandler &prm,
+                       const std::string              &subsection,
+                       const std::string              &entry)
+      {
+        std::vector<dealii::Point<dim>> points;
+        const std::string               text = prm.get(entry);
+        for (const auto &item : dealii::Utilities::split_string_list(text, ';'))
+          {
+            std::vector<double> values;
+            try
+              {
+                values = dealii::Utilities::string_to_double(
+                  dealii::Utilities::split_string_list(item, ','));
+              }
+            catch (...)
+              {
+                values.clear();
+              }
+            if (values.size() != dim)
+              InputFile::reject(subsection,
+                                entry,
+                                text,
+                                "a list of points separated by ';', each " +
+                                  std::to_string(dim) +
+                                  " coordinates separated by ','");
+            dealii::Point<dim> p;
+            for (unsigned int d = 0; d < dim; ++d)
+              p[d] = values[d];
+            points.push_back(p);
+          }
+        return points;
+      }
+    } // namespace
+
+
+    template <int dim>
+    BoundaryParticles<dim>::BoundaryParticles(
+      const MPM::BackgroundGrid<dim> &grid)
+      : grid(grid)
+    {}
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using dealii::Patterns::Anything;
+      using dealii::Patterns::Bool;
+      using dealii::Patterns::Double;
+      using dealii::Patterns::Integer;
+      using dealii::Patterns::Selection;
+      prm.enter_subsection("Boundary particles");
+      for (unsigned int k = 0; k < max_boundaries; ++k)
+        {
+          prm.enter_subsection(slot_name(k));
+          prm.declare_entry(
+            "geometry",
+            "none",
+            Selection(dim == 2 ? "none|line|circle|box|mesh" :
+                                 "none|plane|box|mesh"),
+            "Shape of this boundary that does not follow the grid: 'none' "
+            "(unused slot), " +
+              std::string(dim == 2 ?
+                            "'line' (polyline through 'vertices'; the "
+                            "material is on the left of the direction of "
+                            "travel), 'circle' ('center', 'radius'), " :
+                            "'plane' (the parallelogram p0 + s (p1 - p0) + "
+                            "t (p2 - p0), s, t in [0, 1], through the three "
+                            "'vertices'; the material is on the side of "
+                            "(p1 - p0) x (p2 - p0)), ") +
+              "'box' (the surface of the box between 'lower corner' and "
+              "'upper corner'), 'mesh' (a surface mesh of dimension " +
+              std::to_string(dim - 1) +
+              " in 'mesh file', material on the side of the normals deal.II "
+              "computes from the cell orientation).");
+          prm.declare_entry("name",
+                            "boundary" + std::to_string(k + 1),
+                            Anything(),
+                            "Name of the boundary in the log and in the CSV "
+                            "time series columns (<name>_force_x, ...) [-].");
+          prm.declare_entry("vertices",
+                            "",
+                            Anything(),
+                            "Points of a 'line' (at least 2, 2D) or of a "
+                            "'plane' (exactly 3, 3D) [m]: coordinates "
+                            "separated by ',', points by ';'.");
+          prm.declare_entry("center",
+                            dim == 2 ? "0, 0" : "0, 0, 0",
+                            Anything(),
+                            "Center of a 'circle' [m].");
+          prm.declare_entry("radius",
+                            "1",
+                            Double(0.),
+                            "Radius of a 'circle' [m].");
+          prm.declare_entry("lower corner",
+                            dim == 2 ? "0, 0" : "0, 0, 0",
+                            Anything(),
+                            "Lower corner of a 'box' [m].");
+          prm.declare_entry("upper corner",
+                            dim == 2 ? "1, 1" : "1, 1, 1",
+                            Anything(),
+                            "Upper corner of a 'box' [m].");
+          prm.declare_entry("material side",
+                            "inside",
+                            Selection("inside|outside"),
+                            "For 'circle' and 'box': whether the material "
+                            "is inside (a container) or outside (an "
+                            "obstacle) [-].");
+          prm.declare_entry("flip normals",
+                            "false",
+                            Bool(),
+                            "Reverse the normals of a 'line', 'plane' or "
+                            "'mesh' (the material is then on the other "
+                            "side) [-].");
+          prm.declare_entry("mesh file",
+                            "",
+                            Anything(),
+                            "Surface mesh of a 'mesh' boundary (Gmsh .msh, "
+                            "VTK .vtk or UCD .inp, read by deal.II's GridIn "
+                            "as Triangulation<dim-1, dim>) [-].");
+          prm.declare_entry(
+            "condition",
+            "fixed",
+            Selection("fixed|slip|contact|friction"),
+            "What the boundary imposes on the material at its particles: "
+            "'fixed' (u = u_bar), 'slip' ((u - u_bar).n = 0), 'contact' "
+            "((u - u_bar).n >= 0: pushes only, releases on separation), "
+            "'friction' (contact with Coulomb friction, stick or slip) [-].");
+          prm.declare_entry("friction coefficient",
+                            "0",
+                            Double(0.),
+                            "Coulomb friction coefficient mu of a "
+                            "'friction' boundary [-].");
+          prm.declare_entry(
+            "method",
+            "penalty",
+            Selection("penalty"),
+            "How the condition is imposed: 'penalty' (Chandra et al. 2021: "
+            "a spring of stiffness beta per unit surface on the "
+            "accumulated gap) [-]. Nitsche and Lagrange multipliers are not "
+            "implemented yet.");
+          prm.declare_entry(
+            "penalty factor",
+            "100",
+            Double(0.),
+            "Automatic penalty beta = factor * M / h, with M the P-wave "
+            "modulus of the material and h the smallest background cell "
+            "size; the penetration under a normal stress sigma is about "
+            "sigma h / (factor M) [-].");
+          prm.declare_entry("penalty parameter",
+                            "0",
+                            Double(0.),
+                            "Penalty beta given directly [Pa/m]; 0 uses the "
+                            "automatic value of 'penalty factor'.");
+          prm.declare_entry(
+            "particles per cell",
+            "2",
+            Integer(1, 10),
+            "Boundary particles per background cell length: the surface "
+            "mesh is refined to the smallest background cell size and this "
+            "many Gauss points are placed per surface cell and direction "
+            "[-].");
+          prm.enter_subsection("Displacement");
+          dealii::Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+          prm.set("Function expression", dim == 2 ? "0; 0" : "0; 0; 0");
+          prm.leave_subsection();
+          prm.leave_subsection();
+        }
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      boundaries.clear();
+      prm.enter_subsection("Boundary particles");
+      for (unsigned int k = 0; k < max_boundaries; ++k)
+        {
+          const std::string sub = "Boundary particles/" + slot_name(k);
+          prm.enter_subsection(slot_name(k));
+          BoundaryDescription<dim> b;
+          b.geometry = prm.get("geometry");
+          if (b.geometry == "none")
+            {
+              prm.leave_subsection();
+              continue;
+            }
+          b.name = prm.get("name");
+          if (b.name.empty() ||
+              b.name.find_first_of(", \t\"") != std::string::npos)
+            InputFile::reject(sub,
+                              "name",
+                              b.name,
+                              "a non-empty name without spaces, commas or "
+                              "quotes (it names CSV columns)");
+          for (const auto &other : boundaries)
+            if (other.name == b.name)
+              InputFile::reject(sub,
+                                "name",
+                                b.name,
+                                "a name not used by another boundary");
+          const std::string condition = prm.get("condition");
+          b.condition            = condition == "fixed"   ? Condition::fixed :
+                                   condition == "slip"    ? Condition::slip :
+                                   condition == "contact" ? Condition::contact :
+                                                            Condition::friction;
+          b.friction_coefficient = prm.get_double("friction coefficient");
+          if (b.condition == Condition::friction &&
+              !(b.friction_coefficient > 0.))
+            InputFile::reject(sub,
+                              "friction coefficient",
+                              prm.get("friction coefficient"),
+                              "a positive number for condition = friction "
+                              "(use 'contact' for frictionless contact)");
+          b.method            = prm.get("method");
+          b.penalty_factor    = prm.get_double("penalty factor");
+          b.penalty_parameter = prm.get_double("penalty parameter");
+          if (!(b.penalty_factor > 0.))
+            InputFile::reject(sub,
+                              "penalty factor",
+                              prm.get("penalty factor"),
+                              "a positive number");
+          b.particles_per_cell = prm.get_integer("particles per cell");
+          b.flip_normals       = prm.get_bool("flip normals");
+          b.material_inside    = prm.get("material side") == "inside";
+
+          if (b.geometry == "line" || b.geometry == "plane")
+            {
+              b.vertices = parse_point_list<dim>(prm, sub, "vertices");
+              if (b.geometry == "line" && b.vertices.size() < 2)
+                InputFile::reject(sub,
+                                  "vertices",
+                                  prm.get("vertices"),
+                                  "a line needs at least 2 points");
+              if (b.geometry == "plane" && b.vertices.size() != 3)
+                InputFile::reject(sub,
+                                  "vertices",
+                                  prm.get("vertices"),
+                                  "a plane needs exactly 3 points p0; p1; p2");
+              for (unsigned int i = 1; i < b.vertices.size(); ++i)
+                if (b.vertices[i].distance(b.vertices[i - 1]) <= 0. ||
+                    (b.geometry == "plane" &&
+                     b.vertices[i].distance(b.vertices[0]) <= 0.))
+                  InputFile::reject(sub,
+                                    "vertices",
+                                    prm.get("vertices"),
+                                    "distinct points (a segment or an edge "
+                                    "of zero length has no normal)");
+              if (dim == 3 && b.geometry == "plane")
+                {
+                  const dealii::Tensor<1, dim> n =
+                    dealii::cross_product_3d(b.vertices[1] - b.vertices[0],
+                                             b.vertices[2] - b.vertices[0]);
+                  if (!(n.norm() >
+                        1e-12 * (b.vertices[1] - b.vertices[0]).norm_square()))
+                    InputFile::reject(sub,
+                                      "vertices",
+                                      prm.get("vertices"),
+                                      "three points that are not on one line");
+                }
+            }
+          else if (b.geometry == "circle")
+            {
+              b.center = MPM::parse_point<dim>(prm, sub, "center");
+              b.radius = prm.get_double("radius");
+              if (!(b.radius > 0.))
+                InputFile::reject(sub,
+                                  "radius",
+                                  prm.get("radius"),
+                                  "a positive radius");
+            }
+          else if (b.geometry == "box")
+            {
+              const auto box = MPM::parse_box<dim>(prm, sub);
+              b.lower_corner = box.first;
+              b.upper_corner = box.second;
+            }
+          else if (b.geometry == "mesh")
+            {
+              b.mesh_file = prm.get("mesh file");
+              std::ifstream in(b.mesh_file);
+              if (!in)
+                InputFile::reject(sub,
+                                  "mesh file",
+                                  b.mesh_file,
+                                  "a readable surface mesh file");
+            }
+
+          prm.enter_subsection("Displacement");
+          b.displacement =
+            std::make_unique<dealii::Functions::ParsedFunction<dim>>(dim);
+          parse_function(prm, *b.displacement, sub + "/Displacement");
+          b.moving =
+            prm.get("Function expression") != (dim == 2 ? "0; 0" : "0; 0; 0");
+          prm.leave_subsection();
+          prm.leave_subsection();
+          boundaries.push_back(std::move(b));
+        }
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::make_surface(
+      const BoundaryDescription<dim>      &b,
+      const unsigned int                   index,
+      dealii::Triangulation<dim - 1, dim> &surface) const
+    {
+      const std::string sub = "Boundary particles/" + slot_name(index);
+      if (b.geometry == "line" || b.geometry == "plane")
+        {
+          std::vector<dealii::CellData<dim - 1>> cells;
+          std::vector<dealii::Point<dim>>        vertices = b.vertices;
+          if (dim == 2)
+            for (unsigned int i = 0; i + 1 < vertices.size(); ++i)
+              {
+                dealii::CellData<dim - 1> c;
+                c.vertices[0] = i;
+                c.vertices[1] = i + 1;
+                cells.push_back(c);
+              }
+          else
+            {
+              vertices.push_back(vertices[1] + (vertices[2] - vertices[0]));
+              dealii::CellData<dim - 1> c;
+              for (unsigned int v = 0; v < 4; ++v)
+                c.vertices[v] = v;
+              cells.push_back(c);
+            }
+          surface.create_triangulation(vertices, cells, dealii::SubCellData());
+        }
+      else if (b.geometry == "circle")
+        {
+          if constexpr (dim == 2)
+            dealii::GridGenerator::hyper_sphere(surface, b.center, b.radius);
+        }
+      else if (b.geometry == "box")
+        {
+          dealii::Triangulation<dim> volume;
+          dealii::GridGenerator::hyper_rectangle(volume,
+                                                 b.lower_corner,
+                                                 b.upper_corner);
+          dealii::GridGenerator::extract_boundary_mesh(volume, surface);
+        }
+      else
+        {
+          dealii::GridIn<dim - 1, dim> in(surface);
+          std::ifstream                file(b.mesh_file);
+          try
+            {
+              in.read(file);
+            }
+          catch (const std::exception &e)
+            {
+              InputFile::reject(
+                sub,
+                "mesh file",
+                b.mesh_file,
+                "a surface mesh deal.II can read (Gmsh .msh, "
+                ".vtk, .inp) with cells of dimension " +
+                  std::to_string(dim - 1) + " (" +
+                  dealii::Utilities::trim(e.what()).substr(0, 300) + ")");
+            }
+          if (surface.n_active_cells() == 0)
+            InputFile::reject(sub,
+                              "mesh file",
+                              b.mesh_file,
+                              "a surface mesh with at least one cell");
+        }
+      // Refine until no surface cell is larger than the smallest grid cell.
+      double h = std::numeric_limits<double>::max();
+      for (unsigned int d = 0; d < dim; ++d)
+        h = std::min(h,
+                     grid.is_cartesian ? grid.cell_extent[d] :
+                                         grid.minimal_cell_diameter);
+      for (unsigned int level = 0; level < 20; ++level)
+        {
+          double largest = 0.;
+          for (const auto &cell : surface.active_cell_iterators())
+            largest = std::max(largest, cell->diameter());
+          if (largest <= 1.0001 * h)
+            break;
+          surface.refine_global(1);
+        }
+    }
+
+
+    template <int dim>
+    dealii::Tensor<1, dim>
+    BoundaryParticles<dim>::orient(const BoundaryDescription<dim> &b,
+                                   const dealii::Point<dim>       &x,
+                                   const dealii::Tensor<1, dim>   &n_mesh) const
+    {
+      dealii::Tensor<1, dim> n = n_mesh / n_mesh.norm();
+      if (b.geometry == "circle" || b.geometry == "box")
+        {
+          // Outward from the center, then into the material.
+          const dealii::Point<dim> c =
+            b.geometry == "circle" ?
+              b.center :
+              dealii::Point<dim>(0.5 * (b.lower_corner + b.upper_corner));
+          if (n * (x - c) < 0.)
+            n = -n;
+          if (b.material_inside)
+            n = -n;
+        }
+      else if (b.geometry == "line")
+        {
+          // Left of the direction of travel: (-t_y, t_x); the mesh normal
+          // of a segment is +-that, pick the sign from the segment.
+          (void)x;
+        }
+      else if (b.geometry == "plane")
+        {
+          const dealii::Tensor<1, dim> m =
+            dealii::cross_product_3d(b.vertices[1] - b.vertices[0],
+                                     b.vertices[2] - b.vertices[0]);
+          if (n * m < 0.)
+            n = -n;
+        }
+      if (b.flip_normals)
+        n = -n;
+      return n;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::generate(const double p_wave_modulus)
+    {
+      using Properties = BoundaryParticleProperties<dim>;
+      handler.initialize(grid.triangulation,
+                         grid.mapping,
+                         Properties::n_properties);
+      handler.signals.particle_lost.connect(
+        [this](
+          const typename dealii::Particles::ParticleIterator<dim> &,
+          const typename dealii::Triangulation<dim>::active_cell_iterator &) {
+          ++lost;
+        });
+      if (boundaries.empty())
+        return;
+
+      double h = std::numeric_limits<double>::max();
+      for (unsigned int d = 0; d < dim; ++d)
+        h = std::min(h,
+                     grid.is_cartesian ? grid.cell_extent[d] :
+                                         grid.minimal_cell_diameter);
+
+      const bool root =
+        dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) == 0;
+      std::vector<dealii::Point<dim>>  points;
+      std::vector<std::vector<double>> properties;
+      std::vector<unsigned int>        n_made(boundaries.size(), 0);
+      for (unsigned int b = 0; b < boundaries.size(); ++b)
+        {
+          auto &desc = boundaries[b];
+          desc.beta  = desc.penalty_parameter > 0. ?
+                         desc.penalty_parameter :
+                         desc.penalty_factor * p_wave_modulus / h;
+          // Every rank builds the (small) surface; rank 0 inserts it.
+          dealii::Triangulation<dim - 1, dim> surface;
+          make_surface(desc, b, surface);
+          const dealii::QGauss<dim - 1>   quadrature(desc.particles_per_cell);
+          dealii::FE_Q<dim - 1, dim>      fe(1);
+          dealii::MappingQ1<dim - 1, dim> mapping;
+          dealii::FEValues<dim - 1, dim>  fe_values(
+            mapping,
+            fe,
+            quadrature,
+            dealii::update_quadrature_points | dealii::update_JxW_values |
+              dealii::update_normal_vectors);
+          for (const auto &cell : surface.active_cell_iterators())
+            {
+              fe_values.reinit(cell);
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                {
+                  const auto            &x = fe_values.quadrature_point(q);
+                  dealii::Tensor<1, dim> n = fe_values.normal_vector(q);
+                  if (desc.geometry == "line")
+                    {
+                      // left of the direction of travel of this segment
+                      const dealii::Tensor<1, dim> t =
+                        cell->vertex(1) - cell->vertex(0);
+                      dealii::Tensor<1, dim> left;
+                      left[0] = -t[1];
+                      left[1] = t[0];
+                      if (n * left < 0.)
+                        n = -n;
+                    }
+                  n = orient(desc, x, n);
+                  ++n_made[b];
+                  if (!root)
+                    continue;
+                  const dealii::Point<dim> X =
+                    off_faces(x + prescribed_displacement(b, x, 0.), n);
+                  std::vector<double> prop(Properties::n_properties, 0.);
+                  prop[Properties::boundary] = b;
+                  prop[Properties::weight]   = fe_values.JxW(q);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      prop[Properties::normal + d]             = n[d];
+                      prop[Properties::reference_position + d] = x[d];
+                    }
+                  points.push_back(X);
+                  properties.push_back(std::move(prop));
+                }
+            }
+        }
+
+      const auto local_boxes =
+        dealii::GridTools::compute_mesh_predicate_bounding_box(
+          grid.triangulation,
+          dealii::IteratorFilters::LocallyOwnedCell(),
+          1,
+          true,
+          4);
+      const auto global_boxes =
+        dealii::Utilities::MPI::all_gather(grid.mpi_communicator, local_boxes);
+      handler.insert_global_particles(points, global_boxes, properties);
+      handler.update_cached_numbers();
+
+      // Count the inserted particles per boundary.
+      std::vector<unsigned int> inserted(boundaries.size(), 0);
+      for (const auto &p : handler)
+        ++inserted[static_cast<unsigned int>(
+          p.get_properties()[Properties::boundary])];
+      MPI_Allreduce(MPI_IN_PLACE,
+                    inserted.data(),
+                    inserted.size(),
+                    MPI_UNSIGNED,
+                    MPI_SUM,
+                    grid.mpi_communicator);
+      for (unsigned int b = 0; b < boundaries.size(); ++b)
+        {
+          if (inserted[b] == 0)
+            InputFile::reject("Boundary particles/" + slot_name(b),
+                              "geometry",
+                              boundaries[b].geometry,
+                              "a boundary that lies (at least partly) inside "
+                              "the background grid: none of its " +
+                                std::to_string(n_made[b]) +
+                                " particles is in a grid cell");
+          if (root && inserted[b] < n_made[b])
+            std::cout << "  boundary " << boundaries[b].name << ": "
+                      << n_made[b] - inserted[b] << " of " << n_made[b]
+                      << " particles lie outside the background grid and "
+                         "are ignored"
+                      << std::endl;
+        }
+    }
+
+
+    template <int dim>
+    dealii::Point<dim>
+    BoundaryParticles<dim>::off_faces(const dealii::Point<dim>     &x,
+                                      const dealii::Tensor<1, dim> &n) const
+    {
+      if (!grid.is_cartesian)
+        return x;
+      // A particle on a face of the Cartesian grid would belong to either
+      // cell (deal.II picks one); move it by 1e-6 h into the material so
+      // that it acts in the cell the material fills.
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double r = (x[d] - grid.lower_corner[d]) / grid.cell_extent[d];
+          if (std::abs(r - std::round(r)) < 1e-6)
+            return x + 1e-6 * grid.cell_extent.norm() * n;
+        }
+      return x;
+    }
+
+
+    template <int dim>
+    dealii::Tensor<1, dim>
+    BoundaryParticles<dim>::prescribed_displacement(const unsigned int        b,
+                                                    const dealii::Point<dim> &X,
+                                                    const double t) const
+    {
+      dealii::Tensor<1, dim> u;
+      if (!boundaries[b].moving)
+        return u;
+      boundaries[b].displacement->set_time(t);
+      for (unsigned int d = 0; d < dim; ++d)
+        u[d] = boundaries[b].displacement->value(X, d);
+      return u;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::move_to(const double t)
+    {
+      using Properties = BoundaryParticleProperties<dim>;
+      bool any_moving  = false;
+      for (const auto &b : boundaries)
+        any_moving = any_moving || b.moving;
+      if (!any_moving)
+        return;
+      for (auto &p : handler)
+        {
+          const auto         props = p.get_properties();
+          const unsigned int b =
+            static_cast<unsigned int>(props[Properties::boundary]);
+          if (!boundaries[b].moving)
+            continue;
+          dealii::Point<dim> X;
+          for (unsigned int d = 0; d < dim; ++d)
+            X[d] = props[Properties::reference_position + d];
+          dealii::Tensor<1, dim> n;
+          for (unsigned int d = 0; d < dim; ++d)
+            n[d] = props[Properties::normal + d];
+          p.set_location(off_faces(X + prescribed_displacement(b, X, t), n));
+        }
+      handler.sort_particles_into_subdomains_and_cells();
+    }
+
+
+    template <int dim>
+    std::vector<BoundaryResultant<dim>>
+    BoundaryParticles<dim>::resultants() const
+    {
+      using Properties = BoundaryParticleProperties<dim>;
+      std::vector<BoundaryResultant<dim>> r(boundaries.size());
+      std::vector<dealii::Tensor<1, dim>> tangential(boundaries.size());
+      for (const auto &p : handler)
+        {
+          const auto         props = p.get_properties();
+          const unsigned int b =
+            static_cast<unsigned int>(props[Properties::boundary]);
+          if (props[Properties::state] == 0.)
+            continue;
+          dealii::Tensor<1, dim> R, n, g;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              R[d] = props[Properties::reaction + d];
+              n[d] = props[Properties::normal + d];
+              g[d] = props[Properties::gap + d];
+            }
+          r[b].force += R;
+          r[b].normal_force -= R * n;
+          tangential[b] += R - (R * n) * n;
+          r[b].penetration = std::max(r[b].penetration, -(g * n));
+          ++r[b].active;
+        }
+      const MPI_Comm comm = grid.mpi_communicator;
+      for (unsigned int b = 0; b < boundaries.size(); ++b)
+        {
+          r[b].force = dealii::Utilities::MPI::sum(r[b].force, comm);
+          r[b].normal_force =
+            dealii::Utilities::MPI::sum(r[b].normal_force, comm);
+          r[b].tangential_force =
+            dealii::Utilities::MPI::sum(tangential[b], comm).norm();
+          r[b].penetration =
+            dealii::Utilities::MPI::max(r[b].penetration, comm);
+          r[b].active = dealii::Utilities::MPI::sum(r[b].active, comm);
+        }
+      return r;
+    }
+
+
+    template class BoundaryParticles<2>;
+    template class BoundaryParticles<3>;
+  } // namespace Boundaries
+} // namespace Talus
