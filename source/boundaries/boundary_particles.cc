@@ -385,10 +385,23 @@ namespace Talus
       else
         {
           dealii::GridIn<dim - 1, dim> in(surface);
-          std::ifstream                file(b.mesh_file);
           try
             {
-              in.read(file);
+              // format from the file name's extension (.msh, .vtk, .inp)
+              in.read(b.mesh_file);
+            }
+          catch (const dealii::ExceptionBase &e)
+            {
+              std::ostringstream info;
+              e.print_info(info);
+              InputFile::reject(
+                sub,
+                "mesh file",
+                b.mesh_file,
+                "a surface mesh deal.II can read (Gmsh .msh, "
+                ".vtk, .inp) with cells of dimension " +
+                  std::to_string(dim - 1) + " (" +
+                  dealii::Utilities::trim(info.str()).substr(0, 300) + ")");
             }
           catch (const std::exception &e)
             {

@@ -719,8 +719,8 @@ namespace Talus
       time = new_time;
       dt   = step;
       cache_particles();
-      cache_boundary_particles();
       project_to_grid();
+      cache_boundary_particles();
       initialize_friction_states();
       make_constraints();
       amg_current = false;
@@ -912,25 +912,6 @@ namespace Talus
           if (!ok)
             break;
 
-          // Boundary particles of the cell: penalty forces on the material.
-          for (unsigned int b = 0; b < c.n_boundary; ++b)
-            {
-              const BoundaryPoint   &bp = boundary_points[c.first_boundary + b];
-              dealii::Tensor<1, dim> du_b;
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                du_b[comp[i]] += bp.N[node[i]] * du_local[i];
-              const BoundaryForce bf = boundary_force(bp, du_b);
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                {
-                  const double Ni = bp.N[node[i]];
-                  r_local[i] += Ni * bf.force[comp[i]];
-                  if (with_matrix)
-                    for (unsigned int j = 0; j < dofs_per_cell; ++j)
-                      k_local(i, j) -=
-                        Ni * bp.N[node[j]] * bf.dforce_du[comp[i]][comp[j]];
-                }
-            }
-
           if (!grid.friction_boundaries.empty() &&
               cell_touches_friction[c.cell->active_cell_index()])
             {
@@ -962,6 +943,40 @@ namespace Talus
                 }
             }
 
+          if (with_matrix)
+            constraints.distribute_local_to_global(
+              k_local, r_local, c.dofs, matrix, residual);
+          else
+            constraints.distribute_local_to_global(r_local, c.dofs, residual);
+        }
+
+      // Boundary particles in cells with at least one node that carries
+      // mass: penalty forces on the material.
+      for (const auto &c : boundary_cells)
+        {
+          if (!ok)
+            break;
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            du_local[i] = du(c.dofs[i]);
+          k_local = 0.;
+          r_local = 0.;
+          for (unsigned int b = 0; b < c.n_boundary; ++b)
+            {
+              const BoundaryPoint   &bp = boundary_points[c.first_boundary + b];
+              dealii::Tensor<1, dim> du_b;
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                du_b[comp[i]] += bp.N[node[i]] * du_local[i];
+              const BoundaryForce bf = boundary_force(bp, du_b);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const double Ni = bp.N[node[i]];
+                  r_local[i] += Ni * bf.force[comp[i]];
+                  if (with_matrix)
+                    for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                      k_local(i, j) -=
+                        Ni * bp.N[node[j]] * bf.dforce_du[comp[i]][comp[j]];
+                }
+            }
           if (with_matrix)
             constraints.distribute_local_to_global(
               k_local, r_local, c.dofs, matrix, residual);
@@ -2013,7 +2028,7 @@ namespace Talus
               props[BP::state] = 0.;
             }
           double work = 0.;
-          for (const auto &c : cells)
+          for (const auto &c : boundary_cells)
             for (unsigned int b = 0; b < c.n_boundary; ++b)
               {
                 const BoundaryPoint &bp = boundary_points[c.first_boundary + b];
@@ -2024,6 +2039,13 @@ namespace Talus
                     du_b[ci.first] += bp.N[ci.second] * displacement(c.dofs[i]);
                   }
                 const BoundaryForce bf = boundary_force(bp, du_b);
+                // The part of the force on nodes without mass (constrained)
+                // does not act on the material: report the rest.
+                double active_share = 0.;
+                for (unsigned int k = 0; k < n_nodes; ++k)
+                  if (nodal_mass(c.dofs[fe.component_to_system_index(0, k)]) >
+                      0.)
+                    active_share += bp.N[k];
                 // dissipated: -f . (relative increment - elastic gap change)
                 work -= bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
                 auto particle = bp.particle;
@@ -2031,7 +2053,7 @@ namespace Talus
                 for (unsigned int d = 0; d < dim; ++d)
                   {
                     props[BP::gap + d]      = bf.gap[d];
-                    props[BP::reaction + d] = -bf.force[d];
+                    props[BP::reaction + d] = -active_share * bf.force[d];
                   }
                 props[BP::state] = bf.state;
               }
@@ -2094,10 +2116,8 @@ namespace Talus
           a_ghosted = a;
           matrix    = 0.;
           residual  = 0.;
-          for (const auto &c : cells)
+          for (const auto &c : boundary_cells)
             {
-              if (c.n_boundary == 0)
-                continue;
               k_local = 0.;
               r_local = 0.;
               for (unsigned int b = 0; b < c.n_boundary; ++b)
@@ -2185,15 +2205,29 @@ namespace Talus
       auto              &handler = boundary_particles->particle_handler();
       const auto        &base    = grid.fe.base_element(0);
       const unsigned int n_nodes = base.dofs_per_cell;
-      for (auto &c : cells)
+      boundary_cells.clear();
+      for (const auto &cell : grid.dof_handler.active_cell_iterators())
         {
+          if (!cell->is_locally_owned())
+            continue;
           const typename dealii::Triangulation<dim>::active_cell_iterator
-                             tria_cell(c.cell);
+                             tria_cell(cell);
           const unsigned int n = handler.n_particles_in_cell(tria_cell);
-          c.first_boundary     = boundary_points.size();
-          c.n_boundary         = n;
           if (n == 0)
             continue;
+          CellCache c;
+          c.cell  = cell;
+          c.first = 0;
+          c.n     = 0;
+          c.dofs.resize(grid.fe.dofs_per_cell);
+          cell->get_dof_indices(c.dofs);
+          bool has_mass = false;
+          for (const auto i : c.dofs)
+            has_mass = has_mass || nodal_mass(i) > 0.;
+          if (!has_mass)
+            continue;
+          c.first_boundary = boundary_points.size();
+          c.n_boundary     = n;
           std::vector<dealii::Point<dim>> reference_points;
           for (auto p = handler.particles_in_cell(tria_cell).begin();
                p != handler.particles_in_cell(tria_cell).end();
@@ -2249,6 +2283,7 @@ namespace Talus
                     N[k] = fe_values.shape_value(k, q);
                 }
             }
+          boundary_cells.push_back(std::move(c));
         }
     }
 

@@ -411,6 +411,8 @@ namespace Talus
 
       Boundaries::BoundaryParticles<dim> *boundary_particles = nullptr;
       std::vector<BoundaryPoint>          boundary_points;
+      /** Cells with boundary particles and a node that carries mass. */
+      std::vector<CellCache> boundary_cells;
 
       dealii::types::global_dof_index n_active;
       bool                            prepared;
