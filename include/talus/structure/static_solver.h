@@ -1,0 +1,79 @@
+#ifndef talus_structure_static_solver_h
+#define talus_structure_static_solver_h
+
+#include <talus/structure/structure.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <string>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    /** Outcome of one Newton solve. */
+    struct NewtonStatus
+    {
+      bool         converged  = false;
+      unsigned int iterations = 0;
+      double       residual   = 0.; ///< final |r| [N]
+      std::string  failure;
+    };
+
+
+    /**
+     * Static equilibrium of a Structure: for a load factor lambda, find u
+     * with f_int(u) = lambda f_ext (+ external nodal forces) and the
+     * prescribed displacements lambda u_D, by Newton's method with the
+     * consistent tangent, solved with UMFPACK (the tangent is
+     * non-symmetric with follower pressure), and an optional backtracking
+     * line search on |r|. Load stepping: lambda = k/n for k = 1..n.
+     * Displacement control: prescribe the displacement of the loaded node
+     * (Structure::prescribe) instead of a load and read the reaction; this
+     * follows a path through limit points of the load as long as the
+     * controlled displacement grows monotonically (the von Mises truss).
+     * Lambda = 0 is the pre-stress equilibrium step.
+     */
+    class StaticSolver
+    {
+    public:
+      explicit StaticSolver(Structure &structure);
+
+      /** Subsection "Structure/Solver". */
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+
+      /** Allocate the matrix and vectors (after Structure::setup_system). */
+      void
+      setup();
+
+      /**
+       * Solve for @p load_factor from the current displacement; on success
+       * commits the history.
+       */
+      NewtonStatus
+      solve(const double load_factor);
+
+      dealii::Vector<double> displacement;
+
+      unsigned int load_steps     = 10;
+      unsigned int max_iterations = 30;
+      double       tolerance      = 1e-10;
+      bool         line_search    = true;
+
+    private:
+      Structure                   &structure;
+      dealii::SparseMatrix<double> matrix;
+      /** Largest nodal force norm seen, the scale of the tolerance [N]. */
+      double force_scale = 0.;
+    };
+  } // namespace Structure
+} // namespace Talus
+
+#endif

@@ -1,0 +1,145 @@
+#include <talus/base/input.h>
+#include <talus/structure/static_solver.h>
+
+#include <deal.II/lac/sparse_direct.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    StaticSolver::StaticSolver(Structure &structure)
+      : structure(structure)
+    {}
+
+
+    void
+    StaticSolver::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using dealii::Patterns::Bool;
+      using dealii::Patterns::Double;
+      using dealii::Patterns::Integer;
+      prm.enter_subsection("Solver");
+      prm.declare_entry("load steps",
+                        "10",
+                        Integer(1),
+                        "Number of equal load (or prescribed displacement) "
+                        "increments from 0 to the full load [-].");
+      prm.declare_entry("maximum Newton iterations",
+                        "30",
+                        Integer(1),
+                        "Newton iterations allowed per load step [-].");
+      prm.declare_entry("tolerance",
+                        "1e-10",
+                        Double(0),
+                        "Newton converges when |r| <= tolerance * max(|f_int|, "
+                        "|f_ext|) (Euclidean norms over the free DoFs) [-].");
+      prm.declare_entry("line search",
+                        "true",
+                        Bool(),
+                        "Backtracking line search on |r| (halving the Newton "
+                        "step up to 10 times).");
+      prm.leave_subsection();
+    }
+
+
+    void
+    StaticSolver::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Solver");
+      load_steps     = prm.get_integer("load steps");
+      max_iterations = prm.get_integer("maximum Newton iterations");
+      tolerance      = get_positive(prm, "Structure/Solver", "tolerance");
+      line_search    = prm.get_bool("line search");
+      prm.leave_subsection();
+    }
+
+
+    void
+    StaticSolver::setup()
+    {
+      matrix.reinit(structure.get_sparsity_pattern());
+      displacement.reinit(structure.n_dofs());
+    }
+
+
+    NewtonStatus
+    StaticSolver::solve(const double load_factor)
+    {
+      NewtonStatus           status;
+      dealii::Vector<double> r, du, trial;
+      structure.apply_prescribed(displacement, load_factor);
+      // Scale of the forces: the unconstrained f_int - f_ext at every node
+      // (external loads before the first iteration, reactions at the
+      // supports), the largest seen so far.
+      const auto scale = [&](const dealii::Vector<double> &) {
+        double s = 0.;
+        for (unsigned int i = 0; i < structure.n_nodes(); ++i)
+          s += structure.reaction(i).norm_square();
+        force_scale = std::max(force_scale, std::sqrt(s));
+        return force_scale;
+      };
+
+      double norm = structure.assemble(displacement, load_factor, r, &matrix);
+      double reference = std::max(scale(r), 1e-300);
+      for (unsigned int it = 0; it <= max_iterations; ++it)
+        {
+          status.iterations = it;
+          status.residual   = norm;
+          if (!std::isfinite(norm))
+            {
+              status.failure = "the residual is not finite";
+              return status;
+            }
+          if (norm <= tolerance * reference)
+            {
+              status.converged = true;
+              structure.commit_state();
+              return status;
+            }
+          if (it == max_iterations)
+            break;
+
+          dealii::SparseDirectUMFPACK direct;
+          try
+            {
+              direct.initialize(matrix);
+            }
+          catch (...)
+            {
+              status.failure = "the tangent matrix is singular";
+              return status;
+            }
+          du = r;
+          direct.solve(du);
+          du *= -1.;
+          structure.get_constraints().distribute(du);
+
+          double alpha = 1.;
+          trial        = displacement;
+          trial.add(alpha, du);
+          double new_norm = structure.assemble(trial, load_factor, r, nullptr);
+          if (line_search)
+            for (unsigned int k = 0;
+                 k < 10 && !(new_norm < (1. - 1e-4 * alpha) * norm);
+                 ++k)
+              {
+                alpha *= 0.5;
+                trial = displacement;
+                trial.add(alpha, du);
+                new_norm = structure.assemble(trial, load_factor, r, nullptr);
+              }
+          displacement = trial;
+          norm      = structure.assemble(displacement, load_factor, r, &matrix);
+          reference = std::max(reference, scale(r));
+        }
+      std::ostringstream msg;
+      msg << "Newton did not converge in " << max_iterations
+          << " iterations (|r| = " << norm << " N)";
+      status.failure = msg.str();
+      return status;
+    }
+  } // namespace Structure
+} // namespace Talus
