@@ -822,6 +822,14 @@ namespace Talus
           s.add_point_load(ring, p.point_load);
         }
 
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          // 1 % lower than the stress-free position: a taut start (a
+          // stress-free cable has no lateral stiffness).
+          u[s.node_dof(ring, 2)] = 0.01 * s.node_position(ring)[2];
+        }
+
         std::vector<Result>
         results(const Structure &s, const Vector<double> &u) override
         {

@@ -3,6 +3,7 @@
 
 #include <deal.II/lac/sparse_direct.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -71,19 +72,19 @@ namespace Talus
       NewtonStatus           status;
       dealii::Vector<double> r, du, trial;
       structure.apply_prescribed(displacement, load_factor);
-      // Scale of the forces: the unconstrained f_int - f_ext at every node
-      // (external loads before the first iteration, reactions at the
-      // supports), the largest seen so far.
-      const auto scale = [&](const dealii::Vector<double> &) {
+      // Scale of the forces: the largest nodal force norm (reactions and
+      // loads) of the converged states so far, or the initial residual of
+      // this step if larger. Iterates never change it (a diverging iterate
+      // must not loosen the tolerance).
+      const auto nodal_force_norm = [&]() {
         double s = 0.;
         for (unsigned int i = 0; i < structure.n_nodes(); ++i)
           s += structure.reaction(i).norm_square();
-        force_scale = std::max(force_scale, std::sqrt(s));
-        return force_scale;
+        return std::sqrt(s);
       };
-
       double norm = structure.assemble(displacement, load_factor, r, &matrix);
-      double reference = std::max(scale(r), 1e-300);
+      const double reference =
+        std::max({force_scale, nodal_force_norm(), 1e-300});
       for (unsigned int it = 0; it <= max_iterations; ++it)
         {
           status.iterations = it;
@@ -97,6 +98,7 @@ namespace Talus
             {
               status.converged = true;
               structure.commit_state();
+              force_scale = std::max(force_scale, nodal_force_norm());
               return status;
             }
           if (it == max_iterations)
@@ -132,8 +134,7 @@ namespace Talus
                 new_norm = structure.assemble(trial, load_factor, r, nullptr);
               }
           displacement = trial;
-          norm      = structure.assemble(displacement, load_factor, r, &matrix);
-          reference = std::max(reference, scale(r));
+          norm = structure.assemble(displacement, load_factor, r, &matrix);
         }
       std::ostringstream msg;
       msg << "Newton did not converge in " << max_iterations
