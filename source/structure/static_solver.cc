@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <iostream>
 #include <sstream>
 
 namespace Talus
@@ -83,12 +85,16 @@ namespace Talus
         return std::sqrt(s);
       };
       double norm = structure.assemble(displacement, load_factor, r, &matrix);
+      double mu   = 0.;
       const double reference =
         std::max({force_scale, nodal_force_norm(), 1e-300});
       for (unsigned int it = 0; it <= max_iterations; ++it)
         {
           status.iterations = it;
           status.residual   = norm;
+          if (std::getenv("TALUS_DEBUG"))
+            std::cerr << "    it " << it << " |r| " << norm << " ref "
+                      << reference << " mu " << mu << std::endl;
           if (!std::isfinite(norm))
             {
               status.failure = "the residual is not finite";
@@ -104,35 +110,62 @@ namespace Talus
           if (it == max_iterations)
             break;
 
-          dealii::SparseDirectUMFPACK direct;
-          try
+          // Newton direction from (K + mu I) du = -r. mu = 0 unless the
+          // line search finds no decrease of |r|; then mu is raised
+          // (Levenberg-Marquardt) until it does, and lowered again after
+          // each successful step. mu changes only the iteration path, not
+          // the solution (it never enters r). Needed for cable nets that
+          // start stress-free (slack) and snap taut.
+          const dealii::Vector<double> r0           = r;
+          double                       max_diagonal = 0.;
+          for (unsigned int i = 0; i < matrix.m(); ++i)
+            max_diagonal = std::max(max_diagonal, matrix.diag_element(i));
+          double applied_mu = 0.;
+          bool   decreased  = false;
+          double new_norm   = norm;
+          for (unsigned int attempt = 0; attempt < 12 && !decreased; ++attempt)
             {
-              direct.initialize(matrix);
-            }
-          catch (...)
-            {
-              status.failure = "the tangent matrix is singular";
-              return status;
-            }
-          du = r;
-          direct.solve(du);
-          du *= -1.;
-          structure.get_constraints().distribute(du);
+              for (unsigned int i = 0; i < matrix.m(); ++i)
+                if (!structure.get_constraints().is_constrained(i))
+                  matrix.diag_element(i) += mu - applied_mu;
+              applied_mu = mu;
+              dealii::SparseDirectUMFPACK direct;
+              try
+                {
+                  direct.initialize(matrix);
+                }
+              catch (...)
+                {
+                  status.failure = "the tangent matrix is singular";
+                  return status;
+                }
+              du = r0;
+              direct.solve(du);
+              du *= -1.;
+              structure.get_constraints().distribute(du);
 
-          double alpha = 1.;
-          trial        = displacement;
-          trial.add(alpha, du);
-          double new_norm = structure.assemble(trial, load_factor, r, nullptr);
-          if (line_search)
-            for (unsigned int k = 0;
-                 k < 10 && !(new_norm < (1. - 1e-4 * alpha) * norm);
-                 ++k)
-              {
-                alpha *= 0.5;
-                trial = displacement;
-                trial.add(alpha, du);
-                new_norm = structure.assemble(trial, load_factor, r, nullptr);
-              }
+              double alpha = 1.;
+              trial        = displacement;
+              trial.add(alpha, du);
+              new_norm  = structure.assemble(trial, load_factor, r, nullptr);
+              decreased = new_norm < (1. - 1e-4 * alpha) * norm;
+              if (line_search)
+                for (unsigned int k = 0; k < 6 && !decreased; ++k)
+                  {
+                    alpha *= 0.5;
+                    trial = displacement;
+                    trial.add(alpha, du);
+                    new_norm =
+                      structure.assemble(trial, load_factor, r, nullptr);
+                    decreased = new_norm < (1. - 1e-4 * alpha) * norm;
+                  }
+              if (!line_search)
+                decreased = true;
+              if (!decreased)
+                mu = (mu == 0. ? 1e-8 * max_diagonal : 10. * mu);
+            }
+          if (decreased)
+            mu = (mu < 1e-7 * max_diagonal ? 0. : 0.1 * mu);
           displacement = trial;
           norm = structure.assemble(displacement, load_factor, r, &matrix);
         }
