@@ -1,6 +1,7 @@
 #include <talus/app/simulation.h>
 #include <talus/app/structure_simulation.h>
 #include <talus/base/input.h>
+#include <talus/structure/dynamic_solver.h>
 #include <talus/structure/static_solver.h>
 #include <talus/structure/structure.h>
 
@@ -101,6 +102,8 @@ namespace Talus
         std::string  directory;
         bool         write_vtu = false, test_mode = false;
         double       tolerance = 0., reference_displacement = 0.;
+        bool         dynamic        = false;
+        double       mode_amplitude = 0.;
         unsigned int n_levels = 1, first_level = 0;
         double       minimum_rate = 0.;
       };
@@ -174,6 +177,17 @@ namespace Talus
 
         virtual std::string
         description() const = 0;
+
+        /** The model can run with 'dynamic = true'. */
+        virtual bool
+        supports_dynamics() const
+        {
+          return false;
+        }
+
+        /** Set by the time loop before monitor(): time [s] and total
+         * energy (kinetic + strain + load potential) [J]. */
+        double time = 0., total_energy = 0.;
 
       protected:
         const Parameters &p;
@@ -761,17 +775,94 @@ namespace Talus
           centre = node_at(s, Point<3>());
         }
 
+        bool
+        supports_dynamics() const override
+        {
+          return true;
+        }
+
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          if (!p.dynamic)
+            return;
+          for (unsigned int k = 0; k < s.n_nodes(); ++k)
+            {
+              const Point<3> &x   = s.node_position(k);
+              u[s.node_dof(k, 2)] = p.mode_amplitude *
+                                    std::cos(numbers::PI * x[0] / p.side) *
+                                    std::cos(numbers::PI * x[1] / p.side);
+            }
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return !p.dynamic;
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure      &s,
+                const Vector<double> &u,
+                const double) override
+        {
+          if (!p.dynamic)
+            return {};
+          const double w = u[s.node_dof(centre, 2)];
+          if (times.empty())
+            energy0 = total_energy;
+          if (!times.empty() && (w > 0.) != (w_last > 0.))
+            crossings.push_back(time -
+                                (time - times.back()) * w / (w - w_last));
+          max_drift =
+            std::max(max_drift,
+                     std::abs(total_energy - energy0) / std::abs(energy0));
+          times.push_back(time);
+          w_last = w;
+          return {{"time", time},
+                  {"centre_deflection", w},
+                  {"total_energy", total_energy}};
+        }
+
         std::vector<Result>
         results(const Structure &s, const Vector<double> &u) override
         {
           const double N0 = p.thickness * p.membrane_prestress[0];
+          if (p.dynamic)
+            {
+              // w = A cos(omega t): omega = (pi/a) sqrt(2 N0/(rho t)).
+              const double omega =
+                numbers::PI / p.side *
+                std::sqrt(2. * N0 / (p.membrane_density * p.thickness));
+              if (crossings.size() < 2)
+                throw ExcSimulationFailed(
+                  "the centre of the membrane crossed zero fewer than twice: "
+                  "run longer to measure the period");
+              const double period =
+                2. * (crossings.back() - crossings[0]) / (crossings.size() - 1);
+              // The linear frequency is the reference only for small
+              // amplitudes (stretching stiffens the membrane).
+              const bool linear = std::abs(p.mode_amplitude) < 1e-3 * p.side;
+              return {{linear ? "period of the first mode [s]" :
+                                "period (large amplitude, not checked) [s]",
+                       period,
+                       2. * numbers::PI / omega,
+                       linear},
+                      {"max |E - E0| / E0 (energy drift)",
+                       max_drift,
+                       0.,
+                       true,
+                       true}};
+            }
           return {{"centre deflection w_max [m]",
                    u[s.node_dof(centre, 2)],
                    0.07367135 * p.pressure * p.side * p.side / N0}};
         }
 
       private:
-        unsigned int centre = 0;
+        unsigned int        centre = 0;
+        std::vector<double> times, crossings;
+        double              w_last = 0., energy0 = 0., max_drift = 0.;
       };
 
 
@@ -1199,6 +1290,7 @@ namespace Talus
             p.membrane_G  = get_positive(prm, ms, "shear modulus");
           }
         p.thickness          = get_positive(prm, ms, "thickness");
+        p.mode_amplitude     = prm.get_double("initial mode amplitude");
         p.membrane_density   = get_non_negative(prm, ms, "density");
         p.membrane_prestress = get_vector(prm, ms, "prestress");
         p.wrinkling          = prm.get_bool("wrinkling");
@@ -1258,6 +1350,15 @@ namespace Talus
                             prm.get("Loads/point load"),
                             "the sliding ring needs a non-zero load in the "
                             "x-z plane");
+
+        prm.enter_subsection("Dynamics");
+        p.dynamic = prm.get_bool("dynamic");
+        prm.leave_subsection();
+        if (p.dynamic && p.model != "square membrane")
+          InputFile::reject(S + "/Dynamics",
+                            "dynamic",
+                            "true",
+                            "only model 'square membrane' runs in time so far");
 
         prm.enter_subsection("Output");
         p.directory = prm.get("output directory");
@@ -1385,6 +1486,12 @@ namespace Talus
                         Patterns::Bool(),
                         "Tension-field law: no compressive principal stress "
                         "(taut / wrinkled / slack).");
+      prm.declare_entry("initial mode amplitude",
+                        "0",
+                        Patterns::Double(),
+                        "Dynamic square membrane: initial deflection A "
+                        "cos(pi x/a) cos(pi y/a) (the first mode) [m], "
+                        "released from rest.");
       prm.declare_entry("initial deflection",
                         "0",
                         Patterns::Double(),
@@ -1493,6 +1600,7 @@ namespace Talus
       prm.leave_subsection();
 
       Talus::Structure::StaticSolver::declare_parameters(prm);
+      Talus::Structure::DynamicSolver::declare_parameters(prm);
 
       prm.enter_subsection("Output");
       prm.declare_entry("output directory",
@@ -1677,7 +1785,69 @@ namespace Talus
             return status;
           };
 
-          if (model->prestress_step())
+          Talus::Structure::DynamicSolver dynamics(structure, solver);
+          prm.enter_subsection(S);
+          dynamics.parse_parameters(prm);
+          prm.leave_subsection();
+          if (dynamics.enabled)
+            {
+              dynamics.initialize();
+              const auto energy = [&]() {
+                return dynamics.kinetic_energy() + structure.strain_energy() +
+                       structure.load_potential(solver.displacement, 1.);
+              };
+              model->time         = 0.;
+              model->total_energy = energy();
+              model->monitor(structure, solver.displacement, 0.);
+              unsigned int step = 0, newton = 0;
+              double       t = 0.;
+              while (t < dynamics.end_time - 1e-12 * dynamics.time_step)
+                {
+                  const double dt =
+                    std::min(dynamics.time_step, dynamics.end_time - t);
+                  const auto status = dynamics.solve_step(dt);
+                  if (!status.converged)
+                    throw ExcSimulationFailed(
+                      "the time step from t = " + std::to_string(t) +
+                      " s did not converge: " + status.failure +
+                      ". Reduce 'time step' in subsection Structure/Dynamics.");
+                  dynamics.commit_step();
+                  t += dt;
+                  ++step;
+                  newton += status.iterations;
+                  // Energies at the committed state.
+                  dealii::Vector<double> r;
+                  structure.assemble(solver.displacement, 1., r, nullptr);
+                  model->time         = t;
+                  model->total_energy = energy();
+                  const auto values =
+                    model->monitor(structure, solver.displacement, t);
+                  if (step == 1)
+                    {
+                      csv << "step,newton_iterations,residual";
+                      for (const auto &v : values)
+                        csv << ',' << v.first;
+                      csv << '\n';
+                    }
+                  csv << step << ',' << status.iterations << ','
+                      << status.residual;
+                  for (const auto &v : values)
+                    csv << ',' << v.second;
+                  csv << '\n';
+                  if (p.write_vtu)
+                    structure.write_vtu(solver.displacement,
+                                        p.directory,
+                                        step,
+                                        t);
+                }
+              std::cout << "  " << step << " time steps, "
+                        << std::setprecision(3)
+                        << static_cast<double>(newton) / step
+                        << " Newton iterations per step\n"
+                        << std::setprecision(6);
+              path.clear();
+            }
+          else if (model->prestress_step())
             {
               const auto status = run_step(0, 0.);
               std::cout << "  pre-stress equilibrium (load factor 0): "
@@ -1685,14 +1855,17 @@ namespace Talus
                                                      "reached")
                         << '\n';
             }
-          unsigned int newton = 0;
-          for (unsigned int k = 0; k < path.size(); ++k)
-            newton += run_step(k + 1, path[k]).iterations;
-          std::cout << "  " << path.size() << " load steps, "
-                    << std::setprecision(3)
-                    << static_cast<double>(newton) / path.size()
-                    << " Newton iterations per step\n"
-                    << std::setprecision(6);
+          if (!dynamics.enabled)
+            {
+              unsigned int newton = 0;
+              for (unsigned int k = 0; k < path.size(); ++k)
+                newton += run_step(k + 1, path[k]).iterations;
+              std::cout << "  " << path.size() << " load steps, "
+                        << std::setprecision(3)
+                        << static_cast<double>(newton) / path.size()
+                        << " Newton iterations per step\n"
+                        << std::setprecision(6);
+            }
 
           const auto results = model->results(structure, solver.displacement);
           std::cout << "  " << std::left << std::setw(44) << "quantity"
@@ -1751,7 +1924,7 @@ namespace Talus
           const auto &fine   = level_results[p.n_levels - 1];
           const auto &coarse = level_results[p.n_levels - 2];
           for (unsigned int i = 0; i < fine.size(); ++i)
-            if (fine[i].checked)
+            if (fine[i].checked && !fine[i].is_error)
               {
                 const double rate =
                   std::log2(coarse[i].error() / fine[i].error());

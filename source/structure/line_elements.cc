@@ -125,7 +125,10 @@ namespace Talus
         }
       const double N     = area * S * l / L;
       const double dN_dl = Et * area * l * l / (L * L * L) + area * S / L;
+      const double eps_e = eps - r.state.plastic;
       r.force            = N;
+      r.energy =
+        area * L * (0.5 * youngs_modulus * eps_e * eps_e + prestress * eps_e);
       assemble_axial(e, l, N, dN_dl, r);
     }
 
@@ -162,6 +165,7 @@ namespace Talus
       if (S <= 0.)
         {
           assemble_slack(slack_stiffness_ratio * youngs_modulus * area / L, r);
+          r.energy = -area * L * prestress * prestress / (2. * youngs_modulus);
           return;
         }
       r.slack        = false;
@@ -169,6 +173,8 @@ namespace Talus
       const double dN_dl =
         youngs_modulus * area * l * l / (L * L * L) + area * S / L;
       r.force = N;
+      r.energy =
+        area * L * (0.5 * youngs_modulus * eps * eps + prestress * eps);
       assemble_axial(e, l, N, dN_dl, r);
     }
 
@@ -205,6 +211,7 @@ namespace Talus
       if (d - s <= 0.)
         {
           assemble_slack(slack_stiffness_ratio * stiffness, r);
+          r.energy = 0.;
           return;
         }
       r.slack          = false;
@@ -230,7 +237,8 @@ namespace Talus
               N = stiffness * (d - s_new);
             }
         }
-      r.force = N;
+      r.force  = N;
+      r.energy = 0.5 * N * N / stiffness;
       assemble_axial(e, l, N, dN_dl, r);
     }
   } // namespace Structure

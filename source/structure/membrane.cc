@@ -219,6 +219,9 @@ namespace Talus
               const double m   = 0.5 * (s11 + s22);
               const double R   = std::hypot(0.5 * (s11 - s22), s12);
               output->area += dA;
+              const Tensor<1, 3> CE = material.elasticity() * E;
+              output->strain_energy +=
+                t * (0.5 * (E * CE) + material.prestress * E) * dA;
               output->mean_stress += m * dA;
               output->max_principal += (m + R) * dA;
               output->min_principal += (m - R) * dA;

@@ -11,7 +11,8 @@ namespace Talus
     SlidingCable::compute(const std::vector<dealii::Tensor<1, 3>> &X,
                           const std::vector<dealii::Tensor<1, 3>> &x,
                           dealii::Vector<double>                  &f,
-                          dealii::FullMatrix<double>              &K) const
+                          dealii::FullMatrix<double>              &K,
+                          double                                  *energy) const
     {
       const unsigned int n_nodes = X.size();
       if (n_nodes < 2 || x.size() != n_nodes)
@@ -34,6 +35,11 @@ namespace Talus
         }
       const double eps = (l * l - L * L) / (2. * L * L);
       const double S   = youngs_modulus * eps + prestress;
+      if (energy != nullptr)
+        *energy =
+          S <= 0. ?
+            -area * L * prestress * prestress / (2. * youngs_modulus) :
+            area * L * (0.5 * youngs_modulus * eps * eps + prestress * eps);
       if (S <= 0.)
         {
           // Slack: regularising stiffness on every segment only.

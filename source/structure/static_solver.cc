@@ -69,11 +69,24 @@ namespace Talus
 
 
     NewtonStatus
-    StaticSolver::solve(const double load_factor)
+    StaticSolver::solve(const double      load_factor,
+                        const ExtraTerms &extra,
+                        const bool        commit)
     {
       NewtonStatus           status;
       dealii::Vector<double> r, du, trial;
       structure.apply_prescribed(displacement, load_factor);
+      const auto assemble = [&](const dealii::Vector<double> &u,
+                                dealii::Vector<double>       &res,
+                                dealii::SparseMatrix<double> *K) {
+        double n = structure.assemble(u, load_factor, res, K);
+        if (extra)
+          {
+            extra(u, res, K);
+            n = res.l2_norm();
+          }
+        return n;
+      };
       // Scale of the forces: the largest nodal force norm (reactions and
       // loads) of the converged states so far, or the initial residual of
       // this step if larger. Iterates never change it (a diverging iterate
@@ -84,8 +97,8 @@ namespace Talus
           s += structure.reaction(i).norm_square();
         return std::sqrt(s);
       };
-      double norm = structure.assemble(displacement, load_factor, r, &matrix);
-      double mu   = 0.;
+      double       norm = assemble(displacement, r, &matrix);
+      double       mu   = 0.;
       const double reference =
         std::max({force_scale, nodal_force_norm(), 1e-300});
       for (unsigned int it = 0; it <= max_iterations; ++it)
@@ -103,7 +116,8 @@ namespace Talus
           if (norm <= tolerance * reference)
             {
               status.converged = true;
-              structure.commit_state();
+              if (commit)
+                structure.commit_state();
               force_scale = std::max(force_scale, nodal_force_norm());
               return status;
             }
@@ -147,7 +161,7 @@ namespace Talus
               double alpha = 1.;
               trial        = displacement;
               trial.add(alpha, du);
-              new_norm  = structure.assemble(trial, load_factor, r, nullptr);
+              new_norm  = assemble(trial, r, nullptr);
               decreased = new_norm < (1. - 1e-4 * alpha) * norm;
               if (line_search)
                 for (unsigned int k = 0; k < 6 && !decreased; ++k)
@@ -155,8 +169,7 @@ namespace Talus
                     alpha *= 0.5;
                     trial = displacement;
                     trial.add(alpha, du);
-                    new_norm =
-                      structure.assemble(trial, load_factor, r, nullptr);
+                    new_norm  = assemble(trial, r, nullptr);
                     decreased = new_norm < (1. - 1e-4 * alpha) * norm;
                   }
               if (!line_search)
@@ -167,7 +180,7 @@ namespace Talus
           if (decreased)
             mu = (mu < 1e-7 * max_diagonal ? 0. : 0.1 * mu);
           displacement = trial;
-          norm = structure.assemble(displacement, load_factor, r, &matrix);
+          norm         = assemble(displacement, r, &matrix);
         }
       std::ostringstream msg;
       msg << "Newton did not converge in " << max_iterations

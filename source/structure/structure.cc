@@ -381,6 +381,104 @@ namespace Talus
         dsp.add(i, i);
       sparsity.copy_from(dsp);
       raw_residual.reinit(total_dofs);
+
+      // Lumped mass, onto the master DoFs.
+      dealii::Vector<double> raw_mass(total_dofs);
+      for (const auto &mesh : line_meshes)
+        {
+          if (mesh->sliding_cable)
+            {
+              const double rhoA =
+                mesh->sliding_cable->density * mesh->sliding_cable->area;
+              for (unsigned int k = 0; k + 1 < mesh->chain.size(); ++k)
+                {
+                  const double m =
+                    0.5 * rhoA *
+                    (mesh->chain_X[k + 1] - mesh->chain_X[k]).norm();
+                  for (unsigned int c = 0; c < 3; ++c)
+                    {
+                      raw_mass[mesh->chain[k][c]] += m;
+                      raw_mass[mesh->chain[k + 1][c]] += m;
+                    }
+                }
+              continue;
+            }
+          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+            {
+              const double m = 0.5 * mesh->element->mass_per_length() *
+                               cell->vertex(0).distance(cell->vertex(1));
+              for (unsigned int v = 0; v < 2; ++v)
+                for (unsigned int c = 0; c < 3; ++c)
+                  raw_mass[mesh->offset + cell->vertex_dof_index(v, c)] += m;
+            }
+        }
+      if (!membrane_meshes.empty())
+        {
+          const dealii::QGauss<2>       quadrature(2);
+          dealii::FEValues<2, 3>        fe_values(membrane_fe,
+                                           quadrature,
+                                           dealii::update_values |
+                                             dealii::update_JxW_values);
+          std::vector<global_dof_index> indices(membrane_fe.n_dofs_per_cell());
+          for (const auto &mesh : membrane_meshes)
+            {
+              const double rho_t =
+                mesh->membrane->density * mesh->membrane->material.thickness;
+              for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+                {
+                  fe_values.reinit(cell);
+                  cell->get_dof_indices(indices);
+                  for (unsigned int i = 0; i < indices.size(); ++i)
+                    {
+                      const unsigned int c =
+                        membrane_fe.system_to_component_index(i).first;
+                      for (unsigned int q = 0; q < quadrature.size(); ++q)
+                        raw_mass[mesh->offset + indices[i]] +=
+                          rho_t * fe_values.shape_value_component(i, q, c) *
+                          fe_values.JxW(q);
+                    }
+                }
+            }
+        }
+      mass.reinit(total_dofs);
+      for (const auto &node : nodes)
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            mass[node.dofs[c]] = raw_mass[node.dofs[c]];
+            for (const auto &slave : node.slaves)
+              mass[node.dofs[c]] += raw_mass[slave[c]];
+          }
+    }
+
+
+    double
+    Structure::strain_energy() const
+    {
+      return last_strain_energy;
+    }
+
+
+    const dealii::Vector<double> &
+    Structure::lumped_mass() const
+    {
+      return mass;
+    }
+
+
+    double
+    Structure::load_potential(const dealii::Vector<double> &u,
+                              const double                  load_factor) const
+    {
+      double V = 0.;
+      for (global_dof_index i = 0; i < total_dofs; ++i)
+        V -= external_forces[i] * u[i];
+      for (const auto &node : nodes)
+        for (unsigned int c = 0; c < 3; ++c)
+          V -= load_factor * mass[node.dofs[c]] * gravity[c] * u[node.dofs[c]];
+      for (const auto &[node, F] : point_loads)
+        for (unsigned int c = 0; c < 3; ++c)
+          V -= load_factor * F[c] * u[nodes[node].dofs[c]];
+      return V;
     }
 
 
@@ -401,7 +499,8 @@ namespace Talus
                         dealii::SparseMatrix<double> *K)
     {
       r.reinit(total_dofs);
-      raw_residual = 0.;
+      raw_residual       = 0.;
+      last_strain_energy = 0.;
       if (K != nullptr)
         *K = 0.;
       const auto add = [&](const dealii::FullMatrix<double>    &Ke,
@@ -471,6 +570,7 @@ namespace Talus
                 X[0], X[1], x[0], x[1], mesh->state[k], response);
               mesh->trial_state[k] = response.state;
               mesh->force[k]       = response.force;
+              last_strain_energy += response.energy;
               const double m =
                 mesh->element->mass_per_length() * (X[1] - X[0]).norm();
               for (unsigned int v = 0; v < 2; ++v)
@@ -516,6 +616,8 @@ namespace Talus
                     re,
                     Ke,
                     &mesh->cell_output[cell->active_cell_index()]);
+                  last_strain_energy +=
+                    mesh->cell_output[cell->active_cell_index()].strain_energy;
                   if (rho_t != 0.)
                     for (unsigned int q = 0; q < quadrature.size(); ++q)
                       for (unsigned int i = 0; i < n; ++i)

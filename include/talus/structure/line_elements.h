@@ -43,6 +43,7 @@ namespace Talus
       LineResponse();
 
       double                     force  = 0.; ///< axial force N [N]
+      double                     energy = 0.; ///< stored elastic energy [J]
       double                     strain = 0.; ///< GL strain (l^2-L^2)/(2L^2)
       bool                       slack  = false;
       dealii::Vector<double>     f;

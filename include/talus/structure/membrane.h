@@ -79,6 +79,9 @@ namespace Talus
       double max_principal    = 0.; ///< largest principal Cauchy stress [Pa]
       double min_principal    = 0.; ///< smallest principal Cauchy stress [Pa]
       unsigned int n_wrinkled = 0, n_slack = 0; ///< quadrature points
+      /** t int (E.C E/2 + S_0.E) dA0 (the SVK energy; with wrinkling the
+       * energy of the unmodified law) [J]. */
+      double strain_energy = 0.;
     };
 
 

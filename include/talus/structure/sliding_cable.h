@@ -44,7 +44,8 @@ namespace Talus
       compute(const std::vector<dealii::Tensor<1, 3>> &X,
               const std::vector<dealii::Tensor<1, 3>> &x,
               dealii::Vector<double>                  &f,
-              dealii::FullMatrix<double>              &K) const;
+              dealii::FullMatrix<double>              &K,
+              double                                  *energy = nullptr) const;
     };
   } // namespace Structure
 } // namespace Talus

@@ -8,6 +8,7 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <functional>
 #include <string>
 
 namespace Talus
@@ -54,11 +55,22 @@ namespace Talus
       setup();
 
       /**
+       * Terms added to the residual r (and the tangent K, if not null) at
+       * displacement u after the structure's own (e.g. inertia and damping
+       * of DynamicSolver); only on unconstrained DoFs.
+       */
+      using ExtraTerms = std::function<void(const dealii::Vector<double> &u,
+                                            dealii::Vector<double>       &r,
+                                            dealii::SparseMatrix<double> *K)>;
+
+      /**
        * Solve for @p load_factor from the current displacement; on success
-       * commits the history.
+       * commits the history if @p commit.
        */
       NewtonStatus
-      solve(const double load_factor);
+      solve(const double      load_factor,
+            const ExtraTerms &extra  = ExtraTerms(),
+            const bool        commit = true);
 
       dealii::Vector<double> displacement;
 

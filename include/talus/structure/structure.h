@@ -166,6 +166,26 @@ namespace Talus
       apply_prescribed(dealii::Vector<double> &u,
                        const double            load_factor) const;
 
+      /** Elastic energy stored in all elements at the last assemble() [J]
+       * (membranes: the SVK energy, also where wrinkling modifies the
+       * stress; brakes: the energy of their elastic spring). */
+      double
+      strain_energy() const;
+
+      /**
+       * Lumped mass per DoF [kg] (rho A L/2 per node of a line element,
+       * rho t int N_I dA0 for membranes), summed onto the master DoF of
+       * each node; zero on tied DoFs.
+       */
+      const dealii::Vector<double> &
+      lumped_mass() const;
+
+      /** Potential of the loads at load factor @p load_factor: -(point
+       * loads + gravity + external nodal forces) . u [J]. */
+      double
+      load_potential(const dealii::Vector<double> &u,
+                     const double                  load_factor) const;
+
       /** Accept the trial history (end of a converged step). */
       void
       commit_state();
@@ -226,6 +246,8 @@ namespace Talus
       dealii::SparsityPattern           sparsity;
       /** Unconstrained f_int - f_ext of the last assembly (reactions). */
       dealii::Vector<double> raw_residual;
+      dealii::Vector<double> mass;
+      double                 last_strain_energy = 0.;
 
       std::vector<std::pair<double, std::string>> pvd_records;
     };

@@ -1,0 +1,192 @@
+#include <talus/base/input.h>
+#include <talus/structure/dynamic_solver.h>
+
+#include <sstream>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    DynamicSolver::DynamicSolver(Structure &structure, StaticSolver &newton)
+      : structure(structure)
+      , newton(newton)
+    {}
+
+
+    void
+    DynamicSolver::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii;
+      prm.enter_subsection("Dynamics");
+      prm.declare_entry("dynamic",
+                        "false",
+                        Patterns::Bool(),
+                        "Solve the equations of motion in time (Bossak-"
+                        "Newmark, lumped mass) instead of static load "
+                        "steps. Supported by model 'square membrane' (free "
+                        "vibration).");
+      prm.declare_entry("end time",
+                        "1",
+                        Patterns::Double(),
+                        "End time [s], > 0.");
+      prm.declare_entry("time step",
+                        "0.01",
+                        Patterns::Double(),
+                        "Time step [s], > 0.");
+      prm.declare_entry("Bossak alpha",
+                        "0",
+                        Patterns::Double(-1. / 3., 0.),
+                        "alpha in [-1/3, 0]: 0 is the average acceleration "
+                        "rule (no numerical damping), < 0 damps high "
+                        "frequencies [-].");
+      prm.declare_entry("mass damping",
+                        "0",
+                        Patterns::Double(0),
+                        "Rayleigh coefficient a_M of C = a_M M + a_K K [1/s].");
+      prm.declare_entry("stiffness damping",
+                        "0",
+                        Patterns::Double(0),
+                        "Rayleigh coefficient a_K (K: tangent at the start "
+                        "of the step) [s].");
+      prm.leave_subsection();
+    }
+
+
+    void
+    DynamicSolver::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Dynamics");
+      enabled = prm.get_bool("dynamic");
+      if (enabled)
+        {
+          end_time  = get_positive(prm, "Structure/Dynamics", "end time");
+          time_step = get_positive(prm, "Structure/Dynamics", "time step");
+        }
+      alpha             = prm.get_double("Bossak alpha");
+      mass_damping      = prm.get_double("mass damping");
+      stiffness_damping = prm.get_double("stiffness damping");
+      prm.leave_subsection();
+    }
+
+
+    void
+    DynamicSolver::update_step_start()
+    {
+      u_n = newton.displacement;
+      if (stiffness_damping > 0.)
+        {
+          dealii::Vector<double> r;
+          K_n.reinit(structure.get_sparsity_pattern());
+          structure.assemble(u_n, 1., r, &K_n);
+        }
+    }
+
+
+    void
+    DynamicSolver::initialize()
+    {
+      const unsigned int n = structure.n_dofs();
+      velocity.reinit(n);
+      acceleration.reinit(n);
+      dealii::Vector<double> r;
+      structure.assemble(newton.displacement, 1., r, nullptr);
+      const auto &M = structure.lumped_mass();
+      for (unsigned int i = 0; i < n; ++i)
+        if (M[i] > 0. && !structure.get_constraints().is_constrained(i))
+          acceleration[i] = -r[i] / M[i];
+      update_step_start();
+    }
+
+
+    NewtonStatus
+    DynamicSolver::solve_step(const double dt)
+    {
+      const double       beta        = 0.25 * (1. - alpha) * (1. - alpha);
+      const double       gamma       = 0.5 - alpha;
+      const auto        &M           = structure.lumped_mass();
+      const auto        &constraints = structure.get_constraints();
+      const unsigned int n           = structure.n_dofs();
+      dt_last                        = dt;
+      a_trial.reinit(n);
+      v_trial.reinit(n);
+
+      const auto extra = [&](const dealii::Vector<double> &u,
+                             dealii::Vector<double>       &r,
+                             dealii::SparseMatrix<double> *K) {
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            a_trial[i] = (u[i] - u_n[i] - dt * velocity[i]) / (beta * dt * dt) -
+                         (0.5 - beta) / beta * acceleration[i];
+            v_trial[i] = velocity[i] + dt * ((1. - gamma) * acceleration[i] +
+                                             gamma * a_trial[i]);
+          }
+        dealii::Vector<double> Kv;
+        if (stiffness_damping > 0.)
+          {
+            Kv.reinit(n);
+            K_n.vmult(Kv, v_trial);
+          }
+        for (unsigned int i = 0; i < n; ++i)
+          if (!constraints.is_constrained(i))
+            {
+              r[i] +=
+                M[i] * ((1. - alpha) * a_trial[i] + alpha * acceleration[i]) +
+                mass_damping * M[i] * v_trial[i];
+              if (stiffness_damping > 0.)
+                r[i] += stiffness_damping * Kv[i];
+              if (K != nullptr)
+                K->diag_element(i) +=
+                  M[i] * ((1. - alpha) / (beta * dt * dt) +
+                          mass_damping * gamma / (beta * dt));
+            }
+        if (K != nullptr && stiffness_damping > 0.)
+          {
+            // + gamma/(beta dt) a_K K_n on the unconstrained rows.
+            const double f = stiffness_damping * gamma / (beta * dt);
+            for (unsigned int i = 0; i < n; ++i)
+              if (!constraints.is_constrained(i))
+                for (auto it = K_n.begin(i); it != K_n.end(i); ++it)
+                  K->add(i, it->column(), f * it->value());
+          }
+      };
+      // Predictor: the displacement of constant acceleration.
+      newton.displacement = u_n;
+      for (unsigned int i = 0; i < n; ++i)
+        if (!constraints.is_constrained(i))
+          newton.displacement[i] +=
+            dt * velocity[i] + 0.5 * dt * dt * acceleration[i];
+      const NewtonStatus status = newton.solve(1., extra, false);
+      // Make a_trial, v_trial those of the final iterate.
+      if (status.converged)
+        {
+          dealii::Vector<double> r(n);
+          extra(newton.displacement, r, nullptr);
+        }
+      return status;
+    }
+
+
+    void
+    DynamicSolver::commit_step()
+    {
+      structure.commit_state();
+      velocity     = v_trial;
+      acceleration = a_trial;
+      for (unsigned int i = 0; i < velocity.size(); ++i)
+        if (structure.get_constraints().is_constrained(i))
+          velocity[i] = acceleration[i] = 0.;
+      update_step_start();
+    }
+
+
+    double
+    DynamicSolver::kinetic_energy() const
+    {
+      const auto &M = structure.lumped_mass();
+      double      T = 0.;
+      for (unsigned int i = 0; i < velocity.size(); ++i)
+        T += 0.5 * M[i] * velocity[i] * velocity[i];
+      return T;
+    }
+  } // namespace Structure
+} // namespace Talus
