@@ -1,6 +1,7 @@
 #include <talus/app/simulation.h>
 #include <talus/app/structure_simulation.h>
 #include <talus/base/input.h>
+#include <talus/structure/barrier_builder.h>
 #include <talus/structure/dynamic_solver.h>
 #include <talus/structure/static_solver.h>
 #include <talus/structure/structure.h>
@@ -99,13 +100,14 @@ namespace Talus
         double              pressure = 0., prescribed_displacement = 0.;
         std::vector<double> load_path;
         // Output and verification.
-        std::string  directory;
-        bool         write_vtu = false, test_mode = false;
-        double       tolerance = 0., reference_displacement = 0.;
-        bool         dynamic        = false;
-        double       mode_amplitude = 0.;
-        unsigned int n_levels = 1, first_level = 0;
-        double       minimum_rate = 0.;
+        std::string directory;
+        bool        write_vtu = false, test_mode = false;
+        double      tolerance = 0., reference_displacement = 0.;
+        bool        dynamic = false;
+        Talus::Structure::BarrierBuilder barrier;
+        double                           mode_amplitude = 0.;
+        unsigned int                     n_levels = 1, first_level = 0;
+        double                           minimum_rate = 0.;
       };
 
 
@@ -181,6 +183,14 @@ namespace Talus
         /** The model can run with 'dynamic = true'. */
         virtual bool
         supports_dynamics() const
+        {
+          return false;
+        }
+
+        /** After a dynamic run: solve the static equilibrium from its end
+         * state (dynamic relaxation: damped motion to rest, then Newton). */
+        virtual bool
+        relax_to_equilibrium() const
         {
           return false;
         }
@@ -1234,9 +1244,142 @@ namespace Talus
       };
 
 
+      /**
+       * The standard barrier (BarrierBuilder) under pre-stress and gravity.
+       * Reference: global equilibrium. The reactions at all supports must
+       * balance the total weight W = g (sum rho A L of posts, cables and
+       * ropes + rho t A of the net), computed from the geometry.
+       */
+      class Barrier : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "standard three-field barrier under pre-stress and gravity";
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          builder            = p.barrier;
+          builder.net        = *membrane();
+          builder.brake_k    = p.brake_k;
+          builder.brake_Fa   = p.brake_Fa;
+          builder.brake_H    = p.brake_H;
+          builder.brake_smax = p.brake_smax;
+          builder.build(s);
+          s.gravity = p.gravity;
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        bool
+        supports_dynamics() const override
+        {
+          return true;
+        }
+
+        bool
+        relax_to_equilibrium() const override
+        {
+          return true;
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure &,
+                const Vector<double> &,
+                const double) override
+        {
+          return {{"time", time}, {"total_energy", total_energy}};
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          const auto    &b     = builder;
+          const double   theta = b.inclination * numbers::PI / 180.;
+          const double   Hs    = b.height / std::cos(theta);
+          const double   L     = b.n_fields * b.field_width;
+          const Point<3> head0(0., -Hs * std::sin(theta), Hs * std::cos(theta));
+          const Point<3> anchor_left(-b.end_anchor_offset, 0, 0);
+          double mass = (b.n_fields + 1) * b.post_density * b.post_A * Hs;
+          mass += b.cable_density * b.cable_A *
+                  (2. * anchor_left.distance(head0) + L + // top
+                   L + 2. * b.end_anchor_offset +         // bottom
+                   2. * Hs);                              // edges
+          for (unsigned int i = 0; i <= b.n_fields; ++i)
+            for (const double side : {-1., 1.})
+              {
+                const Point<3> head(i * b.field_width,
+                                    -Hs * std::sin(theta),
+                                    Hs * std::cos(theta));
+                const Point<3> anchor(i * b.field_width +
+                                        side * b.anchor_spread,
+                                      b.anchor_distance,
+                                      0.);
+                mass += b.rope_density * b.rope_A *
+                        (head.distance(anchor) - b.brake_length);
+              }
+          mass += p.membrane_density * p.thickness * L * Hs;
+          const Tensor<1, 3> W = mass * p.gravity;
+          Tensor<1, 3>       R;
+          for (const unsigned int n : b.supports)
+            R += s.reaction(n);
+          double umax = 0.;
+          for (unsigned int k = 0; k < s.n_nodes(); ++k)
+            umax = std::max(umax, s.node_displacement(u, k).norm());
+          const auto max_force = [&](const unsigned int mesh) {
+            double f = 0.;
+            for (const double x : s.line_meshes[mesh]->force)
+              f = std::max(f, std::abs(x));
+            return f;
+          };
+          double max_stroke = 0.;
+          for (const auto &st : s.line_meshes[b.brake_meshes[0]]->state)
+            max_stroke = std::max(max_stroke, st.plastic);
+          return {{"|sum of reactions + weight| / |weight|",
+                   (R + W).norm() / W.norm(),
+                   0.,
+                   true,
+                   true},
+                  {"total weight [N]", W.norm(), 0., false},
+                  {"largest displacement [m]", umax, 0., false},
+                  {"top cable tension [N]",
+                   max_force(b.support_cable_meshes[0]),
+                   0.,
+                   false},
+                  {"bottom cable tension [N]",
+                   max_force(b.support_cable_meshes[1]),
+                   0.,
+                   false},
+                  {"largest retaining rope force [N]",
+                   max_force(b.rope_meshes[0]),
+                   0.,
+                   false},
+                  {"largest post force (compression) [N]",
+                   max_force(b.post_meshes[0]),
+                   0.,
+                   false},
+                  {"largest brake stroke [m]", max_stroke, 0., false}};
+        }
+
+      private:
+        Talus::Structure::BarrierBuilder builder;
+      };
+
+
       std::unique_ptr<Model>
       create_model(const Parameters &p)
       {
+        if (p.model == "barrier")
+          return std::make_unique<Barrier>(p);
         if (p.model == "von Mises truss")
           return std::make_unique<VonMisesTruss>(p);
         if (p.model == "catenary")
@@ -1351,14 +1494,17 @@ namespace Talus
                             "the sliding ring needs a non-zero load in the "
                             "x-z plane");
 
+        p.barrier.parse_parameters(prm, S + "/Barrier");
+
         prm.enter_subsection("Dynamics");
         p.dynamic = prm.get_bool("dynamic");
         prm.leave_subsection();
-        if (p.dynamic && p.model != "square membrane")
+        if (p.dynamic && p.model != "square membrane" && p.model != "barrier")
           InputFile::reject(S + "/Dynamics",
                             "dynamic",
                             "true",
-                            "only model 'square membrane' runs in time so far");
+                            "only models 'square membrane' and 'barrier' run "
+                            "in time so far");
 
         prm.enter_subsection("Output");
         p.directory = prm.get("output directory");
@@ -1387,8 +1533,9 @@ namespace Talus
       prm.declare_entry(
         "model",
         "von Mises truss",
-        Patterns::Selection("von Mises truss|catenary|circular membrane|"
-                            "square membrane|sliding ring|brake|mesh file"),
+        Patterns::Selection(
+          "von Mises truss|catenary|circular membrane|"
+          "square membrane|sliding ring|brake|mesh file|barrier"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
@@ -1398,7 +1545,10 @@ namespace Talus
         "on a frictionless cable under 'point load'), 'brake' (brake in "
         "series with a cable, end pulled by 'prescribed displacement'), "
         "'mesh file' (a line mesh read from 'mesh file', ends fixed, "
-        "gravity). Each model with a closed form reports and checks it.");
+        "gravity), 'barrier' (the standard barrier of subsection Barrier "
+        "with net, posts, support cables, retaining ropes and brakes, "
+        "pre-stressed, under gravity). Each model with a closed form "
+        "reports and checks it.");
 
       prm.enter_subsection("Line members");
       prm.declare_entry("element",
@@ -1599,6 +1749,7 @@ namespace Talus
                         "increments; empty: 0 to 1 [-].");
       prm.leave_subsection();
 
+      Talus::Structure::BarrierBuilder::declare_parameters(prm);
       Talus::Structure::StaticSolver::declare_parameters(prm);
       Talus::Structure::DynamicSolver::declare_parameters(prm);
 
@@ -1799,12 +1950,15 @@ namespace Talus
               model->time         = 0.;
               model->total_energy = energy();
               model->monitor(structure, solver.displacement, 0.);
-              unsigned int step = 0, newton = 0;
-              double       t = 0.;
-              while (t < dynamics.end_time - 1e-12 * dynamics.time_step)
+              unsigned int       step = 0, newton = 0;
+              double             t       = 0.;
+              const unsigned int n_steps = static_cast<unsigned int>(
+                std::max(1.,
+                         std::round(dynamics.end_time / dynamics.time_step)));
+              // Equal steps that end exactly at the end time.
+              const double dt = dynamics.end_time / n_steps;
+              while (step < n_steps)
                 {
-                  const double dt =
-                    std::min(dynamics.time_step, dynamics.end_time - t);
                   const auto status = dynamics.solve_step(dt);
                   if (!status.converged)
                     throw ExcSimulationFailed(
@@ -1812,7 +1966,7 @@ namespace Talus
                       " s did not converge: " + status.failure +
                       ". Reduce 'time step' in subsection Structure/Dynamics.");
                   dynamics.commit_step();
-                  t += dt;
+                  t = (step + 1) * dt;
                   ++step;
                   newton += status.iterations;
                   // Energies at the committed state.
@@ -1846,6 +2000,22 @@ namespace Talus
                         << " Newton iterations per step\n"
                         << std::setprecision(6);
               path.clear();
+              if (model->relax_to_equilibrium())
+                {
+                  const double T      = dynamics.kinetic_energy();
+                  const auto   status = solver.solve(1.);
+                  if (!status.converged)
+                    throw ExcSimulationFailed(
+                      "the static equilibrium after the dynamic relaxation "
+                      "did not converge: " +
+                      status.failure + ". Run the relaxation longer.");
+                  std::cout << "  static equilibrium from the relaxed state "
+                               "(kinetic energy "
+                            << std::setprecision(3) << std::scientific << T
+                            << " J): " << status.iterations
+                            << " Newton iterations\n"
+                            << std::defaultfloat << std::setprecision(6);
+                }
             }
           else if (model->prestress_step())
             {

@@ -1,6 +1,8 @@
 #include <talus/base/input.h>
 #include <talus/structure/dynamic_solver.h>
 
+#include <cstdlib>
+#include <iostream>
 #include <sstream>
 
 namespace Talus
@@ -95,6 +97,15 @@ namespace Talus
         if (M[i] > 0. && !structure.get_constraints().is_constrained(i))
           acceleration[i] = -r[i] / M[i];
       update_step_start();
+      if (std::getenv("TALUS_DEBUG"))
+        {
+          unsigned int n_massless = 0;
+          for (unsigned int i = 0; i < n; ++i)
+            if (!structure.get_constraints().is_constrained(i) && !(M[i] > 0.))
+              ++n_massless;
+          std::cerr << "    dynamics: " << n_massless
+                    << " unconstrained DoFs without mass" << std::endl;
+        }
     }
 
 
@@ -149,12 +160,12 @@ namespace Talus
                   K->add(i, it->column(), f * it->value());
           }
       };
-      // Predictor: the displacement of constant acceleration.
+      // Predictor: constant velocity (the constant-acceleration predictor
+      // overshoots when a pre-stressed structure starts out of balance).
       newton.displacement = u_n;
       for (unsigned int i = 0; i < n; ++i)
         if (!constraints.is_constrained(i))
-          newton.displacement[i] +=
-            dt * velocity[i] + 0.5 * dt * dt * acceleration[i];
+          newton.displacement[i] += dt * velocity[i];
       const NewtonStatus status = newton.solve(1., extra, false);
       // Make a_trial, v_trial those of the final iterate.
       if (status.converged)

@@ -106,8 +106,26 @@ namespace Talus
           status.iterations = it;
           status.residual   = norm;
           if (std::getenv("TALUS_DEBUG"))
-            std::cerr << "    it " << it << " |r| " << norm << " ref "
-                      << reference << " mu " << mu << std::endl;
+            {
+              std::cerr << "    it " << it << " |r| " << norm << " ref "
+                        << reference << " mu " << mu << " slack:";
+              for (const auto &m : structure.line_meshes)
+                {
+                  unsigned int n = 0;
+                  for (const double f : m->force)
+                    n += (f == 0.);
+                  std::cerr << ' ' << m->name << '=' << n;
+                }
+              unsigned int nw = 0, ns = 0;
+              for (const auto &m : structure.membrane_meshes)
+                for (const auto &o : m->cell_output)
+                  {
+                    nw += o.n_wrinkled;
+                    ns += (o.min_principal < 0.);
+                  }
+              std::cerr << " net wrinkled/compressed " << nw << '/' << ns
+                        << std::endl;
+            }
           if (!std::isfinite(norm))
             {
               status.failure = "the residual is not finite";
@@ -123,6 +141,48 @@ namespace Talus
             }
           if (it == max_iterations)
             break;
+          if (std::getenv("TALUS_FD_CHECK") && it == 0)
+            {
+              // Debug: compare the tangent with central differences.
+              dealii::Vector<double> rp, rm, col(r.size()), e(r.size());
+              double                 worst = 0.;
+              unsigned int           worst_j = 0;
+              dealii::SparseMatrix<double> K0;
+              K0.reinit(structure.get_sparsity_pattern());
+              K0.copy_from(matrix);
+              for (unsigned int j = 0; j < r.size(); ++j)
+                {
+                  if (structure.get_constraints().is_constrained(j))
+                    continue;
+                  const double h = 1e-7;
+                  dealii::Vector<double> up = displacement, um = displacement;
+                  up[j] += h;
+                  um[j] -= h;
+                  structure.get_constraints().distribute(up);
+                  structure.get_constraints().distribute(um);
+                  assemble(up, rp, nullptr);
+                  assemble(um, rm, nullptr);
+                  e    = 0.;
+                  e[j] = 1.;
+                  K0.vmult(col, e);
+                  double diff = 0., ref = 0.;
+                  for (unsigned int i = 0; i < r.size(); ++i)
+                    {
+                      diff = std::max(diff,
+                                      std::abs((rp[i] - rm[i]) / (2. * h) -
+                                               col[i]));
+                      ref = std::max(ref, std::abs(col[i]));
+                    }
+                  if (diff / std::max(ref, 1e-300) > worst)
+                    {
+                      worst   = diff / std::max(ref, 1e-300);
+                      worst_j = j;
+                    }
+                }
+              std::cerr << "    FD check: worst column " << worst_j
+                        << " rel. error " << worst << std::endl;
+              assemble(displacement, r, &matrix);
+            }
 
           // Newton direction from (K + mu I) du = -r. mu = 0 unless the
           // line search finds no decrease of |r|; then mu is raised
@@ -148,9 +208,13 @@ namespace Talus
                 {
                   direct.initialize(matrix);
                 }
-              catch (...)
+              catch (const std::exception &e)
                 {
-                  status.failure = "the tangent matrix is singular";
+                  status.failure =
+                    "the tangent matrix cannot be factorised (singular: a "
+                    "mechanism or a node without stiffness and mass)";
+                  if (std::getenv("TALUS_DEBUG"))
+                    std::cerr << e.what() << std::endl;
                   return status;
                 }
               du = r0;
