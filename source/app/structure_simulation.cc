@@ -103,7 +103,9 @@ namespace Talus
         std::string directory;
         bool        write_vtu = false, test_mode = false;
         double      tolerance = 0., reference_displacement = 0.;
-        bool        dynamic = false;
+        bool        dynamic            = false;
+        bool        arc_length_control = false;
+        double      spring_EA = 0., spring_length = 1.;
         Talus::Structure::BarrierBuilder barrier;
         double                           mode_amplitude = 0.;
         unsigned int                     n_levels = 1, first_level = 0;
@@ -297,7 +299,12 @@ namespace Talus
         std::string
         description() const override
         {
-          return "von Mises two-bar truss, displacement control";
+          return std::string("von Mises two-bar truss") +
+                 (p.spring_EA > 0. ? " with a soft spring on the apex" : "") +
+                 (p.arc_length_control ?
+                    ", arc-length control" :
+                    (p.point_load.norm() > 0. ? ", load control" :
+                                                ", displacement control"));
         }
 
         void
@@ -314,6 +321,17 @@ namespace Talus
                     apex,
                     right,
                     p.elements);
+          spring_top = Point<3>(0, 0, p.rise + p.spring_length);
+          if (spring())
+            {
+              auto k            = std::make_shared<Talus::Structure::Truss>();
+              k->youngs_modulus = p.spring_EA;
+              k->area           = 1.;
+              make_line(s.add_line_mesh("spring", k).triangulation,
+                        apex,
+                        spring_top,
+                        1);
+            }
           s.setup_dofs();
           for (unsigned int c = 0; c < 3; ++c)
             {
@@ -324,12 +342,31 @@ namespace Talus
           for (unsigned int n = 0; n < s.n_nodes(); ++n)
             s.prescribe(n, 1);
           apex_node = node_at(s, apex);
+          load_node = apex_node;
+          if (spring())
+            {
+              // Soft vertical spring (a Truss with E A = spring EA) on the
+              // apex, loaded at its top, which is guided vertically.
+              load_node = node_at(s, spring_top);
+              s.prescribe(load_node, 0);
+              s.prescribe(apex_node, 0);
+            }
           if (load_control())
-            s.add_point_load(apex_node, p.point_load);
+            s.add_point_load(load_node, p.point_load);
           else
             s.prescribe(apex_node, 2, -p.prescribed_displacement);
           L0 = std::sqrt(p.half_span * p.half_span + p.rise * p.rise);
         }
+
+        bool
+        spring() const
+        {
+          return p.spring_EA > 0.;
+        }
+
+        /** Top of the spring, after the bars (it must exist before
+         * setup_dofs(): see build()). */
+        Point<3> spring_top;
 
         /** A load at the apex instead of its displacement. */
         bool
@@ -368,6 +405,25 @@ namespace Talus
           const double P_max = 2. * p.E * p.A * std::pow(p.rise, 3) /
                                (3. * std::sqrt(3.) * L0 * L0 * L0);
           max_error = std::max(max_error, std::abs(P - exact(v)) / P_max);
+          if (spring())
+            {
+              // Spring: E A lambda (lambda^2 - 1)/2 = -P(v), the top moves
+              // by w = v + L_s (1 - lambda).
+              const double Pv       = exact(v);
+              const double lambda_s = bisect(
+                [&](const double l) {
+                  return p.spring_EA * l * (l * l - 1.) / 2. + Pv;
+                },
+                1. / std::sqrt(3.),
+                3.);
+              const double w_exact = v + p.spring_length * (1. - lambda_s);
+              const double w       = -s.node_displacement(u, load_node)[2];
+              max_spring_error =
+                std::max(max_spring_error, std::abs(w - w_exact) / p.rise);
+              w_min      = std::min(w_min, w);
+              w_max_seen = std::max(w_max_seen, w);
+              snap_back  = snap_back || (w < w_max_seen - 1e-3 * p.rise);
+            }
           if (P > P_peak)
             {
               P_peak = P;
@@ -392,6 +448,38 @@ namespace Talus
                       << std::scientific << v << "  " << std::setw(11) << P
                       << "  " << std::setw(11) << exact(v) << '\n'
                       << std::defaultfloat;
+          if (load_control() && p.arc_length_control)
+            {
+              // Arc length: the whole path through the limit point.
+              const double v_end = table.back().first;
+              if (spring())
+                return {{"largest load on the path P_max [N]", P_peak, P_max},
+                        {"final apex displacement [m]", v_end, 0., false},
+                        {"max |P - P(v)| / P_max over the path",
+                         max_error,
+                         0.,
+                         true,
+                         true},
+                        {"max |w - w(v)| / h over the path (spring top)",
+                         max_spring_error,
+                         0.,
+                         true,
+                         true},
+                        {"snap-back traced (the spring top moved back up)",
+                         snap_back ? 1. : 0.,
+                         1.}};
+              return {{"largest load on the path P_max [N]", P_peak, P_max},
+                      {"apex displacement at the largest load [m]",
+                       v_peak,
+                       p.rise * (1. - 1. / std::sqrt(3.)),
+                       false},
+                      {"final apex displacement [m]", v_end, 0., false},
+                      {"max |P - P_exact| / P_max over the path",
+                       max_error,
+                       0.,
+                       true,
+                       true}};
+            }
           if (load_control())
             {
               // Load control: the apex displacement at the final load, the
@@ -436,6 +524,10 @@ namespace Talus
         double                                 max_error = 0.;
         double                                 P_peak = -1e300, v_peak = 0.;
         std::vector<std::pair<double, double>> table;
+        unsigned int                           load_node        = 0;
+        double                                 max_spring_error = 0.;
+        double w_min = 1e300, w_max_seen = -1e300;
+        bool   snap_back = false;
       };
 
 
@@ -1458,6 +1550,8 @@ namespace Talus
         p.radius             = get_positive(prm, gs, "radius");
         p.side               = get_positive(prm, gs, "side");
         p.cable_length       = get_positive(prm, gs, "cable length");
+        p.spring_EA          = get_non_negative(prm, gs, "spring EA");
+        p.spring_length      = get_positive(prm, gs, "spring length");
         p.refinements        = prm.get_integer("refinements");
         p.mesh_file          = prm.get("mesh file");
         prm.leave_subsection();
@@ -1495,6 +1589,9 @@ namespace Talus
                             "x-z plane");
 
         p.barrier.parse_parameters(prm, S + "/Barrier");
+        prm.enter_subsection("Solver");
+        p.arc_length_control = prm.get("control") == "arc length";
+        prm.leave_subsection();
 
         prm.enter_subsection("Dynamics");
         p.dynamic = prm.get_bool("dynamic");
@@ -1688,6 +1785,17 @@ namespace Talus
                         Patterns::Double(),
                         "Height h of the truss apex above the supports [m], "
                         "> 0.");
+      prm.declare_entry("spring EA",
+                        "0",
+                        Patterns::Double(),
+                        "von Mises truss: if > 0, a vertical Truss spring of "
+                        "this axial stiffness E A [N] stands on the apex and "
+                        "carries the load at its top (snap-back under load "
+                        "control when EA/L_s < EA h^2/L0^3).");
+      prm.declare_entry("spring length",
+                        "1",
+                        Patterns::Double(),
+                        "Length L_s of that spring [m], > 0.");
       prm.declare_entry("span",
                         "10",
                         Patterns::Double(),
@@ -2025,7 +2133,49 @@ namespace Talus
                                                      "reached")
                         << '\n';
             }
-          if (!dynamics.enabled)
+          if (!dynamics.enabled && solver.control == "arc length")
+            {
+              // Arc-length steps: the load factor is an unknown.
+              double                 lambda = 0.;
+              dealii::Vector<double> direction;
+              unsigned int           newton = 0;
+              for (unsigned int k = 1; k <= solver.load_steps; ++k)
+                {
+                  const auto status = solver.solve_arc_length(lambda,
+                                                              solver.arc_length,
+                                                              direction);
+                  if (!status.converged)
+                    throw ExcSimulationFailed(
+                      "arc-length step " + std::to_string(k) +
+                      " did not converge: " + status.failure + ".");
+                  newton += status.iterations;
+                  const auto values =
+                    model->monitor(structure, solver.displacement, lambda);
+                  if (k == 1)
+                    {
+                      csv << "step,load_factor,newton_iterations,residual";
+                      for (const auto &v : values)
+                        csv << ',' << v.first;
+                      csv << '\n';
+                    }
+                  csv << k << ',' << lambda << ',' << status.iterations << ','
+                      << status.residual;
+                  for (const auto &v : values)
+                    csv << ',' << v.second;
+                  csv << '\n';
+                  if (p.write_vtu)
+                    structure.write_vtu(solver.displacement,
+                                        p.directory,
+                                        k,
+                                        lambda);
+                }
+              std::cout << "  " << solver.load_steps << " arc-length steps, "
+                        << std::setprecision(3)
+                        << static_cast<double>(newton) / solver.load_steps
+                        << " Newton iterations per step\n"
+                        << std::setprecision(6);
+            }
+          else if (!dynamics.enabled)
             {
               unsigned int newton = 0;
               for (unsigned int k = 0; k < path.size(); ++k)

@@ -39,6 +39,21 @@ namespace Talus
                         Double(0),
                         "Newton converges when |r| <= tolerance * max(|f_int|, "
                         "|f_ext|) (Euclidean norms over the free DoFs) [-].");
+      prm.declare_entry("control",
+                        "load",
+                        dealii::Patterns::Selection("load|arc length"),
+                        "Path following: 'load' (the load factor steps of "
+                        "'load steps', displacement control through "
+                        "prescribed displacements) or 'arc length' "
+                        "(Crisfield's cylindrical arc-length method: the "
+                        "load factor is an unknown, so the path passes "
+                        "limit points; 'load steps' arc-length steps of "
+                        "size 'arc length').");
+      prm.declare_entry("arc length",
+                        "0.01",
+                        Double(),
+                        "Arc-length step ds: norm of the displacement "
+                        "increment of one step [m], > 0.");
       prm.declare_entry("line search",
                         "true",
                         Bool(),
@@ -56,6 +71,8 @@ namespace Talus
       max_iterations = prm.get_integer("maximum Newton iterations");
       tolerance      = get_positive(prm, "Structure/Solver", "tolerance");
       line_search    = prm.get_bool("line search");
+      control        = prm.get("control");
+      arc_length     = get_positive(prm, "Structure/Solver", "arc length");
       prm.leave_subsection();
     }
 
@@ -144,9 +161,9 @@ namespace Talus
           if (std::getenv("TALUS_FD_CHECK") && it == 0)
             {
               // Debug: compare the tangent with central differences.
-              dealii::Vector<double> rp, rm, col(r.size()), e(r.size());
-              double                 worst = 0.;
-              unsigned int           worst_j = 0;
+              dealii::Vector<double>       rp, rm, col(r.size()), e(r.size());
+              double                       worst   = 0.;
+              unsigned int                 worst_j = 0;
               dealii::SparseMatrix<double> K0;
               K0.reinit(structure.get_sparsity_pattern());
               K0.copy_from(matrix);
@@ -154,7 +171,7 @@ namespace Talus
                 {
                   if (structure.get_constraints().is_constrained(j))
                     continue;
-                  const double h = 1e-7;
+                  const double           h  = 1e-7;
                   dealii::Vector<double> up = displacement, um = displacement;
                   up[j] += h;
                   um[j] -= h;
@@ -168,9 +185,9 @@ namespace Talus
                   double diff = 0., ref = 0.;
                   for (unsigned int i = 0; i < r.size(); ++i)
                     {
-                      diff = std::max(diff,
-                                      std::abs((rp[i] - rm[i]) / (2. * h) -
-                                               col[i]));
+                      diff =
+                        std::max(diff,
+                                 std::abs((rp[i] - rm[i]) / (2. * h) - col[i]));
                       ref = std::max(ref, std::abs(col[i]));
                     }
                   if (diff / std::max(ref, 1e-300) > worst)
@@ -250,6 +267,133 @@ namespace Talus
       msg << "Newton did not converge in " << max_iterations
           << " iterations (|r| = " << norm << " N)";
       status.failure = msg.str();
+      return status;
+    }
+
+
+    NewtonStatus
+    StaticSolver::solve_arc_length(double                 &load_factor,
+                                   const double            ds,
+                                   dealii::Vector<double> &direction)
+    {
+      NewtonStatus           status;
+      const auto            &constraints = structure.get_constraints();
+      const unsigned int     n           = structure.n_dofs();
+      dealii::Vector<double> r(n), r0(n), f_ref(n), du_R(n), du_F(n), Du(n);
+      const dealii::Vector<double> u0      = displacement;
+      const double                 lambda0 = load_factor;
+      const auto free_dot = [&](const dealii::Vector<double> &a,
+                                const dealii::Vector<double> &b) {
+        double s = 0.;
+        for (unsigned int i = 0; i < n; ++i)
+          if (!constraints.is_constrained(i))
+            s += a[i] * b[i];
+        return s;
+      };
+      // Reference load vector f_ref = r(u, 0) - r(u, 1) (condensed) and the
+      // residual and tangent at (u, lambda).
+      const auto assemble = [&](const double lambda) {
+        structure.assemble(displacement, 0., r0, nullptr);
+        structure.assemble(displacement, 1., f_ref, nullptr);
+        f_ref *= -1.;
+        f_ref += r0;
+        return structure.assemble(displacement, lambda, r, &matrix);
+      };
+      const auto solve = [&](const dealii::Vector<double> &rhs,
+                             dealii::Vector<double>       &x) {
+        dealii::SparseDirectUMFPACK direct;
+        direct.initialize(matrix);
+        x = rhs;
+        direct.solve(x);
+        constraints.distribute(x);
+      };
+      const auto nodal_force_norm = [&]() {
+        double s = 0.;
+        for (unsigned int i = 0; i < structure.n_nodes(); ++i)
+          s += structure.reaction(i).norm_square();
+        return std::sqrt(s);
+      };
+
+      try
+        {
+          // Predictor along the tangent, in the previous direction.
+          assemble(load_factor);
+          solve(f_ref, du_F);
+          double dlambda =
+            ds / std::sqrt(std::max(free_dot(du_F, du_F), 1e-300));
+          if (direction.size() == n && free_dot(direction, du_F) < 0.)
+            dlambda = -dlambda;
+          Du = du_F;
+          Du *= dlambda;
+          load_factor += dlambda;
+          displacement = u0;
+          displacement += Du;
+
+          for (unsigned int it = 0; it <= max_iterations; ++it)
+            {
+              const double norm = assemble(load_factor);
+              const double reference =
+                std::max({force_scale, nodal_force_norm(), 1e-300});
+              status.iterations = it;
+              status.residual   = norm;
+              if (norm <= tolerance * reference)
+                {
+                  status.converged = true;
+                  structure.commit_state();
+                  force_scale = std::max(force_scale, nodal_force_norm());
+                  direction   = Du;
+                  return status;
+                }
+              if (it == max_iterations)
+                break;
+              dealii::Vector<double> minus_r = r;
+              minus_r *= -1.;
+              solve(minus_r, du_R);
+              solve(f_ref, du_F);
+              // |Du + du_R + dl du_F|^2 = ds^2.
+              dealii::Vector<double> w = Du;
+              w += du_R;
+              const double a    = free_dot(du_F, du_F);
+              const double b    = 2. * free_dot(du_F, w);
+              const double c    = free_dot(w, w) - ds * ds;
+              const double disc = b * b - 4. * a * c;
+              if (disc < 0.)
+                {
+                  status.failure = "no intersection with the arc-length "
+                                   "sphere (reduce 'arc length')";
+                  break;
+                }
+              const double roots[2] = {(-b + std::sqrt(disc)) / (2. * a),
+                                       (-b - std::sqrt(disc)) / (2. * a)};
+              // The root that keeps going forward (largest Du_new . Du).
+              double best = roots[0], best_cos = -1e300;
+              for (const double dl : roots)
+                {
+                  dealii::Vector<double> Dn = w;
+                  Dn.add(dl, du_F);
+                  const double cos = free_dot(Dn, Du);
+                  if (cos > best_cos)
+                    {
+                      best_cos = cos;
+                      best     = dl;
+                    }
+                }
+              Du = w;
+              Du.add(best, du_F);
+              load_factor += best;
+              displacement = u0;
+              displacement += Du;
+            }
+        }
+      catch (const std::exception &)
+        {
+          status.failure = "the tangent matrix cannot be factorised";
+        }
+      if (status.failure.empty())
+        status.failure = "the arc-length iteration did not converge in " +
+                         std::to_string(max_iterations) + " iterations";
+      displacement = u0;
+      load_factor  = lambda0;
       return status;
     }
   } // namespace Structure

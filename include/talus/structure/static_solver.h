@@ -72,12 +72,31 @@ namespace Talus
             const ExtraTerms &extra  = ExtraTerms(),
             const bool        commit = true);
 
+      /**
+       * One step of the arc-length method (Crisfield's cylindrical
+       * constraint |u - u_0|^2 = ds^2 over the unconstrained DoFs, bordering
+       * with two solves per iteration) from the committed state
+       * (displacement, @p load_factor). The load factor becomes an unknown:
+       * on success @p load_factor is the new one and the history is
+       * committed. The predictor follows the previous direction
+       * @p direction (updated), so the path passes limit points of the
+       * load. Needs homogeneous supports (prescribed displacements are
+       * not scaled by the arc-length load factor).
+       */
+      NewtonStatus
+      solve_arc_length(double                 &load_factor,
+                       const double            ds,
+                       dealii::Vector<double> &direction);
+
       dealii::Vector<double> displacement;
 
       unsigned int load_steps     = 10;
       unsigned int max_iterations = 30;
       double       tolerance      = 1e-10;
       bool         line_search    = true;
+      /** "load" (load factor steps) or "arc length". */
+      std::string control    = "load";
+      double      arc_length = 0.01; ///< ds [m]
 
     private:
       Structure                   &structure;
