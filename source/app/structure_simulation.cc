@@ -1467,6 +1467,38 @@ namespace Talus
       };
 
 
+      /**
+       * Columns of the CSV common to all models: the stored elastic energy,
+       * the largest axial force of every line mesh (the tension of a sliding
+       * cable), and for brakes the largest stroke and the dissipated energy.
+       */
+      std::vector<std::pair<std::string, double>>
+      structure_columns(const Structure &s)
+      {
+        std::vector<std::pair<std::string, double>> c = {
+          {"strain_energy", s.strain_energy()}};
+        for (const auto &m : s.line_meshes)
+          {
+            double f = 0.;
+            for (const double x : m->force)
+              f = std::max(f, std::abs(x));
+            c.emplace_back(m->name + "_max_force", f);
+            if (m->element && m->element->name() == "brake")
+              {
+                double stroke = 0., D = 0.;
+                for (const auto &st : m->state)
+                  {
+                    stroke = std::max(stroke, st.plastic);
+                    D += st.accumulated;
+                  }
+                c.emplace_back(m->name + "_max_stroke", stroke);
+                c.emplace_back(m->name + "_dissipated_energy", D);
+              }
+          }
+        return c;
+      }
+
+
       std::unique_ptr<Model>
       create_model(const Parameters &p)
       {
@@ -2014,8 +2046,10 @@ namespace Talus
                        "iterations' in subsection Structure/Solver.";
                 throw ExcSimulationFailed(msg.str());
               }
-            const auto values =
+            auto values =
               model->monitor(structure, solver.displacement, lambda);
+            for (const auto &c : structure_columns(structure))
+              values.push_back(c);
             if (!header)
               {
                 csv << "step,load_factor,newton_iterations,residual";
@@ -2082,8 +2116,10 @@ namespace Talus
                   structure.assemble(solver.displacement, 1., r, nullptr);
                   model->time         = t;
                   model->total_energy = energy();
-                  const auto values =
+                  auto values =
                     model->monitor(structure, solver.displacement, t);
+                  for (const auto &c : structure_columns(structure))
+                    values.push_back(c);
                   if (step == 1)
                     {
                       csv << "step,newton_iterations,residual";
@@ -2149,8 +2185,10 @@ namespace Talus
                       "arc-length step " + std::to_string(k) +
                       " did not converge: " + status.failure + ".");
                   newton += status.iterations;
-                  const auto values =
+                  auto values =
                     model->monitor(structure, solver.displacement, lambda);
+                  for (const auto &c : structure_columns(structure))
+                    values.push_back(c);
                   if (k == 1)
                     {
                       csv << "step,load_factor,newton_iterations,residual";
