@@ -162,7 +162,7 @@ namespace Talus
       r.strain         = eps;
       r.state          = old_state;
       const double S   = youngs_modulus * eps + prestress;
-      if (S <= 0.)
+      if (S < 0.)
         {
           assemble_slack(slack_stiffness_ratio * youngs_modulus * area / L, r);
           r.energy = -area * L * prestress * prestress / (2. * youngs_modulus);
@@ -208,7 +208,7 @@ namespace Talus
       r.strain       = (l * l - L * L) / (2. * L * L);
       r.state        = old_state;
       const double s = old_state.plastic;
-      if (d - s <= 0.)
+      if (d - s < 0.)
         {
           assemble_slack(slack_stiffness_ratio * stiffness, r);
           r.energy = 0.;

@@ -40,7 +40,7 @@ namespace Talus
           S <= 0. ?
             -area * L * prestress * prestress / (2. * youngs_modulus) :
             area * L * (0.5 * youngs_modulus * eps * eps + prestress * eps);
-      if (S <= 0.)
+      if (S < 0.)
         {
           // Slack: regularising stiffness on every segment only.
           const double k = slack_stiffness_ratio * youngs_modulus * area / L;

@@ -143,10 +143,11 @@ namespace Talus
 
     /**
      * Tension-only elastic cable with PK2 pre-stress: the truss law of
-     * Truss without plasticity, and S = E eps + sigma_0 <= 0 gives a slack
+     * Truss without plasticity, and S = E eps + sigma_0 < 0 gives a slack
      * cable with no force and no stiffness (Kratos CableElement3D2N;
-     * NOTES-structures-coupling.md section 2.1). A straight cable in tension
-     * has the lateral stiffness A S/L.
+     * NOTES-structures-coupling.md section 2.1); at S = 0 exactly the taut
+     * tangent is used, so that a stress-free cable starts taut for Newton.
+     * A straight cable in tension has the lateral stiffness A S/L.
      */
     class Cable : public LineElement
     {
@@ -179,7 +180,9 @@ namespace Talus
      * with stroke s (plastic elongation), activation force F_a, hardening H
      * and stroke limit s_max, after which the brake is blocked and behaves
      * elastically with k_e. Dissipated energy D = F_a s + H s^2 / 2 (summed
-     * increment by increment). Slack (d <= s): N = 0. Return mapping as in
+     * increment by increment). Slack (d < s): N = 0 (at d = s the elastic
+     * tangent is used, so that a stress-free brake starts taut). Return
+     * mapping as in
      * NOTES-structures-coupling.md section 2.4.
      */
     class Brake : public LineElement

@@ -21,7 +21,7 @@ namespace Talus
      *   f = N g,  g_0 = -e_0,  g_k = e_{k-1} - e_k,  g_n = e_{n-1},
      *   K = (E A l^2/L^3 + A S/L) g g^T
      *       + N sum_i (I - e_i e_i^T)/l_i [[1,-1],[-1,1]] on segment i.
-     * Tension only: S <= 0 gives no force (slack). Source: Kratos
+     * Tension only: S < 0 gives no force (slack). Source: Kratos
      * SlidingCableElement3D (K. B. Sautter); NOTES-structures-coupling.md
      * section 2.2. The interior nodes are the shackles; they slide freely
      * along the cable.
