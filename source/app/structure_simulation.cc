@@ -105,6 +105,7 @@ namespace Talus
         double      tolerance = 0., reference_displacement = 0.;
         bool        dynamic            = false;
         bool        arc_length_control = false;
+        double      friction = 0., wrap_angle = 180., drum_radius = 0.5;
         double      spring_EA = 0., spring_length = 1.;
         Talus::Structure::BarrierBuilder barrier;
         double                           mode_amplitude = 0.;
@@ -1499,9 +1500,97 @@ namespace Talus
       }
 
 
+      /**
+       * Capstan (Euler-Eytelwein): a SlidingCable with friction coefficient
+       * mu from the fixed end A = (-R, 0, -1) up to a drum (fixed nodes on
+       * the circle of radius R in the x-z plane), around it by the wrap
+       * angle theta and off tangentially to the free end B, pulled along the
+       * cable by F = |point load|. The cable slides towards B: T_B = F and
+       * T_A = F exp(-mu theta), whatever the number of drum nodes (the
+       * deviation angles add up to theta).
+       */
+      class Capstan : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "capstan: cable with friction around a drum";
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          auto cable = std::make_shared<Talus::Structure::SlidingCable>();
+          cable->youngs_modulus        = p.E;
+          cable->area                  = p.A;
+          cable->prestress             = p.prestress;
+          cable->slack_stiffness_ratio = p.slack_ratio;
+          cable->friction_coefficient  = p.friction;
+          const double          R      = p.drum_radius;
+          const double          theta  = p.wrap_angle * numbers::PI / 180.;
+          const unsigned int    n      = p.elements;
+          std::vector<Point<3>> x      = {Point<3>(-R, 0, -1.)};
+          for (unsigned int k = 0; k <= n; ++k)
+            {
+              const double phi = numbers::PI - k * theta / n;
+              x.emplace_back(R * std::cos(phi), 0., R * std::sin(phi));
+            }
+          const double phi_n = numbers::PI - theta;
+          direction = Tensor<1, 3>({std::sin(phi_n), 0., -std::cos(phi_n)});
+          x.push_back(x.back() + direction);
+          make_polyline(s.add_sliding_cable("cable", cable).triangulation, x);
+          s.setup_dofs();
+          for (unsigned int k = 0; k + 1 < x.size(); ++k)
+            for (unsigned int c = 0; c < 3; ++c)
+              s.prescribe(node_at(s, x[k]), c);
+          end = node_at(s, x.back());
+          s.prescribe(end, 1);
+          s.add_point_load(end, p.point_load.norm() * direction);
+        }
+
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          // A taut start: the free end 0.1 mm further out.
+          for (unsigned int c = 0; c < 3; ++c)
+            u[s.node_dof(end, c)] = 1e-4 * direction[c];
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &) override
+        {
+          const auto  &mesh  = *s.line_meshes[0];
+          const double T_A   = mesh.force[mesh.chain_cells.front()];
+          const double T_B   = mesh.force[mesh.chain_cells.back()];
+          const double F     = p.point_load.norm();
+          const double theta = p.wrap_angle * numbers::PI / 180.;
+          return {{"tension at the pulled end T_B [N]", T_B, F},
+                  {"tension at the fixed end T_A [N]",
+                   T_A,
+                   F * std::exp(-p.friction * theta)},
+                  {"T_B / T_A", T_B / T_A, std::exp(p.friction * theta)}};
+        }
+
+      private:
+        unsigned int end = 0;
+        Tensor<1, 3> direction;
+      };
+
+
       std::unique_ptr<Model>
       create_model(const Parameters &p)
       {
+        if (p.model == "capstan")
+          return std::make_unique<Capstan>(p);
         if (p.model == "barrier")
           return std::make_unique<Barrier>(p);
         if (p.model == "von Mises truss")
@@ -1543,6 +1632,7 @@ namespace Talus
                             prm.get("elements per member"),
                             "a member needs at least one element (two nodes)");
         p.slack_ratio = get_positive(prm, lm, "slack stiffness ratio");
+        p.friction    = get_non_negative(prm, lm, "friction coefficient");
         prm.leave_subsection();
 
         const std::string ms = S + "/Membrane";
@@ -1583,6 +1673,8 @@ namespace Talus
         p.side               = get_positive(prm, gs, "side");
         p.cable_length       = get_positive(prm, gs, "cable length");
         p.spring_EA          = get_non_negative(prm, gs, "spring EA");
+        p.wrap_angle         = prm.get_double("wrap angle");
+        p.drum_radius        = get_positive(prm, gs, "drum radius");
         p.spring_length      = get_positive(prm, gs, "spring length");
         p.refinements        = prm.get_integer("refinements");
         p.mesh_file          = prm.get("mesh file");
@@ -1613,7 +1705,8 @@ namespace Talus
                             std::to_string(p.density),
                             "the catenary needs a weight: density > 0 and a "
                             "non-zero 'gravity' in subsection Loads");
-        if (p.model == "sliding ring" && !(p.point_load.norm() > 0.))
+        if ((p.model == "sliding ring" || p.model == "capstan") &&
+            !(p.point_load.norm() > 0.))
           InputFile::reject(ls,
                             "point load",
                             prm.get("Loads/point load"),
@@ -1664,14 +1757,16 @@ namespace Talus
         "von Mises truss",
         Patterns::Selection(
           "von Mises truss|catenary|circular membrane|"
-          "square membrane|sliding ring|brake|mesh file|barrier"),
+          "square membrane|sliding ring|capstan|brake|mesh file|barrier"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
         "under self weight between two supports), 'circular membrane' "
         "(Hencky: clamped disk under pressure), 'square membrane' "
         "(pre-stressed, clamped, small pressure), 'sliding ring' (ring "
-        "on a frictionless cable under 'point load'), 'brake' (brake in "
+        "on a frictionless cable under 'point load'), 'capstan' (a sliding "
+        "cable with friction around a drum, its free end pulled by "
+        "|point load|), 'brake' (brake in "
         "series with a cable, end pulled by 'prescribed displacement'), "
         "'mesh file' (a line mesh read from 'mesh file', ends fixed, "
         "gravity), 'barrier' (the standard barrier of subsection Barrier "
@@ -1716,6 +1811,12 @@ namespace Talus
                         Patterns::Integer(),
                         "Elements along each bar or cable [-], >= 1 (the "
                         "catenary: on the coarsest level, even).");
+      prm.declare_entry("friction coefficient",
+                        "0",
+                        Patterns::Double(),
+                        "Capstan friction coefficient mu of sliding cables "
+                        "at their interior nodes (model 'capstan') [-], >= "
+                        "0; the cable slides towards its last node.");
       prm.declare_entry("slack stiffness ratio",
                         "1e-8",
                         Patterns::Double(),
@@ -1817,6 +1918,17 @@ namespace Talus
                         Patterns::Double(),
                         "Height h of the truss apex above the supports [m], "
                         "> 0.");
+      prm.declare_entry("wrap angle",
+                        "180",
+                        Patterns::Double(1, 720),
+                        "Capstan: angle the cable is wrapped around the drum "
+                        "[degrees], 1 to 720 (more than 360: helix in the "
+                        "plane is not modelled, keep <= 360).");
+      prm.declare_entry("drum radius",
+                        "0.5",
+                        Patterns::Double(),
+                        "Capstan: radius of the drum (fixed nodes on a "
+                        "circle in the x-z plane) [m], > 0.");
       prm.declare_entry("spring EA",
                         "0",
                         Patterns::Double(),

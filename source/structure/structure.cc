@@ -211,6 +211,7 @@ namespace Talus
                                        "> is closed (it has no end).");
             mesh->chain.clear();
             mesh->chain_X.clear();
+            mesh->chain_cells.clear();
             std::vector<bool> used(cells.size(), false);
             unsigned int      v = start;
             while (true)
@@ -232,7 +233,9 @@ namespace Talus
                 if (next_cell == dealii::numbers::invalid_unsigned_int)
                   break;
                 used[next_cell] = true;
-                v               = cells[next_cell]->vertex_index(1 - local);
+                mesh->chain_cells.push_back(
+                  cells[next_cell]->active_cell_index());
+                v = cells[next_cell]->vertex_index(1 - local);
               }
             if (mesh->chain.size() != tria.n_active_cells() + 1)
               throw std::runtime_error("The sliding cable <" + mesh->name +
@@ -550,6 +553,10 @@ namespace Talus
                     }
                 }
               std::fill(mesh->force.begin(), mesh->force.end(), N);
+              if (mesh->sliding_cable->friction_coefficient > 0.)
+                for (unsigned int k = 0; k < mesh->chain_cells.size(); ++k)
+                  mesh->force[mesh->chain_cells[k]] =
+                    mesh->sliding_cable->segment_forces[k];
               add(Ke, f, indices);
               indices.resize(6);
               continue;

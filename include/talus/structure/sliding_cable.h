@@ -34,6 +34,21 @@ namespace Talus
       double prestress             = 0.;   ///< sigma_0, PK2 [Pa]
       double density               = 0.;   ///< rho [kg/m^3]
       double slack_stiffness_ratio = 1e-8; ///< as LineElement [-]
+      /**
+       * Capstan (Euler-Eytelwein) friction coefficient mu at the interior
+       * nodes [-]; 0: frictionless. With mu > 0 the cable is assumed to
+       * slide towards its last node (pulled there) at every node: the
+       * segment tensions are N_i = N_0 prod_{k<=i} exp(mu theta_k), theta_k
+       * the deviation angle at node k, and N_0 follows from the length of
+       * cable material, sum_i l_i / lambda(N_i) = L, with lambda(N) the
+       * stretch of the law N = A (E (lambda^2 - 1)/2 + sigma_0) lambda
+       * (per segment). The tangent is computed by central differences.
+       * Stick is not modelled.
+       */
+      double friction_coefficient = 0.;
+
+      /** Segment tensions of the last compute() with friction [N]. */
+      mutable std::vector<double> segment_forces;
 
       /**
        * Nodal forces f (3 per node, node by node) and tangent K for the
@@ -46,6 +61,14 @@ namespace Talus
               dealii::Vector<double>                  &f,
               dealii::FullMatrix<double>              &K,
               double                                  *energy = nullptr) const;
+
+    private:
+      /** Internal forces with friction (see friction_coefficient); returns
+       * N_0 and fills segment_forces. */
+      double
+      friction_forces(const std::vector<dealii::Tensor<1, 3>> &X,
+                      const std::vector<dealii::Tensor<1, 3>> &x,
+                      dealii::Vector<double>                  &f) const;
     };
   } // namespace Structure
 } // namespace Talus

@@ -49,6 +49,8 @@ namespace Talus
       /** Sliding cable: global dofs of the nodes in cable order. */
       std::vector<std::array<dealii::types::global_dof_index, 3>> chain;
       std::vector<dealii::Tensor<1, 3>>                           chain_X;
+      /** Sliding cable: active cell index of each segment in cable order. */
+      std::vector<unsigned int> chain_cells;
     };
 
 
