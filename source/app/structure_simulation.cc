@@ -1270,9 +1270,10 @@ namespace Talus
 
       // ------------------------------------------------------------------
       /**
-       * A line mesh from a Gmsh or UCD file (cables or trusses), its first
-       * and last vertex fixed, under gravity and the point load at its
-       * last-but... no closed form: the solution is only reported.
+       * A line mesh from a Gmsh file (cables or trusses), the vertices of
+       * only one cell (the ends) fixed, under gravity. The largest nodal
+       * displacement is reported, and compared with 'reference largest
+       * displacement' if that is set (e.g. the taut-string sag).
        */
       class LineFromFile : public Model
       {
@@ -1771,8 +1772,9 @@ namespace Talus
         "'mesh file' (a line mesh read from 'mesh file', ends fixed, "
         "gravity), 'barrier' (the standard barrier of subsection Barrier "
         "with net, posts, support cables, retaining ropes and brakes, "
-        "pre-stressed, under gravity). Each model with a closed form "
-        "reports and checks it.");
+        "pre-stressed, under gravity; experimental: it does not reach "
+        "equilibrium yet, doc/verification.md). Each model with a closed "
+        "form reports and checks it.");
 
       prm.enter_subsection("Line members");
       prm.declare_entry("element",

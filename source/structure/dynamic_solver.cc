@@ -25,8 +25,9 @@ namespace Talus
                         Patterns::Bool(),
                         "Solve the equations of motion in time (Bossak-"
                         "Newmark, lumped mass) instead of static load "
-                        "steps. Supported by model 'square membrane' (free "
-                        "vibration).");
+                        "steps. Supported by models 'square membrane' (free "
+                        "vibration) and 'barrier' (dynamic relaxation, then "
+                        "a static solve).");
       prm.declare_entry("end time",
                         "1",
                         Patterns::Double(),
