@@ -256,10 +256,20 @@ namespace Talus
               if (!line_search)
                 decreased = true;
               if (!decreased)
-                mu = (mu == 0. ? 1e-8 * max_diagonal : 10. * mu);
+                mu = std::min(mu == 0. ? 1e-8 * max_diagonal : 10. * mu,
+                              1e4 * max_diagonal);
             }
           if (decreased)
             mu = (mu < 1e-7 * max_diagonal ? 0. : 0.1 * mu);
+          else
+            {
+              // Neither the line search nor the largest shift reduces |r|:
+              // stop rather than wander.
+              status.failure = "no step reduces the residual (line search "
+                               "and Levenberg-Marquardt exhausted)";
+              displacement   = trial;
+              return status;
+            }
           displacement = trial;
           norm         = assemble(displacement, r, &matrix);
         }
