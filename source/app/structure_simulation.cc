@@ -105,6 +105,7 @@ namespace Talus
         double      tolerance = 0., reference_displacement = 0.;
         bool        dynamic            = false;
         bool        arc_length_control = false;
+        double      shear_strain       = 0.;
         double      friction = 0., wrap_angle = 180., drum_radius = 0.5;
         double      spring_EA = 0., spring_length = 1.;
         Talus::Structure::BarrierBuilder barrier;
@@ -1587,9 +1588,103 @@ namespace Talus
       };
 
 
+      /**
+       * A square membrane (side a, isotropic, no pre-stress) in simple
+       * shear, in its plane (u_z = 0 everywhere): every boundary node
+       * displaced by u_x = lambda gamma (y + a/2).
+       * The homogeneous state is the solution. Taut (no wrinkling): shear
+       * stress G gamma. With the wrinkling law the compressive principal
+       * stress vanishes (tension field): uniaxial tension E gamma/2 along
+       * the diagonal, shear stress E gamma/4 (the law gives exactly this:
+       * doc/verification.md). Measured: the x-reactions of the boundary
+       * nodes with y > 0 (top edge; the side edges' normal tractions
+       * cancel), F = tau t a, to first order in gamma.
+       */
+      class ShearedMembrane : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return std::string("square membrane in simple shear") +
+                 (p.wrinkling ? ", wrinkling (tension field)" : ", taut");
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          make_flat_mesh(s.add_membrane("membrane", membrane()).triangulation,
+                         false,
+                         p.side,
+                         p.refinements + level);
+          s.setup_dofs();
+          boundary = s.find_nodes([&](const Point<3> &x) {
+            return std::max(std::abs(x[0]), std::abs(x[1])) >
+                   0.5 * p.side * (1. - 1e-10);
+          });
+          for (const unsigned int n : boundary)
+            {
+              s.prescribe(
+                n, 0, p.shear_strain * (s.node_position(n)[1] + 0.5 * p.side));
+              s.prescribe(n, 1);
+            }
+          // In-plane problem: a flat membrane has no stiffness normal to
+          // itself before it is stressed.
+          for (unsigned int n = 0; n < s.n_nodes(); ++n)
+            s.prescribe(n, 2);
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &) override
+        {
+          double F = 0.;
+          for (const unsigned int n : boundary)
+            if (s.node_position(n)[1] > 1e-10 * p.side)
+              F += s.reaction(n)[0];
+          double min_principal = 1e300, max_principal = -1e300;
+          for (const auto &o : s.membrane_meshes[0]->cell_output)
+            {
+              min_principal = std::min(min_principal, o.min_principal);
+              max_principal = std::max(max_principal, o.max_principal);
+            }
+          const double E = p.membrane_E, nu = p.membrane_nu;
+          const double tau = p.wrinkling ?
+                               E * p.shear_strain / 4. :
+                               E / (2. * (1. + nu)) * p.shear_strain;
+          return {{"shear force on the top edge [N]",
+                   F,
+                   tau * p.thickness * p.side},
+                  {"largest principal stress [Pa]",
+                   max_principal,
+                   p.wrinkling ? E * p.shear_strain / 2. : tau,
+                   true},
+                  {p.wrinkling ? "compression: max(0, -sigma_min) / sigma_max" :
+                                 "sigma_min / sigma_max (taut: -1)",
+                   p.wrinkling ? std::max(0., -min_principal / max_principal) :
+                                 min_principal / max_principal,
+                   p.wrinkling ? 0. : -1.,
+                   true,
+                   p.wrinkling}};
+        }
+
+      private:
+        std::vector<unsigned int> boundary;
+      };
+
+
       std::unique_ptr<Model>
       create_model(const Parameters &p)
       {
+        if (p.model == "sheared membrane")
+          return std::make_unique<ShearedMembrane>(p);
         if (p.model == "capstan")
           return std::make_unique<Capstan>(p);
         if (p.model == "barrier")
@@ -1653,6 +1748,7 @@ namespace Talus
         p.membrane_prestress = get_vector(prm, ms, "prestress");
         p.wrinkling          = prm.get_bool("wrinkling");
         p.initial_deflection = prm.get_double("initial deflection");
+        p.shear_strain       = prm.get_double("shear strain");
         prm.leave_subsection();
 
         const std::string bs = S + "/Brake";
@@ -1758,13 +1854,16 @@ namespace Talus
         "von Mises truss",
         Patterns::Selection(
           "von Mises truss|catenary|circular membrane|"
-          "square membrane|sliding ring|capstan|brake|mesh file|barrier"),
+          "square membrane|sheared membrane|sliding ring|capstan|brake|"
+          "mesh file|barrier"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
         "under self weight between two supports), 'circular membrane' "
         "(Hencky: clamped disk under pressure), 'square membrane' "
-        "(pre-stressed, clamped, small pressure), 'sliding ring' (ring "
+        "(pre-stressed, clamped, small pressure), 'sheared membrane' "
+        "(square in simple shear: tension field with wrinkling), "
+        "'sliding ring' (ring "
         "on a frictionless cable under 'point load'), 'capstan' (a sliding "
         "cable with friction around a drum, its free end pulled by "
         "|point load|), 'brake' (brake in "
@@ -1874,6 +1973,12 @@ namespace Talus
                         "Dynamic square membrane: initial deflection A "
                         "cos(pi x/a) cos(pi y/a) (the first mode) [m], "
                         "released from rest.");
+      prm.declare_entry("shear strain",
+                        "1e-4",
+                        Patterns::Double(),
+                        "Model 'sheared membrane': engineering shear strain "
+                        "gamma imposed on the boundary (u_x = gamma (y + "
+                        "a/2)) at load factor 1 [-].");
       prm.declare_entry("initial deflection",
                         "0",
                         Patterns::Double(),
