@@ -104,6 +104,7 @@ namespace Talus
         bool        write_vtu = false, test_mode = false;
         double      tolerance = 0., reference_displacement = 0.;
         bool        dynamic            = false;
+        double      mass_damping       = 0.;
         bool        arc_length_control = false;
         double      shear_strain       = 0.;
         double      friction = 0., wrap_angle = 180., drum_radius = 0.5;
@@ -922,6 +923,7 @@ namespace Talus
             std::max(max_drift,
                      std::abs(total_energy - energy0) / std::abs(energy0));
           times.push_back(time);
+          deflections.push_back(w);
           w_last = w;
           return {{"time", time},
                   {"centre_deflection", w},
@@ -947,6 +949,38 @@ namespace Talus
               // The linear frequency is the reference only for small
               // amplitudes (stretching stiffens the membrane).
               const bool linear = std::abs(p.mode_amplitude) < 1e-3 * p.side;
+              if (p.mass_damping > 0.)
+                {
+                  // Mass-proportional damping C = a_M M damps every mode
+                  // by exp(-a_M t/2): the first maximum after t = 0 (by
+                  // parabolic interpolation of the samples) must be
+                  // A exp(-a_M t_1/2).
+                  double t1 = 0., w1 = 0.;
+                  for (unsigned int k = 1; k + 1 < deflections.size(); ++k)
+                    if (deflections[k] > deflections[k - 1] &&
+                        deflections[k] >= deflections[k + 1])
+                      {
+                        const double wm = deflections[k - 1],
+                                     w0 = deflections[k],
+                                     wp = deflections[k + 1];
+                        const double h  = times[k + 1] - times[k];
+                        const double d  = 0.5 * (wm - wp) / (wm - 2. * w0 + wp);
+                        t1              = times[k] + d * h;
+                        w1              = w0 - 0.25 * (wm - wp) * d;
+                        break;
+                      }
+                  if (t1 == 0.)
+                    throw ExcSimulationFailed(
+                      "no maximum of the centre deflection after t = 0: "
+                      "run longer to measure the damping");
+                  return {{"period of the first mode [s]",
+                           period,
+                           2. * numbers::PI / omega,
+                           linear},
+                          {"amplitude after one period / initial",
+                           w1 / deflections[0],
+                           std::exp(-0.5 * p.mass_damping * t1)}};
+                }
               return {{linear ? "period of the first mode [s]" :
                                 "period (large amplitude, not checked) [s]",
                        period,
@@ -965,7 +999,7 @@ namespace Talus
 
       private:
         unsigned int        centre = 0;
-        std::vector<double> times, crossings;
+        std::vector<double> times, crossings, deflections;
         double              w_last = 0., energy0 = 0., max_drift = 0.;
       };
 
@@ -1816,7 +1850,8 @@ namespace Talus
         prm.leave_subsection();
 
         prm.enter_subsection("Dynamics");
-        p.dynamic = prm.get_bool("dynamic");
+        p.dynamic      = prm.get_bool("dynamic");
+        p.mass_damping = prm.get_double("mass damping");
         prm.leave_subsection();
         if (p.dynamic && p.model != "square membrane" && p.model != "barrier")
           InputFile::reject(S + "/Dynamics",
