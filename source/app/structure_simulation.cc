@@ -104,6 +104,7 @@ namespace Talus
         bool        write_vtu = false, test_mode = false;
         double      tolerance = 0., reference_displacement = 0.;
         bool        dynamic            = false;
+        bool        mesh_is_membrane   = false;
         double      mass_damping       = 0.;
         bool        arc_length_control = false;
         double      shear_strain       = 0.;
@@ -1306,9 +1307,11 @@ namespace Talus
       // ------------------------------------------------------------------
       /**
        * A line mesh from a Gmsh file (cables or trusses), the vertices of
-       * only one cell (the ends) fixed, under gravity. The largest nodal
-       * displacement is reported, and compared with 'reference largest
-       * displacement' if that is set (e.g. the taut-string sag).
+       * only one cell (the ends) fixed, under gravity; or a membrane mesh
+       * (quadrilaterals), its boundary fixed, under pressure and gravity.
+       * The largest nodal displacement is reported, and compared with
+       * 'reference largest displacement' if that is set (e.g. the
+       * taut-string sag, the square membrane's w_max).
        */
       class LineFromFile : public Model
       {
@@ -1318,15 +1321,18 @@ namespace Talus
         std::string
         description() const override
         {
-          return "line mesh from a file, ends fixed, gravity";
+          return p.mesh_is_membrane ?
+                   "membrane mesh from a file, boundary fixed, pressure and "
+                   "gravity" :
+                   "line mesh from a file, ends fixed, gravity";
         }
 
+        template <int dim>
         void
-        build(Structure &s, const unsigned int) override
+        read(Triangulation<dim, 3> &tria, const std::string &what) const
         {
-          auto        &mesh = s.add_line_mesh("mesh", line_element());
-          GridIn<1, 3> grid_in;
-          grid_in.attach_triangulation(mesh.triangulation);
+          GridIn<dim, 3> grid_in;
+          grid_in.attach_triangulation(tria);
           std::ifstream in(p.mesh_file);
           if (!in)
             InputFile::reject(S + "/Geometry",
@@ -1335,16 +1341,39 @@ namespace Talus
                               "the file cannot be opened");
           try
             {
-              grid_in.read(in, GridIn<1, 3>::Format::msh);
+              grid_in.read(in, GridIn<dim, 3>::Format::msh);
             }
           catch (const std::exception &)
             {
-              InputFile::reject(
-                S + "/Geometry",
-                "mesh file",
-                p.mesh_file,
-                "it is not a readable Gmsh (.msh) file of line elements");
+              InputFile::reject(S + "/Geometry",
+                                "mesh file",
+                                p.mesh_file,
+                                "it is not a readable Gmsh (.msh) file of " +
+                                  what);
             }
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          if (p.mesh_is_membrane)
+            {
+              auto &mesh = s.add_membrane("mesh", membrane());
+              read(mesh.triangulation, "quadrilaterals");
+              s.setup_dofs();
+              // Fix the boundary: vertices of faces without a neighbour.
+              for (const auto &cell :
+                   mesh.triangulation.active_cell_iterators())
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->at_boundary(f))
+                    for (unsigned int v = 0; v < 2; ++v)
+                      for (unsigned int c = 0; c < 3; ++c)
+                        s.prescribe(node_at(s, cell->face(f)->vertex(v)), c);
+              s.gravity = p.gravity;
+              return;
+            }
+          auto &mesh = s.add_line_mesh("mesh", line_element());
+          read(mesh.triangulation, "line elements");
           s.setup_dofs();
           // Fix the two ends (vertices of one cell only).
           std::vector<unsigned int> count(mesh.triangulation.n_vertices(), 0);
@@ -1809,6 +1838,7 @@ namespace Talus
         p.spring_length      = get_positive(prm, gs, "spring length");
         p.refinements        = prm.get_integer("refinements");
         p.mesh_file          = prm.get("mesh file");
+        p.mesh_is_membrane   = prm.get("mesh file type") == "membrane";
         prm.leave_subsection();
         if (p.model == "catenary" && !(p.unstretched_length > p.span))
           InputFile::reject(gs,
@@ -1903,8 +1933,8 @@ namespace Talus
         "cable with friction around a drum, its free end pulled by "
         "|point load|), 'brake' (brake in "
         "series with a cable, end pulled by 'prescribed displacement'), "
-        "'mesh file' (a line mesh read from 'mesh file', ends fixed, "
-        "gravity), 'barrier' (the standard barrier of subsection Barrier "
+        "'mesh file' (a line or membrane mesh read from 'mesh file', "
+        "ends or boundary fixed, gravity and pressure), 'barrier' (the standard barrier of subsection Barrier "
         "with net, posts, support cables, retaining ropes and brakes, "
         "pre-stressed, under gravity; experimental: it does not reach "
         "equilibrium yet, doc/verification.md). Each model with a closed "
@@ -2108,6 +2138,13 @@ namespace Talus
                         Patterns::Integer(0, 10),
                         "Global refinements of the membrane meshes (level 0 "
                         "of a convergence study) [-].");
+      prm.declare_entry("mesh file type",
+                        "lines",
+                        Patterns::Selection("lines|membrane"),
+                        "What the file of model 'mesh file' holds: 'lines' "
+                        "(a cable or truss, element of subsection Line "
+                        "members) or 'membrane' (quadrilaterals, material of "
+                        "subsection Membrane).");
       prm.declare_entry("mesh file",
                         "",
                         Patterns::Anything(),
