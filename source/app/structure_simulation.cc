@@ -201,6 +201,14 @@ namespace Talus
           return false;
         }
 
+        /**
+         * Called once before the load steps (after the pre-stress step):
+         * e.g. staged form finding. Returns false if it failed.
+         */
+        virtual void
+        before_load_steps(Structure &, Talus::Structure::StaticSolver &)
+        {}
+
         /** Set by the time loop before monitor(): time [s] and total
          * energy (kinetic + strain + load potential) [J]. */
         double time = 0., total_energy = 0.;
@@ -1430,12 +1438,40 @@ namespace Talus
           builder.brake_smax = p.brake_smax;
           builder.build(s);
           s.gravity = p.gravity;
+          // Stage 1 of the form finding: post heads held, so that the net
+          // and the support cables find their pre-stressed shape first.
+          for (const unsigned int n : builder.post_heads)
+            for (unsigned int c = 0; c < 3; ++c)
+              s.prescribe(n, c);
+        }
+
+        void
+        before_load_steps(Structure                      &s,
+                          Talus::Structure::StaticSolver &solver) override
+        {
+          // Stage 2: release the heads (posts and ropes take over) and find
+          // the pre-stressed equilibrium of the whole barrier.
+          const Vector<double> u = solver.displacement;
+          for (const unsigned int n : builder.post_heads)
+            for (unsigned int c = 0; c < 3; ++c)
+              s.release(n, c);
+          s.setup_system();
+          solver.setup();
+          solver.displacement = u;
+          const auto status   = solver.solve(0.);
+          std::cout << "  stage 2 (post heads released, pre-stress): "
+                    << (status.converged ? "converged" : "FAILED") << " in "
+                    << status.iterations << " Newton iterations\n";
+          if (!status.converged)
+            throw ExcSimulationFailed("the pre-stressed barrier with free "
+                                      "post heads did not converge: " +
+                                      status.failure);
         }
 
         bool
         prestress_step() const override
         {
-          return false;
+          return true;
         }
 
         bool
@@ -2460,6 +2496,8 @@ namespace Talus
                                                      "reached")
                         << '\n';
             }
+          if (!dynamics.enabled)
+            model->before_load_steps(structure, solver);
           if (!dynamics.enabled && solver.control == "arc length")
             {
               // Arc-length steps: the load factor is an unknown.

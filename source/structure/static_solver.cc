@@ -54,6 +54,12 @@ namespace Talus
                         Double(),
                         "Arc-length step ds: norm of the displacement "
                         "increment of one step [m], > 0.");
+      prm.declare_entry("maximum increment",
+                        "0",
+                        Double(0),
+                        "Largest change of a displacement component in one "
+                        "Newton iteration [m]; longer steps are scaled down. "
+                        "0: no limit.");
       prm.declare_entry("line search",
                         "true",
                         Bool(),
@@ -71,6 +77,7 @@ namespace Talus
       max_iterations = prm.get_integer("maximum Newton iterations");
       tolerance      = get_positive(prm, "Structure/Solver", "tolerance");
       line_search    = prm.get_bool("line search");
+      max_increment  = prm.get_double("maximum increment");
       control        = prm.get("control");
       arc_length     = get_positive(prm, "Structure/Solver", "arc length");
       prm.leave_subsection();
@@ -238,6 +245,8 @@ namespace Talus
               direct.solve(du);
               du *= -1.;
               structure.get_constraints().distribute(du);
+              if (max_increment > 0. && du.linfty_norm() > max_increment)
+                du *= max_increment / du.linfty_norm();
 
               double alpha = 1.;
               trial        = displacement;

@@ -317,6 +317,19 @@ namespace Talus
 
 
     void
+    Structure::release(const unsigned int node, const unsigned int c)
+    {
+      const global_dof_index dof = nodes[node].dofs[c];
+      prescribed.erase(std::remove_if(prescribed.begin(),
+                                      prescribed.end(),
+                                      [&](const auto &p) {
+                                        return p.first == dof;
+                                      }),
+                       prescribed.end());
+    }
+
+
+    void
     Structure::add_point_load(const unsigned int          node,
                               const dealii::Tensor<1, 3> &F)
     {

@@ -94,6 +94,10 @@ namespace Talus
       unsigned int max_iterations = 30;
       double       tolerance      = 1e-10;
       bool         line_search    = true;
+      /** Largest displacement change of one Newton iteration [m]; 0: no
+       * limit. Longer steps are scaled down (a trust region for structures
+       * that start far from equilibrium). */
+      double max_increment = 0.;
       /** "load" (load factor steps) or "arc length". */
       std::string control    = "load";
       double      arc_length = 0.01; ///< ds [m]

@@ -136,6 +136,11 @@ namespace Talus
                 const unsigned int c,
                 const double       value = 0.);
 
+      /** Remove the condition of prescribe() (call setup_system() again,
+       * which keeps nothing but the constraints and the matrix pattern). */
+      void
+      release(const unsigned int node, const unsigned int c);
+
       /** Point load [N] at a node, scaled by the load factor. */
       void
       add_point_load(const unsigned int node, const dealii::Tensor<1, 3> &F);
