@@ -1,6 +1,8 @@
 #include <talus/base/input.h>
 #include <talus/structure/dynamic_solver.h>
 
+#include <deal.II/lac/sparse_direct.h>
+
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -42,6 +44,11 @@ namespace Talus
                         "alpha in [-1/3, 0]: 0 is the average acceleration "
                         "rule (no numerical damping), < 0 damps high "
                         "frequencies [-].");
+      prm.declare_entry("mass matrix",
+                        "lumped",
+                        Patterns::Selection("lumped|consistent"),
+                        "Lumped (row sums, diagonal) or consistent mass "
+                        "matrix (sliding cables are always lumped).");
       prm.declare_entry("mass damping",
                         "0",
                         Patterns::Double(0),
@@ -68,6 +75,7 @@ namespace Talus
       alpha             = prm.get_double("Bossak alpha");
       mass_damping      = prm.get_double("mass damping");
       stiffness_damping = prm.get_double("stiffness damping");
+      consistent_mass   = prm.get("mass matrix") == "consistent";
       prm.leave_subsection();
     }
 
@@ -94,9 +102,20 @@ namespace Talus
       dealii::Vector<double> r;
       structure.assemble(newton.displacement, 1., r, nullptr);
       const auto &M = structure.lumped_mass();
-      for (unsigned int i = 0; i < n; ++i)
-        if (M[i] > 0. && !structure.get_constraints().is_constrained(i))
-          acceleration[i] = -r[i] / M[i];
+      if (consistent_mass)
+        {
+          structure.assemble_consistent_mass(M_c);
+          dealii::SparseDirectUMFPACK direct;
+          direct.initialize(M_c);
+          acceleration = r;
+          acceleration *= -1.;
+          direct.solve(acceleration);
+          structure.get_constraints().distribute(acceleration);
+        }
+      else
+        for (unsigned int i = 0; i < n; ++i)
+          if (M[i] > 0. && !structure.get_constraints().is_constrained(i))
+            acceleration[i] = -r[i] / M[i];
       update_step_start();
       if (std::getenv("TALUS_DEBUG"))
         {
@@ -138,18 +157,28 @@ namespace Talus
             Kv.reinit(n);
             K_n.vmult(Kv, v_trial);
           }
+        // M [(1 - alpha) a + alpha a_n + a_M v].
+        dealii::Vector<double> w(n), Mw(n);
+        for (unsigned int i = 0; i < n; ++i)
+          w[i] = (1. - alpha) * a_trial[i] + alpha * acceleration[i] +
+                 mass_damping * v_trial[i];
+        mass_vmult(Mw, w);
+        const double mass_factor =
+          (1. - alpha) / (beta * dt * dt) + mass_damping * gamma / (beta * dt);
         for (unsigned int i = 0; i < n; ++i)
           if (!constraints.is_constrained(i))
             {
-              r[i] +=
-                M[i] * ((1. - alpha) * a_trial[i] + alpha * acceleration[i]) +
-                mass_damping * M[i] * v_trial[i];
+              r[i] += Mw[i];
               if (stiffness_damping > 0.)
                 r[i] += stiffness_damping * Kv[i];
               if (K != nullptr)
-                K->diag_element(i) +=
-                  M[i] * ((1. - alpha) / (beta * dt * dt) +
-                          mass_damping * gamma / (beta * dt));
+                {
+                  if (consistent_mass)
+                    for (auto it = M_c.begin(i); it != M_c.end(i); ++it)
+                      K->add(i, it->column(), mass_factor * it->value());
+                  else
+                    K->diag_element(i) += mass_factor * M[i];
+                }
             }
         if (K != nullptr && stiffness_damping > 0.)
           {
@@ -191,13 +220,30 @@ namespace Talus
     }
 
 
+    void
+    DynamicSolver::mass_vmult(dealii::Vector<double>       &y,
+                              const dealii::Vector<double> &x) const
+    {
+      if (consistent_mass)
+        {
+          M_c.vmult(y, x);
+          return;
+        }
+      const auto &M = structure.lumped_mass();
+      for (unsigned int i = 0; i < x.size(); ++i)
+        y[i] = M[i] * x[i];
+    }
+
+
     double
     DynamicSolver::kinetic_energy() const
     {
-      const auto &M = structure.lumped_mass();
-      double      T = 0.;
+      dealii::Vector<double> Mv(velocity.size());
+      mass_vmult(Mv, velocity);
+      double T = 0.;
       for (unsigned int i = 0; i < velocity.size(); ++i)
-        T += 0.5 * M[i] * velocity[i] * velocity[i];
+        if (!structure.get_constraints().is_constrained(i))
+          T += 0.5 * velocity[i] * Mv[i];
       return T;
     }
   } // namespace Structure

@@ -467,6 +467,97 @@ namespace Talus
     }
 
 
+    void
+    Structure::assemble_consistent_mass(dealii::SparseMatrix<double> &M) const
+    {
+      M.reinit(sparsity);
+      std::vector<global_dof_index> indices;
+      dealii::FullMatrix<double>    Me;
+      for (const auto &mesh : line_meshes)
+        {
+          if (mesh->sliding_cable)
+            {
+              // Lumped: the nodes slide along the cable.
+              const double rhoA =
+                mesh->sliding_cable->density * mesh->sliding_cable->area;
+              indices.resize(6);
+              Me.reinit(6, 6);
+              for (unsigned int k = 0; k + 1 < mesh->chain.size(); ++k)
+                {
+                  const double m =
+                    0.5 * rhoA *
+                    (mesh->chain_X[k + 1] - mesh->chain_X[k]).norm();
+                  for (unsigned int c = 0; c < 3; ++c)
+                    {
+                      indices[c]       = mesh->chain[k][c];
+                      indices[3 + c]   = mesh->chain[k + 1][c];
+                      Me(c, c)         = m;
+                      Me(3 + c, 3 + c) = m;
+                    }
+                  constraints.distribute_local_to_global(Me, indices, M);
+                }
+              continue;
+            }
+          indices.resize(6);
+          Me.reinit(6, 6);
+          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+            {
+              const double m = mesh->element->mass_per_length() *
+                               cell->vertex(0).distance(cell->vertex(1));
+              Me = 0.;
+              for (unsigned int v = 0; v < 2; ++v)
+                for (unsigned int w = 0; w < 2; ++w)
+                  for (unsigned int c = 0; c < 3; ++c)
+                    Me(3 * v + c, 3 * w + c) = m / 6. * (v == w ? 2. : 1.);
+              for (unsigned int v = 0; v < 2; ++v)
+                for (unsigned int c = 0; c < 3; ++c)
+                  indices[3 * v + c] =
+                    mesh->offset + cell->vertex_dof_index(v, c);
+              constraints.distribute_local_to_global(Me, indices, M);
+            }
+        }
+      if (!membrane_meshes.empty())
+        {
+          const dealii::QGauss<2> quadrature(2);
+          dealii::FEValues<2, 3>  fe_values(membrane_fe,
+                                           quadrature,
+                                           dealii::update_values |
+                                             dealii::update_JxW_values);
+          const unsigned int      n = membrane_fe.n_dofs_per_cell();
+          indices.resize(n);
+          Me.reinit(n, n);
+          for (const auto &mesh : membrane_meshes)
+            {
+              const double rho_t =
+                mesh->membrane->density * mesh->membrane->material.thickness;
+              for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+                {
+                  fe_values.reinit(cell);
+                  cell->get_dof_indices(indices);
+                  for (auto &i : indices)
+                    i += mesh->offset;
+                  Me = 0.;
+                  for (unsigned int i = 0; i < n; ++i)
+                    for (unsigned int j = 0; j < n; ++j)
+                      {
+                        const unsigned int ci =
+                          membrane_fe.system_to_component_index(i).first;
+                        if (ci !=
+                            membrane_fe.system_to_component_index(j).first)
+                          continue;
+                        for (unsigned int q = 0; q < quadrature.size(); ++q)
+                          Me(i, j) +=
+                            rho_t * fe_values.shape_value_component(i, q, ci) *
+                            fe_values.shape_value_component(j, q, ci) *
+                            fe_values.JxW(q);
+                      }
+                  constraints.distribute_local_to_global(Me, indices, M);
+                }
+            }
+        }
+    }
+
+
     double
     Structure::strain_energy() const
     {

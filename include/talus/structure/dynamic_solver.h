@@ -15,7 +15,8 @@ namespace Talus
   {
     /**
      * Implicit dynamics of a Structure with the Bossak-Newmark scheme
-     * (Wood, Bossak & Zienkiewicz 1980), lumped mass M and Rayleigh damping
+     * (Wood, Bossak & Zienkiewicz 1980), lumped or consistent mass M and
+     * Rayleigh damping
      * C = a_M M + a_K K_n (K_n: tangent at the start of the step):
      *   M [(1 - alpha) a_{n+1} + alpha a_n] + C v_{n+1} + f_int(u_{n+1})
      *     = f_ext,
@@ -68,13 +69,21 @@ namespace Talus
       double alpha             = 0.;
       double mass_damping      = 0.; ///< a_M [1/s]
       double stiffness_damping = 0.; ///< a_K [s]
+      /** Consistent instead of lumped mass matrix. */
+      bool consistent_mass = false;
 
     private:
       Structure                   &structure;
       StaticSolver                &newton;
       dealii::Vector<double>       u_n, v_trial, a_trial;
       dealii::SparseMatrix<double> K_n;
-      double                       dt_last = 0.;
+      dealii::SparseMatrix<double> M_c; ///< consistent mass
+
+      /** M x: the lumped or the consistent mass. */
+      void
+             mass_vmult(dealii::Vector<double>       &y,
+                        const dealii::Vector<double> &x) const;
+      double dt_last = 0.;
 
       void
       update_step_start();

@@ -187,6 +187,15 @@ namespace Talus
       const dealii::Vector<double> &
       lumped_mass() const;
 
+      /**
+       * Consistent mass matrix (condensed with the constraints; sparsity of
+       * setup_system()): rho A L/6 [[2,1],[1,2]] per component for line
+       * elements, the lumped masses for sliding cables, rho t int N_I N_J
+       * dA0 for membranes [kg].
+       */
+      void
+      assemble_consistent_mass(dealii::SparseMatrix<double> &M) const;
+
       /** Potential of the loads at load factor @p load_factor: -(point
        * loads + gravity + external nodal forces) . u [J]. */
       double
