@@ -103,13 +103,14 @@ namespace Talus
         std::string directory;
         bool        write_vtu = false, test_mode = false;
         double      tolerance = 0., reference_displacement = 0.;
-        bool        dynamic            = false;
-        bool        mesh_is_membrane   = false;
-        double      mass_damping       = 0.;
-        bool        arc_length_control = false;
-        double      shear_strain       = 0.;
-        double      friction = 0., wrap_angle = 180., drum_radius = 0.5;
-        double      spring_EA = 0., spring_length = 1.;
+        bool        dynamic = false;
+        double bossak_alpha = 0., dynamic_time_step = 0., string_amplitude = 0.;
+        bool   mesh_is_membrane   = false;
+        double mass_damping       = 0.;
+        bool   arc_length_control = false;
+        double shear_strain       = 0.;
+        double friction = 0., wrap_angle = 180., drum_radius = 0.5;
+        double spring_EA = 0., spring_length = 1.;
         Talus::Structure::BarrierBuilder barrier;
         double                           mode_amplitude = 0.;
         unsigned int                     n_levels = 1, first_level = 0;
@@ -1779,9 +1780,145 @@ namespace Talus
       };
 
 
+      /**
+       * A pre-stressed Cable of span L in two elements (ends fixed), its
+       * middle node released from the deflection A (y fixed): for small A
+       * one degree of freedom with k = 4 N/L (N = A sigma_0, the lateral
+       * stiffness of the two taut halves) and the lumped mass m = rho A L/2,
+       * omega^2 = 8 sigma_0/(rho L^2). Reference: the scalar Bossak-Newmark
+       * recurrence for m a + k u = 0 with the same alpha and dt, iterated
+       * here independently: (1 - alpha) a_{n+1} + alpha a_n + omega^2
+       * u_{n+1} = 0 with the Newmark updates (beta = (1-alpha)^2/4, gamma =
+       * 1/2 - alpha). The largest difference over the run checks the time
+       * integration including its numerical damping; for alpha = 0 the
+       * period is also compared with 2 pi/omega.
+       */
+      class VibratingString : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "vibrating pre-stressed cable, one degree of freedom";
+        }
+
+        bool
+        supports_dynamics() const override
+        {
+          return true;
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          const double L = p.span;
+          make_line(s.add_line_mesh("cable", line_element()).triangulation,
+                    Point<3>(-0.5 * L, 0, 0),
+                    Point<3>(0.5 * L, 0, 0),
+                    2);
+          s.setup_dofs();
+          for (const double x : {-0.5 * L, 0.5 * L})
+            for (unsigned int c = 0; c < 3; ++c)
+              s.prescribe(node_at(s, Point<3>(x, 0, 0)), c);
+          mid = node_at(s, Point<3>());
+          s.prescribe(mid, 1);
+          omega = std::sqrt(8. * p.prestress / (p.density * L * L));
+        }
+
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          u[s.node_dof(mid, 2)] = p.string_amplitude;
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure      &s,
+                const Vector<double> &u,
+                const double) override
+        {
+          const double w = u[s.node_dof(mid, 2)];
+          if (samples.empty())
+            {
+              // The reference starts from the same state (rest, w = A).
+              ref_u = w;
+              ref_v = 0.;
+              ref_a = -omega * omega * w;
+            }
+          else
+            {
+              const double dt = time - times.back(), al = p.bossak_alpha;
+              const double beta  = 0.25 * (1. - al) * (1. - al),
+                           gamma = 0.5 - al;
+              const double ubar =
+                ref_u + dt * ref_v + dt * dt * (0.5 - beta) * ref_a;
+              const double c  = (1. - al) / (beta * dt * dt);
+              const double u1 = (c * ubar - al * ref_a) / (c + omega * omega);
+              const double a1 = (u1 - ubar) / (beta * dt * dt);
+              ref_v += dt * ((1. - gamma) * ref_a + gamma * a1);
+              ref_u = u1;
+              ref_a = a1;
+            }
+          max_difference = std::max(max_difference, std::abs(w - ref_u));
+          if (!samples.empty() && (w > 0.) != (samples.back() > 0.))
+            crossings.push_back(time - (time - times.back()) * w /
+                                         (w - samples.back()));
+          samples.push_back(w);
+          times.push_back(time);
+          return {{"time", time},
+                  {"middle_deflection", w},
+                  {"bossak_recurrence", ref_u}};
+        }
+
+        std::vector<Result>
+        results(const Structure &, const Vector<double> &) override
+        {
+          std::vector<Result> r = {
+            {"max |w - w_Bossak| / A over the run",
+             max_difference / std::abs(p.string_amplitude),
+             0.,
+             true,
+             true},
+            {"|w_Bossak(T_end)| / A (end of the run)",
+             std::abs(ref_u) / std::abs(p.string_amplitude),
+             0.,
+             false}};
+          if (crossings.size() >= 2)
+            {
+              const double period =
+                2. * (crossings.back() - crossings[0]) / (crossings.size() - 1);
+              const double wdt = omega * p.dynamic_time_step;
+              // Average acceleration: period elongation (omega dt)^2/12.
+              r.push_back({"period [s]",
+                           period,
+                           2. * numbers::PI / omega *
+                             (p.bossak_alpha == 0. ? 1. + wdt * wdt / 12. : 1.),
+                           p.bossak_alpha == 0.});
+            }
+          return r;
+        }
+
+      private:
+        unsigned int        mid   = 0;
+        double              omega = 0.;
+        double              ref_u = 0., ref_v = 0., ref_a = 0.;
+        double              max_difference = 0.;
+        std::vector<double> samples, times, crossings;
+      };
+
+
       std::unique_ptr<Model>
       create_model(const Parameters &p)
       {
+        if (p.model == "vibrating string")
+          return std::make_unique<VibratingString>(p);
         if (p.model == "sheared membrane")
           return std::make_unique<ShearedMembrane>(p);
         if (p.model == "capstan")
@@ -1869,6 +2006,7 @@ namespace Talus
         p.side               = get_positive(prm, gs, "side");
         p.cable_length       = get_positive(prm, gs, "cable length");
         p.spring_EA          = get_non_negative(prm, gs, "spring EA");
+        p.string_amplitude   = prm.get_double("string amplitude");
         p.wrap_angle         = prm.get_double("wrap angle");
         p.drum_radius        = get_positive(prm, gs, "drum radius");
         p.spring_length      = get_positive(prm, gs, "spring length");
@@ -1916,15 +2054,23 @@ namespace Talus
         prm.leave_subsection();
 
         prm.enter_subsection("Dynamics");
-        p.dynamic      = prm.get_bool("dynamic");
-        p.mass_damping = prm.get_double("mass damping");
+        p.dynamic           = prm.get_bool("dynamic");
+        p.mass_damping      = prm.get_double("mass damping");
+        p.bossak_alpha      = prm.get_double("Bossak alpha");
+        p.dynamic_time_step = prm.get_double("time step");
         prm.leave_subsection();
-        if (p.dynamic && p.model != "square membrane" && p.model != "barrier")
+        if (p.dynamic && p.model != "square membrane" && p.model != "barrier" &&
+            p.model != "vibrating string")
           InputFile::reject(S + "/Dynamics",
                             "dynamic",
                             "true",
-                            "only models 'square membrane' and 'barrier' run "
-                            "in time so far");
+                            "only models 'square membrane', 'vibrating "
+                            "string' and 'barrier' run in time so far");
+        if (!p.dynamic && p.model == "vibrating string")
+          InputFile::reject(S + "/Dynamics",
+                            "dynamic",
+                            "false",
+                            "model 'vibrating string' needs 'dynamic = true'");
 
         prm.enter_subsection("Output");
         p.directory = prm.get("output directory");
@@ -1955,8 +2101,8 @@ namespace Talus
         "von Mises truss",
         Patterns::Selection(
           "von Mises truss|catenary|circular membrane|"
-          "square membrane|sheared membrane|sliding ring|capstan|brake|"
-          "mesh file|barrier"),
+          "square membrane|sheared membrane|vibrating string|"
+          "sliding ring|capstan|brake|mesh file|barrier"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
@@ -1964,6 +2110,8 @@ namespace Talus
         "(Hencky: clamped disk under pressure), 'square membrane' "
         "(pre-stressed, clamped, small pressure), 'sheared membrane' "
         "(square in simple shear: tension field with wrinkling), "
+        "'vibrating string' (pre-stressed cable of two elements, middle node "
+        "released: one degree of freedom against the Bossak recurrence), "
         "'sliding ring' (ring "
         "on a frictionless cable under 'point load'), 'capstan' (a sliding "
         "cable with friction around a drum, its free end pulled by "
@@ -2137,6 +2285,11 @@ namespace Talus
                         Patterns::Double(),
                         "Capstan: radius of the drum (fixed nodes on a "
                         "circle in the x-z plane) [m], > 0.");
+      prm.declare_entry("string amplitude",
+                        "1e-3",
+                        Patterns::Double(),
+                        "Model 'vibrating string': initial deflection of "
+                        "the middle node, released from rest [m].");
       prm.declare_entry("spring EA",
                         "0",
                         Patterns::Double(),
