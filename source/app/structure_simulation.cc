@@ -2099,10 +2099,9 @@ namespace Talus
       prm.declare_entry(
         "model",
         "von Mises truss",
-        Patterns::Selection(
-          "von Mises truss|catenary|circular membrane|"
-          "square membrane|sheared membrane|vibrating string|"
-          "sliding ring|capstan|brake|mesh file|barrier"),
+        Patterns::Selection("von Mises truss|catenary|circular membrane|"
+                            "square membrane|sheared membrane|vibrating string|"
+                            "sliding ring|capstan|brake|mesh file|barrier"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
