@@ -1,4 +1,5 @@
 #include <talus/app/simulation.h>
+#include <talus/app/structure_simulation.h>
 #include <talus/base/input.h>
 #include <talus/base/parsed_functions.h>
 #include <talus/base/time_control.h>
@@ -169,6 +170,12 @@ namespace Talus
   void
   Simulation<dim>::declare_parameters(dealii::ParameterHandler &prm)
   {
+    prm.declare_entry("problem",
+                      "mpm",
+                      dealii::Patterns::Selection("mpm|structure"),
+                      "What to simulate: 'mpm' (the soil, everything but "
+                      "subsection Structure) or 'structure' (a barrier "
+                      "structure model of subsection Structure alone).");
     prm.declare_entry("dimension",
                       "2",
                       dealii::Patterns::Integer(2, 3),
@@ -816,12 +823,17 @@ namespace Talus
         throw ExcInvalidInput("Cannot open the parameter file <" + filename +
                               ">.");
     }
-    // First pass: only the dimension.
+    // First pass: only the problem and the dimension.
     unsigned int dimension;
     {
       dealii::ParameterHandler pre;
+      pre.declare_entry("problem",
+                        "mpm",
+                        dealii::Patterns::Selection("mpm|structure"));
       pre.declare_entry("dimension", "2", dealii::Patterns::Integer(2, 3));
       pre.parse_input(filename, "", true);
+      if (pre.get("problem") == "structure")
+        return StructureSimulation::run_parameter_file(filename);
       dimension = pre.get_integer("dimension");
     }
     dealii::ParameterHandler prm;
@@ -903,6 +915,7 @@ namespace Talus
   {
     dealii::ParameterHandler prm;
     Simulation<2>::declare_parameters(prm);
+    StructureSimulation::declare_parameters(prm);
     if (format == "prm")
       {
         prm.print_parameters(out,

@@ -1,0 +1,80 @@
+#ifndef talus_structure_barrier_builder_h
+#define talus_structure_barrier_builder_h
+
+#include <talus/structure/structure.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <vector>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    /**
+     * Builds the standard flexible barrier of the founding paper (Singer et
+     * al., section 5, Fig. 5) from parameters: n fields of equal width
+     * between n + 1 posts, a net (Membrane on Triangulation<2,3>) spanned
+     * between the post bases and heads, sliding support cables along the
+     * top and bottom edge of the net (through every net edge node, the
+     * post heads/bases, anchored in the ground beyond the outer posts) and
+     * along the two outer edges (base to head of the outer posts), and two
+     * retaining ropes per post head to upslope ground anchors, each with a
+     * brake in series near its anchor.
+     *
+     * Coordinates: x along the barrier, y upslope (the flow comes from +y),
+     * z up. Post i stands on the hinge (x_i, 0, 0) and leans downslope by
+     * the inclination angle: head (x_i, -H tan(theta), H). Posts are
+     * single Truss elements (hinged at the base: a support without
+     * moments). The net plane contains the posts; its vertices on the post
+     * lines at the base and head coincide with the post nodes and are tied
+     * to them, as are cable nodes with net edge nodes (shackles). All
+     * ground anchors and post bases are fixed.
+     */
+    class BarrierBuilder
+    {
+    public:
+      unsigned int n_fields          = 3;
+      double       field_width       = 5.;  ///< [m]
+      double       height            = 3.5; ///< post height H [m]
+      double       inclination       = 10.; ///< theta [degrees]
+      double       anchor_distance   = 6.;  ///< upslope, from the bases [m]
+      double       anchor_spread     = 1.5; ///< +- along x [m]
+      double       end_anchor_offset = 4.;  ///< beyond the outer posts [m]
+      unsigned int cells_per_field   = 4;   ///< net cells along x per field
+      unsigned int cells_over_height = 4;   ///< net cells along the posts
+      double       brake_length      = 0.5; ///< brake element length [m]
+
+      double post_E = 2.1e11, post_A = 3e-3, post_density = 7850.;
+      double cable_E = 1.2e11, cable_A = 2e-4, cable_prestress = 1e8,
+             cable_density = 7850.;
+      double rope_E = 1.2e11, rope_A = 2e-4, rope_prestress = 2e7,
+             rope_density = 7850.;
+      double   brake_k = 1e6, brake_Fa = 5e4, brake_H = 0., brake_smax = 1.;
+      Membrane net;
+
+      /** Subsection "Barrier" (everything but the net material, which is
+       * subsection "Membrane" of the caller). */
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Parse subsection "Barrier"; @p path is its path for messages. */
+      void
+      parse_parameters(dealii::ParameterHandler &prm, const std::string &path);
+
+      /** Add all meshes, call setup_dofs(), fix the supports. */
+      void
+      build(Structure &structure);
+
+      /** Nodes of the post bases and ground anchors (the supports). */
+      std::vector<unsigned int> supports;
+      /** Nodes of the post heads. */
+      std::vector<unsigned int> post_heads;
+      /** Indices of the meshes by role in Structure::line_meshes. */
+      std::vector<unsigned int> post_meshes, support_cable_meshes, rope_meshes,
+        brake_meshes;
+    };
+  } // namespace Structure
+} // namespace Talus
+
+#endif

@@ -1,0 +1,214 @@
+#ifndef talus_structure_line_elements_h
+#define talus_structure_line_elements_h
+
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <string>
+
+namespace Talus
+{
+  /**
+   * The barrier structure: membranes, trusses, cables, sliding cables and
+   * brakes in one geometrically nonlinear, total-Lagrangian finite element
+   * model (doc/architecture.md, doc/theory.md "Barrier structures").
+   */
+  namespace Structure
+  {
+    /**
+     * History of one two-node element, committed at the end of a converged
+     * load or time step.
+     */
+    struct LineState
+    {
+      /** Plastic Green-Lagrange strain (Truss) or plastic elongation, the
+       * brake stroke (Brake) [-] or [m]. */
+      double plastic = 0.;
+      /** Accumulated plastic strain alpha (Truss) [-]; dissipated energy
+       * (Brake) [J]. */
+      double accumulated = 0.;
+    };
+
+
+    /**
+     * What a two-node element returns for the current positions: the axial
+     * force, the nodal internal forces f = N [-e; e] (dofs ordered node 0
+     * x,y,z then node 1 x,y,z), the tangent dF/dx (6x6) and the trial
+     * history.
+     */
+    struct LineResponse
+    {
+      LineResponse();
+
+      double                     force  = 0.; ///< axial force N [N]
+      double                     energy = 0.; ///< stored elastic energy [J]
+      double                     strain = 0.; ///< GL strain (l^2-L^2)/(2L^2)
+      bool                       slack  = false;
+      dealii::Vector<double>     f;
+      dealii::FullMatrix<double> K;
+      LineState                  state;
+    };
+
+
+    /**
+     * Interface of a two-node line element (one cell of a
+     * Triangulation<1,3>). X0, X1: reference positions, x0, x1: current
+     * positions.
+     */
+    class LineElement
+    {
+    public:
+      virtual ~LineElement() = default;
+
+      /** Name for messages and output ("truss", "cable", "brake"). */
+      virtual std::string
+      name() const = 0;
+
+      /** Mass per reference length rho A [kg/m]. */
+      virtual double
+      mass_per_length() const = 0;
+
+      virtual void
+      compute(const dealii::Tensor<1, 3> &X0,
+              const dealii::Tensor<1, 3> &X1,
+              const dealii::Tensor<1, 3> &x0,
+              const dealii::Tensor<1, 3> &x1,
+              const LineState            &old_state,
+              LineResponse               &response) const = 0;
+
+      /**
+       * Stiffness added to the tangent (never to the forces) of a slack
+       * element, as a fraction of the axial stiffness EA/L, so that a net
+       * whose cables go slack does not make the Newton matrix singular
+       * [-]. The converged state is not affected: the residual contains no
+       * such force.
+       */
+      double slack_stiffness_ratio = 1e-8;
+
+    protected:
+      /**
+       * f and K of an axial force N with tangent dN/dl at current length l
+       * along e: K = dN/dl e e^T + N/l (I - e e^T), blocks [[K,-K],[-K,K]].
+       */
+      static void
+      assemble_axial(const dealii::Tensor<1, 3> &e,
+                     const double                l,
+                     const double                N,
+                     const double                dN_dl,
+                     LineResponse               &response);
+
+      /** f = 0, K = k_reg (I) blocks, for a slack element. */
+      static void
+      assemble_slack(const double k_reg, LineResponse &response);
+    };
+
+
+    /**
+     * Total-Lagrangian truss (bar) with PK2 pre-stress and 1D elasto-plasticity
+     * with linear isotropic hardening in Green-Lagrange strain / PK2 stress:
+     *   eps = (l^2 - L^2)/(2 L^2),  S = E (eps - eps_p) + sigma_0,
+     *   |S| <= sigma_y + H alpha,  N = A S l / L,  f = N [-e; e],
+     *   K = (E_t A l^2/L^3) e e^T + (A S / L) I   (E_t = E or E H/(E+H)).
+     * Works in tension and compression (no buckling). Source: Crisfield
+     * (1991) vol. 1 ch. 3; NOTES-structures-coupling.md section 2.1; return
+     * mapping of Simo & Hughes (1998) ch. 1.
+     */
+    class Truss : public LineElement
+    {
+    public:
+      double youngs_modulus = 0.; ///< E [Pa]
+      double area           = 0.; ///< A [m^2]
+      double prestress      = 0.; ///< sigma_0, PK2 [Pa]
+      double density        = 0.; ///< rho [kg/m^3]
+      double yield_stress   = 0.; ///< sigma_y [Pa]; 0: elastic
+      double hardening      = 0.; ///< H [Pa]
+
+      std::string
+      name() const override;
+
+      double
+      mass_per_length() const override;
+
+      void
+      compute(const dealii::Tensor<1, 3> &X0,
+              const dealii::Tensor<1, 3> &X1,
+              const dealii::Tensor<1, 3> &x0,
+              const dealii::Tensor<1, 3> &x1,
+              const LineState            &old_state,
+              LineResponse               &response) const override;
+    };
+
+
+    /**
+     * Tension-only elastic cable with PK2 pre-stress: the truss law of
+     * Truss without plasticity, and S = E eps + sigma_0 < 0 gives a slack
+     * cable with no force and no stiffness (Kratos CableElement3D2N;
+     * NOTES-structures-coupling.md section 2.1); at S = 0 exactly the taut
+     * tangent is used, so that a stress-free cable starts taut for Newton.
+     * A straight cable in tension has the lateral stiffness A S/L.
+     */
+    class Cable : public LineElement
+    {
+    public:
+      double youngs_modulus = 0.; ///< E [Pa]
+      double area           = 0.; ///< A [m^2]
+      double prestress      = 0.; ///< sigma_0, PK2 [Pa]
+      double density        = 0.; ///< rho [kg/m^3]
+
+      std::string
+      name() const override;
+
+      double
+      mass_per_length() const override;
+
+      void
+      compute(const dealii::Tensor<1, 3> &X0,
+              const dealii::Tensor<1, 3> &X1,
+              const dealii::Tensor<1, 3> &x0,
+              const dealii::Tensor<1, 3> &x1,
+              const LineState            &old_state,
+              LineResponse               &response) const override;
+    };
+
+
+    /**
+     * Brake (energy dissipating element): an elasto-plastic, tension-only
+     * spring in the elongation d = l - L,
+     *   N = k_e (d - s) >= 0,  N <= F_a + H s,  0 <= s <= s_max,
+     * with stroke s (plastic elongation), activation force F_a, hardening H
+     * and stroke limit s_max, after which the brake is blocked and behaves
+     * elastically with k_e. Dissipated energy D = F_a s + H s^2 / 2 (summed
+     * increment by increment). Slack (d < s): N = 0 (at d = s the elastic
+     * tangent is used, so that a stress-free brake starts taut). Return
+     * mapping as in
+     * NOTES-structures-coupling.md section 2.4.
+     */
+    class Brake : public LineElement
+    {
+    public:
+      double stiffness        = 0.; ///< k_e [N/m]
+      double activation_force = 0.; ///< F_a [N]
+      double hardening        = 0.; ///< H [N/m]
+      double stroke_limit     = 0.; ///< s_max [m]; 0: unlimited
+      double mass             = 0.; ///< rho A [kg/m]
+
+      std::string
+      name() const override;
+
+      double
+      mass_per_length() const override;
+
+      void
+      compute(const dealii::Tensor<1, 3> &X0,
+              const dealii::Tensor<1, 3> &X1,
+              const dealii::Tensor<1, 3> &x0,
+              const dealii::Tensor<1, 3> &x1,
+              const LineState            &old_state,
+              LineResponse               &response) const override;
+    };
+  } // namespace Structure
+} // namespace Talus
+
+#endif

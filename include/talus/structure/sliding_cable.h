@@ -1,0 +1,76 @@
+#ifndef talus_structure_sliding_cable_h
+#define talus_structure_sliding_cable_h
+
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <vector>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    /**
+     * A cable running through nodes 0..n without friction (shackles,
+     * rings, pulleys): one uniform tension along the whole cable.
+     * With segment lengths L_i (reference) and l_i (current), L = sum L_i,
+     * l = sum l_i, e_i = (x_{i+1} - x_i)/l_i:
+     *   eps = (l^2 - L^2)/(2 L^2),  S = E eps + sigma_0,  N = A S l / L,
+     *   f = N g,  g_0 = -e_0,  g_k = e_{k-1} - e_k,  g_n = e_{n-1},
+     *   K = (E A l^2/L^3 + A S/L) g g^T
+     *       + N sum_i (I - e_i e_i^T)/l_i [[1,-1],[-1,1]] on segment i.
+     * Tension only: S < 0 gives no force (slack). Source: Kratos
+     * SlidingCableElement3D (K. B. Sautter); NOTES-structures-coupling.md
+     * section 2.2. The interior nodes are the shackles; they slide freely
+     * along the cable.
+     */
+    class SlidingCable
+    {
+    public:
+      double youngs_modulus        = 0.;   ///< E [Pa]
+      double area                  = 0.;   ///< A [m^2]
+      double prestress             = 0.;   ///< sigma_0, PK2 [Pa]
+      double density               = 0.;   ///< rho [kg/m^3]
+      double slack_stiffness_ratio = 1e-8; ///< as LineElement [-]
+      /**
+       * Capstan (Euler-Eytelwein) friction coefficient mu at the interior
+       * nodes [-]; 0: frictionless. With mu > 0 the cable is assumed to
+       * slide towards its last node (pulled there) at every node: the
+       * segment tensions are N_i = N_0 prod_{k<=i} exp(mu theta_k), theta_k
+       * the deviation angle at node k, and N_0 follows from the length of
+       * cable material, sum_i l_i / lambda(N_i) = L, with lambda(N) the
+       * stretch of the law N = A (E (lambda^2 - 1)/2 + sigma_0) lambda
+       * (per segment). The tangent is computed by central differences.
+       * Stick is not modelled.
+       */
+      double friction_coefficient = 0.;
+
+      /** Segment tensions of the last compute() with friction [N]. */
+      mutable std::vector<double> segment_forces;
+
+      /**
+       * Nodal forces f (3 per node, node by node) and tangent K for the
+       * reference positions @p X and current positions @p x of the nodes in
+       * cable order. Returns the tension N [N].
+       */
+      double
+      compute(const std::vector<dealii::Tensor<1, 3>> &X,
+              const std::vector<dealii::Tensor<1, 3>> &x,
+              dealii::Vector<double>                  &f,
+              dealii::FullMatrix<double>              &K,
+              double                                  *energy = nullptr) const;
+
+    private:
+      /** Internal forces with friction (see friction_coefficient); returns
+       * N_0 and fills segment_forces. */
+      double
+      friction_forces(const std::vector<dealii::Tensor<1, 3>> &X,
+                      const std::vector<dealii::Tensor<1, 3>> &x,
+                      dealii::Vector<double>                  &f) const;
+    };
+  } // namespace Structure
+} // namespace Talus
+
+#endif

@@ -1,0 +1,114 @@
+#ifndef talus_structure_static_solver_h
+#define talus_structure_static_solver_h
+
+#include <talus/structure/structure.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <functional>
+#include <string>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    /** Outcome of one Newton solve. */
+    struct NewtonStatus
+    {
+      bool         converged  = false;
+      unsigned int iterations = 0;
+      double       residual   = 0.; ///< final |r| [N]
+      std::string  failure;
+    };
+
+
+    /**
+     * Static equilibrium of a Structure: for a load factor lambda, find u
+     * with f_int(u) = lambda f_ext (+ external nodal forces) and the
+     * prescribed displacements lambda u_D, by Newton's method with the
+     * consistent tangent, solved with UMFPACK (the tangent is
+     * non-symmetric with follower pressure), and an optional backtracking
+     * line search on |r|. Load stepping: lambda = k/n for k = 1..n.
+     * Displacement control: prescribe the displacement of the loaded node
+     * (Structure::prescribe) instead of a load and read the reaction; this
+     * follows a path through limit points of the load as long as the
+     * controlled displacement grows monotonically (the von Mises truss).
+     * Lambda = 0 is the pre-stress equilibrium step.
+     */
+    class StaticSolver
+    {
+    public:
+      explicit StaticSolver(Structure &structure);
+
+      /** Subsection "Structure/Solver". */
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+
+      /** Allocate the matrix and vectors (after Structure::setup_system). */
+      void
+      setup();
+
+      /**
+       * Terms added to the residual r (and the tangent K, if not null) at
+       * displacement u after the structure's own (e.g. inertia and damping
+       * of DynamicSolver); only on unconstrained DoFs.
+       */
+      using ExtraTerms = std::function<void(const dealii::Vector<double> &u,
+                                            dealii::Vector<double>       &r,
+                                            dealii::SparseMatrix<double> *K)>;
+
+      /**
+       * Solve for @p load_factor from the current displacement; on success
+       * commits the history if @p commit.
+       */
+      NewtonStatus
+      solve(const double      load_factor,
+            const ExtraTerms &extra  = ExtraTerms(),
+            const bool        commit = true);
+
+      /**
+       * One step of the arc-length method (Crisfield's cylindrical
+       * constraint |u - u_0|^2 = ds^2 over the unconstrained DoFs, bordering
+       * with two solves per iteration) from the committed state
+       * (displacement, @p load_factor). The load factor becomes an unknown:
+       * on success @p load_factor is the new one and the history is
+       * committed. The predictor follows the previous direction
+       * @p direction (updated), so the path passes limit points of the
+       * load. Needs homogeneous supports (prescribed displacements are
+       * not scaled by the arc-length load factor).
+       */
+      NewtonStatus
+      solve_arc_length(double                 &load_factor,
+                       const double            ds,
+                       dealii::Vector<double> &direction);
+
+      dealii::Vector<double> displacement;
+
+      unsigned int load_steps     = 10;
+      unsigned int max_iterations = 30;
+      double       tolerance      = 1e-10;
+      bool         line_search    = true;
+      /** Largest displacement change of one Newton iteration [m]; 0: no
+       * limit. Longer steps are scaled down (a trust region for structures
+       * that start far from equilibrium). */
+      double max_increment = 0.;
+      /** "load" (load factor steps) or "arc length". */
+      std::string control    = "load";
+      double      arc_length = 0.01; ///< ds [m]
+
+    private:
+      Structure                   &structure;
+      dealii::SparseMatrix<double> matrix;
+      /** Largest nodal force norm seen, the scale of the tolerance [N]. */
+      double force_scale = 0.;
+    };
+  } // namespace Structure
+} // namespace Talus
+
+#endif

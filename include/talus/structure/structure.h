@@ -1,0 +1,273 @@
+#ifndef talus_structure_structure_h
+#define talus_structure_structure_h
+
+#include <talus/structure/line_elements.h>
+#include <talus/structure/membrane.h>
+#include <talus/structure/sliding_cable.h>
+
+#include <deal.II/base/point.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    /**
+     * A line mesh (Triangulation<1,3>, serial): either every cell is one
+     * two-node element (truss, cable, brake), or the whole mesh is one
+     * sliding cable through its vertices.
+     */
+    struct LineMesh
+    {
+      std::string                         name;
+      dealii::Triangulation<1, 3>         triangulation;
+      dealii::DoFHandler<1, 3>            dof_handler;
+      std::shared_ptr<const LineElement>  element;
+      std::shared_ptr<const SlidingCable> sliding_cable;
+      dealii::types::global_dof_index     offset = 0;
+      /** Committed and trial history, by active cell index. */
+      std::vector<LineState> state, trial_state;
+      /** Axial force of each cell after the last assembly [N]. */
+      std::vector<double> force;
+      /** Sliding cable: global dofs of the nodes in cable order. */
+      std::vector<std::array<dealii::types::global_dof_index, 3>> chain;
+      std::vector<dealii::Tensor<1, 3>>                           chain_X;
+      /** Sliding cable: active cell index of each segment in cable order. */
+      std::vector<unsigned int> chain_cells;
+    };
+
+
+    /** A membrane mesh (Triangulation<2,3>, serial). */
+    struct MembraneMesh
+    {
+      std::string                     name;
+      dealii::Triangulation<2, 3>     triangulation;
+      dealii::DoFHandler<2, 3>        dof_handler;
+      std::shared_ptr<const Membrane> membrane;
+      dealii::types::global_dof_index offset = 0;
+      /** Stress results per active cell after the last assembly. */
+      std::vector<MembraneCellOutput> cell_output;
+    };
+
+
+    /**
+     * The structural model: several deal.II meshes (membranes on
+     * Triangulation<2,3>, trusses, cables, brakes and sliding cables on
+     * Triangulation<1,3>, each with FESystem(FE_Q(1),3)), their degrees of
+     * freedom in one global numbering (the DoFs of mesh m follow those of
+     * mesh m-1), vertices that coincide across meshes tied by
+     * AffineConstraints (shackles, post heads, cable ends), supports as
+     * homogeneous or prescribed (displacement-controlled) Dirichlet
+     * conditions, and the loads: gravity, point loads, follower pressure
+     * and external nodal forces set from outside (the coupling).
+     *
+     * Use: add meshes and fill their triangulations, setup_dofs(), then add
+     * supports and loads by node, setup_system(); then assemble() at any
+     * displacement. History is committed by commit_state().
+     */
+    class Structure
+    {
+    public:
+      /** Add a mesh; fill its triangulation before setup_dofs(). */
+      LineMesh &
+      add_line_mesh(const std::string                        &name,
+                    const std::shared_ptr<const LineElement> &element);
+
+      LineMesh &
+      add_sliding_cable(const std::string                         &name,
+                        const std::shared_ptr<const SlidingCable> &cable);
+
+      MembraneMesh &
+      add_membrane(const std::string                     &name,
+                   const std::shared_ptr<const Membrane> &membrane);
+
+      /**
+       * Distribute the DoFs of every mesh, number them globally and find
+       * the nodes: vertices closer than @p tolerance (relative to the size of
+       * the structure) are one node, the DoFs of all but the first are tied
+       * to it.
+       */
+      void
+      setup_dofs(const double tolerance = 1e-8);
+
+      /** Index of the node at @p p (within @p tolerance [m]), or
+       * numbers::invalid_unsigned_int. */
+      unsigned int
+      find_node(const dealii::Point<3> &p, const double tolerance) const;
+
+      /** Nodes whose position satisfies @p predicate. */
+      std::vector<unsigned int>
+      find_nodes(
+        const std::function<bool(const dealii::Point<3> &)> &predicate) const;
+
+      unsigned int
+      n_nodes() const;
+
+      const dealii::Point<3> &
+      node_position(const unsigned int node) const;
+
+      /** The (master) global DoF of component @p c of node @p node. */
+      dealii::types::global_dof_index
+      node_dof(const unsigned int node, const unsigned int c) const;
+
+      /**
+       * Fix component @p c of @p node at displacement @p value times the
+       * load factor (0: a support).
+       */
+      void
+      prescribe(const unsigned int node,
+                const unsigned int c,
+                const double       value = 0.);
+
+      /** Remove the condition of prescribe() (call setup_system() again,
+       * which keeps nothing but the constraints and the matrix pattern). */
+      void
+      release(const unsigned int node, const unsigned int c);
+
+      /** Point load [N] at a node, scaled by the load factor. */
+      void
+      add_point_load(const unsigned int node, const dealii::Tensor<1, 3> &F);
+
+      /** Gravity acceleration [m/s^2], scaled by the load factor. */
+      dealii::Tensor<1, 3> gravity;
+
+      /** External nodal forces [N] per global DoF, not scaled by the load
+       * factor (set from outside each step, e.g. by the coupling). */
+      dealii::Vector<double> external_forces;
+
+      /** Constraints, sparsity, matrix and vectors. */
+      void
+      setup_system();
+
+      /**
+       * Residual r = f_int(u) - f_ext (condensed: zero on constrained DoFs)
+       * and, if @p K is given, its tangent. Updates the trial history and
+       * the element results. Returns the norm of r.
+       */
+      double
+      assemble(const dealii::Vector<double> &u,
+               const double                  load_factor,
+               dealii::Vector<double>       &r,
+               dealii::SparseMatrix<double> *K);
+
+      /** Set the prescribed DoFs of @p u for @p load_factor and make the
+       * tied DoFs equal to their masters. */
+      void
+      apply_prescribed(dealii::Vector<double> &u,
+                       const double            load_factor) const;
+
+      /** Elastic energy stored in all elements at the last assemble() [J]
+       * (membranes: the SVK energy, also where wrinkling modifies the
+       * stress; brakes: the energy of their elastic spring). */
+      double
+      strain_energy() const;
+
+      /**
+       * Lumped mass per DoF [kg] (rho A L/2 per node of a line element,
+       * rho t int N_I dA0 for membranes), summed onto the master DoF of
+       * each node; zero on tied DoFs.
+       */
+      const dealii::Vector<double> &
+      lumped_mass() const;
+
+      /**
+       * Consistent mass matrix (condensed with the constraints; sparsity of
+       * setup_system()): rho A L/6 [[2,1],[1,2]] per component for line
+       * elements, the lumped masses for sliding cables, rho t int N_I N_J
+       * dA0 for membranes [kg].
+       */
+      void
+      assemble_consistent_mass(dealii::SparseMatrix<double> &M) const;
+
+      /** Potential of the loads at load factor @p load_factor: -(point
+       * loads + gravity + external nodal forces) . u [J]. */
+      double
+      load_potential(const dealii::Vector<double> &u,
+                     const double                  load_factor) const;
+
+      /** Accept the trial history (end of a converged step). */
+      void
+      commit_state();
+
+      /**
+       * Force [N] the structure exerts on the supports at @p node
+       * (f_int - f_ext summed over the DoFs of the node) after the last
+       * assemble().
+       */
+      dealii::Tensor<1, 3>
+      reaction(const unsigned int node) const;
+
+      /** Displacement of @p node in @p u. */
+      dealii::Tensor<1, 3>
+      node_displacement(const dealii::Vector<double> &u,
+                        const unsigned int            node) const;
+
+      /** Write one VTU file per mesh (and a .pvd record over @p times). */
+      void
+      write_vtu(const dealii::Vector<double> &u,
+                const std::string            &directory,
+                const unsigned int            step,
+                const double                  time);
+
+      dealii::types::global_dof_index
+      n_dofs() const;
+
+      const dealii::AffineConstraints<double> &
+      get_constraints() const;
+
+      const dealii::SparsityPattern &
+      get_sparsity_pattern() const;
+
+      std::vector<std::unique_ptr<LineMesh>>     line_meshes;
+      std::vector<std::unique_ptr<MembraneMesh>> membrane_meshes;
+
+    private:
+      dealii::FESystem<1, 3> line_fe{dealii::FE_Q<1, 3>(1), 3};
+      dealii::FESystem<2, 3> membrane_fe{dealii::FE_Q<2, 3>(1), 3};
+
+      struct Node
+      {
+        dealii::Point<3>                                            X;
+        std::array<dealii::types::global_dof_index, 3>              dofs;
+        std::vector<std::array<dealii::types::global_dof_index, 3>> slaves;
+      };
+      std::vector<Node> nodes;
+      /** Node of every global DoF. */
+      std::vector<unsigned int>       dof_to_node;
+      dealii::types::global_dof_index total_dofs = 0;
+
+      std::vector<std::pair<dealii::types::global_dof_index, double>>
+                                                                 prescribed;
+      std::vector<std::pair<unsigned int, dealii::Tensor<1, 3>>> point_loads;
+
+      dealii::AffineConstraints<double> ties;
+      dealii::AffineConstraints<double> constraints;
+      dealii::SparsityPattern           sparsity;
+      /** Unconstrained f_int - f_ext of the last assembly (reactions). */
+      dealii::Vector<double> raw_residual;
+      dealii::Vector<double> mass;
+      double                 last_strain_energy = 0.;
+
+      std::vector<std::pair<double, std::string>> pvd_records;
+    };
+  } // namespace Structure
+} // namespace Talus
+
+#endif

@@ -1,0 +1,2786 @@
+#include <talus/app/simulation.h>
+#include <talus/app/structure_simulation.h>
+#include <talus/base/input.h>
+#include <talus/structure/barrier_builder.h>
+#include <talus/structure/dynamic_solver.h>
+#include <talus/structure/static_solver.h>
+#include <talus/structure/structure.h>
+
+#include <deal.II/base/convergence_table.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/tria.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <tuple>
+
+namespace Talus
+{
+  namespace StructureSimulation
+  {
+    namespace
+    {
+      using namespace dealii;
+      using Talus::Structure::Structure;
+
+      const std::string S = "Structure";
+
+      /** Find x in [a, b] with f(x) = 0 by bisection (f(a) f(b) <= 0). */
+      double
+      bisect(const std::function<double(double)> &f, double a, double b)
+      {
+        double fa = f(a);
+        for (unsigned int i = 0; i < 200; ++i)
+          {
+            const double m  = 0.5 * (a + b);
+            const double fm = f(m);
+            if ((fm <= 0.) == (fa <= 0.))
+              {
+                a  = m;
+                fa = fm;
+              }
+            else
+              b = m;
+          }
+        return 0.5 * (a + b);
+      }
+
+
+      Tensor<1, 3>
+      get_vector(ParameterHandler  &prm,
+                 const std::string &subsection,
+                 const std::string &entry)
+      {
+        const auto v = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get(entry)));
+        if (v.size() != 3)
+          InputFile::reject(subsection,
+                            entry,
+                            prm.get(entry),
+                            "it must have three components x, y, z");
+        return Tensor<1, 3>({v[0], v[1], v[2]});
+      }
+
+
+      /** Everything read from subsection Structure. */
+      struct Parameters
+      {
+        std::string model;
+        // Line members.
+        std::string  line_element;
+        double       E = 0., A = 0., prestress = 0., density = 0.;
+        double       yield_stress = 0., hardening = 0.;
+        unsigned int elements    = 1;
+        double       slack_ratio = 1e-8;
+        // Membrane.
+        double membrane_E = 0., membrane_nu = 0., membrane_E2 = 0.,
+               membrane_G = 0., thickness = 0., membrane_density = 0.;
+        bool         orthotropic = false, wrinkling = false;
+        Tensor<1, 3> membrane_prestress;
+        double       initial_deflection = 0.;
+        // Brake.
+        double brake_k = 0., brake_Fa = 0., brake_H = 0., brake_smax = 0.,
+               brake_length = 0.;
+        // Geometry.
+        double half_span = 0., rise = 0., span = 0., unstretched_length = 0.,
+               radius = 0., side = 0., cable_length = 0.;
+        unsigned int refinements = 0;
+        std::string  mesh_file;
+        // Loads.
+        Tensor<1, 3>        gravity, point_load;
+        double              pressure = 0., prescribed_displacement = 0.;
+        std::vector<double> load_path;
+        // Output and verification.
+        std::string directory;
+        bool        write_vtu = false, test_mode = false;
+        double      tolerance = 0., reference_displacement = 0.;
+        bool        dynamic = false;
+        double bossak_alpha = 0., dynamic_time_step = 0., string_amplitude = 0.;
+        bool   mesh_is_membrane   = false;
+        double mass_damping       = 0.;
+        bool   arc_length_control = false;
+        double shear_strain       = 0.;
+        double friction = 0., wrap_angle = 180., drum_radius = 0.5;
+        double spring_EA = 0., spring_length = 1.;
+        Talus::Structure::BarrierBuilder barrier;
+        double                           mode_amplitude = 0.;
+        unsigned int                     n_levels = 1, first_level = 0;
+        double                           minimum_rate = 0.;
+      };
+
+
+      /** A computed quantity and its closed-form value. */
+      struct Result
+      {
+        std::string name;
+        double      computed  = 0.;
+        double      reference = 0.;
+        bool        checked   = true; ///< counts for the tolerance
+        /** The computed value is itself a relative error (reference 0). */
+        bool is_error = false;
+        double
+        error() const
+        {
+          if (is_error)
+            return std::abs(computed);
+          return std::abs(computed - reference) /
+                 std::max(std::abs(reference), 1e-300);
+        }
+      };
+
+
+      /**
+       * A structural model built from the parameters, with its closed-form
+       * reference. build() creates the meshes, supports and loads of the
+       * given refinement level.
+       */
+      class Model
+      {
+      public:
+        explicit Model(const Parameters &p)
+          : p(p)
+        {}
+        virtual ~Model() = default;
+
+        virtual void
+        build(Structure &s, const unsigned int level) = 0;
+
+        /** Start of Newton (e.g. a bulge for a flat, unstressed membrane). */
+        virtual void
+        initial_guess(const Structure &, Vector<double> &) const
+        {}
+
+        /** Extra load factors to visit (inserted into the load path). */
+        virtual std::vector<double>
+        extra_load_factors() const
+        {
+          return {};
+        }
+
+        /** Values written to the CSV (and checked) after every step. */
+        virtual std::vector<std::pair<std::string, double>>
+        monitor(const Structure &, const Vector<double> &, double)
+        {
+          return {};
+        }
+
+        /** Results compared with the closed form at the end. */
+        virtual std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) = 0;
+
+        /** Solve the pre-stress equilibrium (lambda = 0) first. */
+        virtual bool
+        prestress_step() const
+        {
+          return p.prestress != 0. || p.membrane_prestress.norm() != 0.;
+        }
+
+        virtual std::string
+        description() const = 0;
+
+        /** The model can run with 'dynamic = true'. */
+        virtual bool
+        supports_dynamics() const
+        {
+          return false;
+        }
+
+        /** After a dynamic run: solve the static equilibrium from its end
+         * state (dynamic relaxation: damped motion to rest, then Newton). */
+        virtual bool
+        relax_to_equilibrium() const
+        {
+          return false;
+        }
+
+        /**
+         * Called once before the load steps (after the pre-stress step):
+         * e.g. staged form finding. Returns false if it failed.
+         */
+        virtual void
+        before_load_steps(Structure &, Talus::Structure::StaticSolver &)
+        {}
+
+        /** Set by the time loop before monitor(): time [s] and total
+         * energy (kinetic + strain + load potential) [J]. */
+        double time = 0., total_energy = 0.;
+
+      protected:
+        const Parameters &p;
+
+        std::shared_ptr<Talus::Structure::LineElement>
+        line_element() const
+        {
+          if (p.line_element == "cable")
+            {
+              auto c            = std::make_shared<Talus::Structure::Cable>();
+              c->youngs_modulus = p.E;
+              c->area           = p.A;
+              c->prestress      = p.prestress;
+              c->density        = p.density;
+              c->slack_stiffness_ratio = p.slack_ratio;
+              return c;
+            }
+          auto t            = std::make_shared<Talus::Structure::Truss>();
+          t->youngs_modulus = p.E;
+          t->area           = p.A;
+          t->prestress      = p.prestress;
+          t->density        = p.density;
+          t->yield_stress   = p.yield_stress;
+          t->hardening      = p.hardening;
+          t->slack_stiffness_ratio = p.slack_ratio;
+          return t;
+        }
+
+        std::shared_ptr<Talus::Structure::Membrane>
+        membrane() const
+        {
+          auto m = std::make_shared<Talus::Structure::Membrane>();
+          m->material.thickness = p.thickness;
+          m->material.set_isotropic(p.membrane_E, p.membrane_nu);
+          if (p.orthotropic)
+            {
+              m->material.youngs_modulus_2 = p.membrane_E2;
+              m->material.shear_modulus    = p.membrane_G;
+            }
+          m->material.prestress = p.membrane_prestress;
+          m->material.wrinkling = p.wrinkling;
+          m->density            = p.membrane_density;
+          m->pressure           = p.pressure;
+          return m;
+        }
+
+        unsigned int
+        node_at(const Structure &s, const Point<3> &x) const
+        {
+          const unsigned int n = s.find_node(x, 1e-9 * (1. + x.norm()));
+          AssertThrow(n != numbers::invalid_unsigned_int,
+                      ExcMessage("internal: no node at a model point"));
+          return n;
+        }
+      };
+
+
+      /** A straight line mesh from a to b with n cells. */
+      void
+      make_line(Triangulation<1, 3> &tria,
+                const Point<3>      &a,
+                const Point<3>      &b,
+                const unsigned int   n)
+      {
+        std::vector<Point<3>>    vertices(n + 1);
+        std::vector<CellData<1>> cells(n);
+        for (unsigned int i = 0; i <= n; ++i)
+          vertices[i] = a + (b - a) * (static_cast<double>(i) / n);
+        for (unsigned int i = 0; i < n; ++i)
+          cells[i].vertices = {i, i + 1};
+        tria.create_triangulation(vertices, cells, SubCellData());
+      }
+
+      void
+      make_polyline(Triangulation<1, 3> &tria, const std::vector<Point<3>> &x)
+      {
+        std::vector<CellData<1>> cells(x.size() - 1);
+        for (unsigned int i = 0; i + 1 < x.size(); ++i)
+          cells[i].vertices = {i, i + 1};
+        tria.create_triangulation(x, cells, SubCellData());
+      }
+
+
+      // ------------------------------------------------------------------
+      /**
+       * Von Mises two-bar truss (VERIFICATION.md 3): supports (-b,0,0),
+       * (b,0,0), apex (0,0,h), apex displacement -v prescribed
+       * (displacement control). Green-Lagrange bar, exact:
+       * P(v) = EA/L0^3 v (2h - v)(h - v), P_max = 2 EA h^3/(3 sqrt(3) L0^3)
+       * at v* = h (1 - 1/sqrt(3)).
+       */
+      class VonMisesTruss : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return std::string("von Mises two-bar truss") +
+                 (p.spring_EA > 0. ? " with a soft spring on the apex" : "") +
+                 (p.arc_length_control ?
+                    ", arc-length control" :
+                    (p.point_load.norm() > 0. ? ", load control" :
+                                                ", displacement control"));
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          const auto     element = line_element();
+          const Point<3> left(-p.half_span, 0, 0), right(p.half_span, 0, 0),
+            apex(0, 0, p.rise);
+          make_line(s.add_line_mesh("bar_left", element).triangulation,
+                    left,
+                    apex,
+                    p.elements);
+          make_line(s.add_line_mesh("bar_right", element).triangulation,
+                    apex,
+                    right,
+                    p.elements);
+          spring_top = Point<3>(0, 0, p.rise + p.spring_length);
+          if (spring())
+            {
+              auto k            = std::make_shared<Talus::Structure::Truss>();
+              k->youngs_modulus = p.spring_EA;
+              k->area           = 1.;
+              make_line(s.add_line_mesh("spring", k).triangulation,
+                        apex,
+                        spring_top,
+                        1);
+            }
+          s.setup_dofs();
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              s.prescribe(node_at(s, left), c);
+              s.prescribe(node_at(s, right), c);
+            }
+          // Plane problem: every node stays in y = 0.
+          for (unsigned int n = 0; n < s.n_nodes(); ++n)
+            s.prescribe(n, 1);
+          apex_node = node_at(s, apex);
+          load_node = apex_node;
+          if (spring())
+            {
+              // Soft vertical spring (a Truss with E A = spring EA) on the
+              // apex, loaded at its top, which is guided vertically.
+              load_node = node_at(s, spring_top);
+              s.prescribe(load_node, 0);
+              s.prescribe(apex_node, 0);
+            }
+          if (load_control())
+            s.add_point_load(load_node, p.point_load);
+          else
+            s.prescribe(apex_node, 2, -p.prescribed_displacement);
+          L0 = std::sqrt(p.half_span * p.half_span + p.rise * p.rise);
+        }
+
+        bool
+        spring() const
+        {
+          return p.spring_EA > 0.;
+        }
+
+        /** Top of the spring, after the bars (it must exist before
+         * setup_dofs(): see build()). */
+        Point<3> spring_top;
+
+        /** A load at the apex instead of its displacement. */
+        bool
+        load_control() const
+        {
+          return p.point_load.norm() > 0.;
+        }
+
+        std::vector<double>
+        extra_load_factors() const override
+        {
+          if (load_control())
+            return {};
+          const double v_star = p.rise * (1. - 1. / std::sqrt(3.));
+          if (v_star < p.prescribed_displacement)
+            return {v_star / p.prescribed_displacement};
+          return {};
+        }
+
+        double
+        exact(const double v) const
+        {
+          return p.E * p.A / (L0 * L0 * L0) * v * (2. * p.rise - v) *
+                 (p.rise - v);
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure      &s,
+                const Vector<double> &u,
+                const double          lambda) override
+        {
+          const double v = -s.node_displacement(u, apex_node)[2];
+          // The load that holds the apex: P = -(f_int)_z (downwards).
+          const double P     = load_control() ? -lambda * p.point_load[2] :
+                                                -s.reaction(apex_node)[2];
+          const double P_max = 2. * p.E * p.A * std::pow(p.rise, 3) /
+                               (3. * std::sqrt(3.) * L0 * L0 * L0);
+          max_error = std::max(max_error, std::abs(P - exact(v)) / P_max);
+          if (spring())
+            {
+              // Spring: E A lambda (lambda^2 - 1)/2 = -P(v), the top moves
+              // by w = v + L_s (1 - lambda).
+              const double Pv       = exact(v);
+              const double lambda_s = bisect(
+                [&](const double l) {
+                  return p.spring_EA * l * (l * l - 1.) / 2. + Pv;
+                },
+                1. / std::sqrt(3.),
+                3.);
+              const double w_exact = v + p.spring_length * (1. - lambda_s);
+              const double w       = -s.node_displacement(u, load_node)[2];
+              max_spring_error =
+                std::max(max_spring_error, std::abs(w - w_exact) / p.rise);
+              w_min      = std::min(w_min, w);
+              w_max_seen = std::max(w_max_seen, w);
+              snap_back  = snap_back || (w < w_max_seen - 1e-3 * p.rise);
+            }
+          if (P > P_peak)
+            {
+              P_peak = P;
+              v_peak = v;
+            }
+          table.emplace_back(v, P);
+          return {{"apex_displacement", v},
+                  {"load", P},
+                  {"load_exact", exact(v)}};
+        }
+
+        std::vector<Result>
+        results(const Structure &, const Vector<double> &) override
+        {
+          const double P_max = 2. * p.E * p.A * std::pow(p.rise, 3) /
+                               (3. * std::sqrt(3.) * L0 * L0 * L0);
+          std::cout << "  load path (v: apex displacement down [m], P: load "
+                       "down [N]):\n"
+                    << "        v            P            P exact\n";
+          for (const auto &[v, P] : table)
+            std::cout << "    " << std::setw(11) << std::setprecision(5)
+                      << std::scientific << v << "  " << std::setw(11) << P
+                      << "  " << std::setw(11) << exact(v) << '\n'
+                      << std::defaultfloat;
+          if (load_control() && p.arc_length_control)
+            {
+              // Arc length: the whole path through the limit point.
+              const double v_end = table.back().first;
+              if (spring())
+                return {{"largest load on the path P_max [N]", P_peak, P_max},
+                        {"final apex displacement [m]", v_end, 0., false},
+                        {"max |P - P(v)| / P_max over the path",
+                         max_error,
+                         0.,
+                         true,
+                         true},
+                        {"max |w - w(v)| / h over the path (spring top)",
+                         max_spring_error,
+                         0.,
+                         true,
+                         true},
+                        {"snap-back traced (the spring top moved back up)",
+                         snap_back ? 1. : 0.,
+                         1.}};
+              return {{"largest load on the path P_max [N]", P_peak, P_max},
+                      {"apex displacement at the largest load [m]",
+                       v_peak,
+                       p.rise * (1. - 1. / std::sqrt(3.)),
+                       false},
+                      {"final apex displacement [m]", v_end, 0., false},
+                      {"max |P - P_exact| / P_max over the path",
+                       max_error,
+                       0.,
+                       true,
+                       true}};
+            }
+          if (load_control())
+            {
+              // Load control: the apex displacement at the final load, the
+              // root of P(v) = P below the limit point.
+              const double P      = -p.point_load[2];
+              const double v_star = p.rise * (1. - 1. / std::sqrt(3.));
+              if (!(P > 0. && P < P_max) || p.point_load[0] != 0. ||
+                  p.point_load[1] != 0.)
+                InputFile::reject(S + "/Loads",
+                                  "point load",
+                                  "",
+                                  "the von Mises truss under load control "
+                                  "needs a downward load 0 < -P_z < P_max = " +
+                                    std::to_string(P_max) + " N");
+              const double v_exact =
+                bisect([&](const double v) { return exact(v) - P; },
+                       0.,
+                       v_star);
+              return {{"apex displacement at the final load [m]",
+                       table.back().first,
+                       v_exact},
+                      {"max |P - P_exact| / P_max over the path",
+                       max_error,
+                       0.,
+                       true,
+                       true}};
+            }
+          return {{"largest load P_max [N]", P_peak, P_max},
+                  {"apex displacement at P_max [m]",
+                   v_peak,
+                   p.rise * (1. - 1. / std::sqrt(3.))},
+                  {"max |P - P_exact| / P_max over the path",
+                   max_error,
+                   0.,
+                   true,
+                   true}};
+        }
+
+      private:
+        unsigned int                           apex_node = 0;
+        double                                 L0        = 0.;
+        double                                 max_error = 0.;
+        double                                 P_peak = -1e300, v_peak = 0.;
+        std::vector<std::pair<double, double>> table;
+        unsigned int                           load_node        = 0;
+        double                                 max_spring_error = 0.;
+        double w_min = 1e300, w_max_seen = -1e300;
+        bool   snap_back = false;
+      };
+
+
+      // ------------------------------------------------------------------
+      /**
+       * Elastic catenary (Irvine 1981): supports at (+-l/2, 0, 0),
+       * unstretched length L0, weight w = rho A g per unstretched length.
+       * Irvine (Hooke's law T = EA (lambda - 1)): H solves l = H L0/EA +
+       * (2H/w) asinh(w L0/(2H)); mid-span sag f = w L0^2/(8 EA) + (H/w)
+       * (sqrt(1 + (V/H)^2) - 1), V = w L0/2; support tension T = sqrt(H^2 +
+       * V^2). The cable element's law is T = EA lambda (lambda^2 - 1)/2
+       * (Green-Lagrange strain), so the reference is the same catenary
+       * integral with that stretch (span_and_sag()); Irvine's values are
+       * printed beside it. The reference (stress-free) shape is a parabola
+       * whose chords add up to L0.
+       */
+      class Catenary : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "elastic catenary (Irvine), cable under self weight";
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          const unsigned int n = p.elements << level;
+          if (n % 2 != 0)
+            InputFile::reject(S + "/Line members",
+                              "elements per member",
+                              std::to_string(p.elements),
+                              "the catenary needs an even number of elements "
+                              "(a node at mid-span)");
+          const double l = p.span;
+          // Parabola z = -f0 (1 - (2x/l)^2) with sum of chords = L0.
+          const auto points = [&](const double f0) {
+            std::vector<Point<3>> x(n + 1);
+            for (unsigned int i = 0; i <= n; ++i)
+              {
+                const double xi = -0.5 * l + l * i / n;
+                x[i] = Point<3>(xi, 0, -f0 * (1. - 4. * xi * xi / (l * l)));
+              }
+            return x;
+          };
+          const auto length = [&](const double f0) {
+            const auto x   = points(f0);
+            double     sum = 0.;
+            for (unsigned int i = 0; i < n; ++i)
+              sum += x[i].distance(x[i + 1]);
+            return sum - p.unstretched_length;
+          };
+          const double f0 = bisect(length, 0., p.unstretched_length);
+          make_polyline(s.add_line_mesh("cable", line_element()).triangulation,
+                        points(f0));
+          s.setup_dofs();
+          left  = node_at(s, Point<3>(-0.5 * l, 0, 0));
+          right = node_at(s, Point<3>(0.5 * l, 0, 0));
+          mid   = node_at(s, Point<3>(0, 0, -f0));
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              s.prescribe(left, c);
+              s.prescribe(right, c);
+            }
+          for (unsigned int k = 0; k < s.n_nodes(); ++k)
+            s.prescribe(k, 1);
+          s.gravity = p.gravity;
+          sag0      = f0;
+        }
+
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          // Deepen the stress-free parabola by 1 %: a taut start for Newton
+          // (a stress-free chain has no lateral stiffness).
+          for (unsigned int k = 0; k < s.n_nodes(); ++k)
+            if (k != left && k != right)
+              u[s.node_dof(k, 2)] = 0.01 * s.node_position(k)[2];
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        /**
+         * Span and mid-span sag of a catenary with horizontal tension H
+         * for the stretch law lambda(T), integrated over the unstretched
+         * arc length s0 (tension T = sqrt(H^2 + (V - w s0)^2)):
+         *   l = int_0^L0 lambda(T) H/T ds0,
+         *   f = int_0^(L0/2) lambda(T) (V - w s0)/T ds0,
+         * by 5-point Gauss-Legendre on 400 panels. With lambda = 1 + T/EA
+         * this is Irvine's closed form.
+         */
+        std::pair<double, double>
+        span_and_sag(const double                         H,
+                     const std::function<double(double)> &stretch) const
+        {
+          const double        w  = p.density * p.A * p.gravity.norm();
+          const double        L0 = p.unstretched_length, V = 0.5 * w * L0;
+          static const double xg[5] = {-0.9061798459386640,
+                                       -0.5384693101056831,
+                                       0.,
+                                       0.5384693101056831,
+                                       0.9061798459386640};
+          static const double wg[5] = {0.2369268850561891,
+                                       0.4786286704993665,
+                                       0.5688888888888889,
+                                       0.4786286704993665,
+                                       0.2369268850561891};
+          double              l = 0., f = 0.;
+          const unsigned int  n  = 400;
+          const double        ds = L0 / n;
+          for (unsigned int k = 0; k < n; ++k)
+            for (unsigned int q = 0; q < 5; ++q)
+              {
+                const double s0 = (k + 0.5 + 0.5 * xg[q]) * ds;
+                const double Vs = V - w * s0;
+                const double T  = std::sqrt(H * H + Vs * Vs);
+                const double lt = stretch(T);
+                l += 0.5 * ds * wg[q] * lt * H / T;
+                if (s0 < 0.5 * L0)
+                  f += 0.5 * ds * wg[q] * lt * Vs / T;
+              }
+          return {l, f};
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          const double w  = p.density * p.A * p.gravity.norm();
+          const double EA = p.E * p.A;
+          const double L0 = p.unstretched_length;
+          const double l  = p.span;
+          const double V  = 0.5 * w * L0;
+          // Irvine (Hooke's law T = EA (lambda - 1)), closed form.
+          const double H_irvine = bisect(
+            [&](const double H) {
+              return H * L0 / EA + 2. * H / w * std::asinh(w * L0 / (2. * H)) -
+                     l;
+            },
+            1e-12 * w * L0,
+            1e3 * w * L0 + EA);
+          const double f_irvine =
+            w * L0 * L0 / (8. * EA) +
+            H_irvine / w * (std::sqrt(1. + V * V / (H_irvine * H_irvine)) - 1.);
+          // The element's law: T = EA lambda (lambda^2 - 1)/2 (+ A sigma_0
+          // lambda), solved for lambda by Newton.
+          const auto stretch_gl = [&](const double T) {
+            double lambda = 1. + T / EA;
+            for (unsigned int i = 0; i < 50; ++i)
+              {
+                const double g = EA * lambda * (lambda * lambda - 1.) / 2. +
+                                 p.prestress * p.A * lambda - T;
+                const double dg =
+                  EA * (3. * lambda * lambda - 1.) / 2. + p.prestress * p.A;
+                lambda -= g / dg;
+              }
+            return lambda;
+          };
+          const double H = bisect(
+            [&](const double H) {
+              return span_and_sag(H, stretch_gl).first - l;
+            },
+            1e-12 * w * L0,
+            1e3 * w * L0 + EA);
+          const double f = span_and_sag(H, stretch_gl).second;
+          // Check of the quadrature: Hooke's law reproduces Irvine.
+          const auto   hooke = [&](const double T) { return 1. + T / EA; };
+          const double quadrature_check =
+            std::abs(span_and_sag(H_irvine, hooke).first - l) / l;
+          const Tensor<1, 3> R = s.reaction(left);
+          const double sag = -(s.node_position(mid)[2] + u[s.node_dof(mid, 2)]);
+          return {{"horizontal tension H [N]", std::abs(R[0]), H},
+                  {"mid-span sag [m]", sag, f},
+                  {"support tension T [N]", R.norm(), std::sqrt(H * H + V * V)},
+                  {"Irvine (Hooke's law) H [N]", H_irvine, 0., false},
+                  {"Irvine (Hooke's law) sag [m]", f_irvine, 0., false},
+                  {"quadrature check: |l(H_Irvine) - l| / l",
+                   quadrature_check < 1e-12 ? 0. : quadrature_check,
+                   0.,
+                   false}};
+        }
+
+      private:
+        unsigned int left = 0, right = 0, mid = 0;
+        double       sag0 = 0.;
+      };
+
+
+      // ------------------------------------------------------------------
+      /** A disk or square membrane mesh (flattened from a 2D mesh). */
+      void
+      make_flat_mesh(Triangulation<2, 3> &tria,
+                     const bool           disk,
+                     const double         size,
+                     const unsigned int   refinements)
+      {
+        Triangulation<2> flat;
+        if (disk)
+          GridGenerator::hyper_ball(flat, Point<2>(), size);
+        else
+          GridGenerator::hyper_cube(flat, -0.5 * size, 0.5 * size);
+        flat.refine_global(refinements);
+        GridGenerator::flatten_triangulation(flat, tria);
+      }
+
+
+      /**
+       * Hencky's clamped circular membrane under uniform (follower)
+       * pressure q: w0 = c_w a (q a/(E t))^(1/3), sigma_centre = c_sigma (E
+       * q^2 a^2/t^2)^(1/3); c_w, c_sigma from contrib/reference/
+       * hencky_membrane.py (nu = 0.25, 0.3, 0.5). The mean Cauchy stress of
+       * the cells around the centre is compared with sigma_centre.
+       */
+      class CircularMembrane : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "Hencky clamped circular membrane under pressure";
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          make_flat_mesh(s.add_membrane("membrane", membrane()).triangulation,
+                         true,
+                         p.radius,
+                         p.refinements + level);
+          s.setup_dofs();
+          for (const unsigned int n : s.find_nodes([&](const Point<3> &x) {
+                 return x.norm() > p.radius * (1. - 1e-10);
+               }))
+            for (unsigned int c = 0; c < 3; ++c)
+              s.prescribe(n, c);
+          centre = node_at(s, Point<3>());
+        }
+
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          for (unsigned int k = 0; k < s.n_nodes(); ++k)
+            {
+              const Point<3> &x = s.node_position(k);
+              u[s.node_dof(k, 2)] =
+                p.initial_deflection *
+                std::max(0., 1. - x.norm_square() / (p.radius * p.radius));
+            }
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          double c_w = 0., c_s = 0.;
+          if (std::abs(p.membrane_nu - 0.3) < 1e-12)
+            {
+              c_w = 0.653443;
+              c_s = 0.431101;
+            }
+          else if (std::abs(p.membrane_nu - 0.25) < 1e-12)
+            {
+              c_w = 0.665791;
+              c_s = 0.425612;
+            }
+          else if (std::abs(p.membrane_nu - 0.5) < 1e-12)
+            {
+              c_w = 0.594879;
+              c_s = 0.461328;
+            }
+          else
+            InputFile::reject(S + "/Membrane",
+                              "Poisson's ratio",
+                              std::to_string(p.membrane_nu),
+                              "the circular membrane model has reference "
+                              "values for 0.25, 0.3 and 0.5 only");
+          const double Q = p.pressure * p.radius / (p.membrane_E * p.thickness);
+          const double w0 = c_w * p.radius * std::cbrt(Q);
+          const double sc =
+            c_s * std::cbrt(p.membrane_E * p.pressure * p.pressure * p.radius *
+                            p.radius / (p.thickness * p.thickness));
+          // Mean stress of the cells that touch the centre.
+          const auto &mesh = *s.membrane_meshes[0];
+          double      sum = 0., area = 0.;
+          for (const auto &cell : mesh.triangulation.active_cell_iterators())
+            for (const unsigned int v : cell->vertex_indices())
+              if (cell->vertex(v).norm() < 1e-12 * p.radius)
+                {
+                  const auto &o = mesh.cell_output[cell->active_cell_index()];
+                  sum += o.mean_stress * o.area;
+                  area += o.area;
+                }
+          return {{"centre deflection w0 [m]", u[s.node_dof(centre, 2)], w0},
+                  {"centre stress [Pa]", sum / area, sc}};
+        }
+
+      private:
+        unsigned int centre = 0;
+      };
+
+
+      /**
+       * Pre-stressed square membrane (side a, isotropic pre-stress N0 = t
+       * sigma_0) under a small pressure q, edges clamped: w_max = k q
+       * a^2/N0 with k = 0.07367135 (contrib/reference/square_membrane.py).
+       */
+      class SquareMembrane : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "pre-stressed square membrane under small pressure";
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          if (std::abs(p.membrane_prestress[0] - p.membrane_prestress[1]) >
+                1e-12 * std::abs(p.membrane_prestress[0]) ||
+              p.membrane_prestress[2] != 0. || !(p.membrane_prestress[0] > 0.))
+            InputFile::reject(S + "/Membrane",
+                              "prestress",
+                              "",
+                              "the square membrane model needs an isotropic "
+                              "tensile pre-stress S11 = S22 > 0, S12 = 0");
+          make_flat_mesh(s.add_membrane("membrane", membrane()).triangulation,
+                         false,
+                         p.side,
+                         p.refinements + level);
+          s.setup_dofs();
+          for (const unsigned int n : s.find_nodes([&](const Point<3> &x) {
+                 return std::max(std::abs(x[0]), std::abs(x[1])) >
+                        0.5 * p.side * (1. - 1e-10);
+               }))
+            for (unsigned int c = 0; c < 3; ++c)
+              s.prescribe(n, c);
+          centre = node_at(s, Point<3>());
+        }
+
+        bool
+        supports_dynamics() const override
+        {
+          return true;
+        }
+
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          if (!p.dynamic)
+            return;
+          for (unsigned int k = 0; k < s.n_nodes(); ++k)
+            {
+              const Point<3> &x   = s.node_position(k);
+              u[s.node_dof(k, 2)] = p.mode_amplitude *
+                                    std::cos(numbers::PI * x[0] / p.side) *
+                                    std::cos(numbers::PI * x[1] / p.side);
+            }
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return !p.dynamic;
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure      &s,
+                const Vector<double> &u,
+                const double) override
+        {
+          if (!p.dynamic)
+            return {};
+          const double w = u[s.node_dof(centre, 2)];
+          if (times.empty())
+            energy0 = total_energy;
+          if (!times.empty() && (w > 0.) != (w_last > 0.))
+            crossings.push_back(time -
+                                (time - times.back()) * w / (w - w_last));
+          max_drift =
+            std::max(max_drift,
+                     std::abs(total_energy - energy0) / std::abs(energy0));
+          times.push_back(time);
+          deflections.push_back(w);
+          w_last = w;
+          return {{"time", time},
+                  {"centre_deflection", w},
+                  {"total_energy", total_energy}};
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          const double N0 = p.thickness * p.membrane_prestress[0];
+          if (p.dynamic)
+            {
+              // w = A cos(omega t): omega = (pi/a) sqrt(2 N0/(rho t)).
+              const double omega =
+                numbers::PI / p.side *
+                std::sqrt(2. * N0 / (p.membrane_density * p.thickness));
+              if (crossings.size() < 2)
+                throw ExcSimulationFailed(
+                  "the centre of the membrane crossed zero fewer than twice: "
+                  "run longer to measure the period");
+              const double period =
+                2. * (crossings.back() - crossings[0]) / (crossings.size() - 1);
+              // The linear frequency is the reference only for small
+              // amplitudes (stretching stiffens the membrane).
+              const bool linear = std::abs(p.mode_amplitude) < 1e-3 * p.side;
+              if (p.mass_damping > 0.)
+                {
+                  // Mass-proportional damping C = a_M M damps every mode
+                  // by exp(-a_M t/2): the first maximum after t = 0 (by
+                  // parabolic interpolation of the samples) must be
+                  // A exp(-a_M t_1/2).
+                  double t1 = 0., w1 = 0.;
+                  for (unsigned int k = 1; k + 1 < deflections.size(); ++k)
+                    if (deflections[k] > deflections[k - 1] &&
+                        deflections[k] >= deflections[k + 1])
+                      {
+                        const double wm = deflections[k - 1],
+                                     w0 = deflections[k],
+                                     wp = deflections[k + 1];
+                        const double h  = times[k + 1] - times[k];
+                        const double d  = 0.5 * (wm - wp) / (wm - 2. * w0 + wp);
+                        t1              = times[k] + d * h;
+                        w1              = w0 - 0.25 * (wm - wp) * d;
+                        break;
+                      }
+                  if (t1 == 0.)
+                    throw ExcSimulationFailed(
+                      "no maximum of the centre deflection after t = 0: "
+                      "run longer to measure the damping");
+                  return {{"period of the first mode [s]",
+                           period,
+                           2. * numbers::PI / omega,
+                           linear},
+                          {"amplitude after one period / initial",
+                           w1 / deflections[0],
+                           std::exp(-0.5 * p.mass_damping * t1)}};
+                }
+              return {{linear ? "period of the first mode [s]" :
+                                "period (large amplitude, not checked) [s]",
+                       period,
+                       2. * numbers::PI / omega,
+                       linear},
+                      {"max |E - E0| / E0 (energy drift)",
+                       max_drift,
+                       0.,
+                       true,
+                       true}};
+            }
+          return {{"centre deflection w_max [m]",
+                   u[s.node_dof(centre, 2)],
+                   0.07367135 * p.pressure * p.side * p.side / N0}};
+        }
+
+      private:
+        unsigned int        centre = 0;
+        std::vector<double> times, crossings, deflections;
+        double              w_last = 0., energy0 = 0., max_drift = 0.;
+      };
+
+
+      // ------------------------------------------------------------------
+      /**
+       * Frictionless ring on a cable (sliding cable through 3 nodes):
+       * supports A = (-b,0,0), B = (b,0,0), unstretched length L_u, load P
+       * at the ring (any direction in the x-z plane). The ring lies on the
+       * ellipse with foci A, B and l = |x - A| + |x - B|, where its normal
+       * is parallel to P; one tension T = EA lambda (lambda^2 - 1)/2,
+       * lambda = l/L_u, on both sides, and T |e_A + e_B| = |P|.
+       */
+      class SlidingRing : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "frictionless ring on a cable (sliding cable)";
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          auto cable = std::make_shared<Talus::Structure::SlidingCable>();
+          cable->youngs_modulus        = p.E;
+          cable->area                  = p.A;
+          cable->prestress             = p.prestress;
+          cable->density               = p.density;
+          cable->slack_stiffness_ratio = p.slack_ratio;
+          const double b               = p.half_span;
+          // Reference: the ring below the middle, chords adding up to L_u.
+          const double L = p.unstretched_length;
+          if (!(L > 2. * b))
+            InputFile::reject(S + "/Geometry",
+                              "unstretched length",
+                              std::to_string(L),
+                              "the sliding ring needs a cable longer than the "
+                              "span 2 * 'half span'");
+          const double f0 = std::sqrt(0.25 * L * L - b * b);
+          make_polyline(s.add_sliding_cable("cable", cable).triangulation,
+                        {Point<3>(-b, 0, 0),
+                         Point<3>(0, 0, -f0),
+                         Point<3>(b, 0, 0)});
+          s.setup_dofs();
+          A    = node_at(s, Point<3>(-b, 0, 0));
+          B    = node_at(s, Point<3>(b, 0, 0));
+          ring = node_at(s, Point<3>(0, 0, -f0));
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              s.prescribe(A, c);
+              s.prescribe(B, c);
+            }
+          s.prescribe(ring, 1);
+          s.add_point_load(ring, p.point_load);
+        }
+
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          // 1 % lower than the stress-free position: a taut start (a
+          // stress-free cable has no lateral stiffness).
+          u[s.node_dof(ring, 2)] = 0.01 * s.node_position(ring)[2];
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          const double       b = p.half_span, EA = p.E * p.A;
+          const Tensor<1, 3> P        = p.point_load;
+          const Tensor<1, 3> d        = P / P.norm();
+          const auto         position = [&](const double l) {
+            const double alpha = 0.5 * l;
+            const double beta  = std::sqrt(alpha * alpha - b * b);
+            const double t = 1. / std::sqrt(alpha * alpha * d[0] * d[0] +
+                                            beta * beta * d[2] * d[2]);
+            return Point<3>(alpha * alpha * d[0] * t,
+                            0,
+                            beta * beta * d[2] * t);
+          };
+          const auto tension = [&](const double l) {
+            const double lambda = l / p.unstretched_length;
+            return EA * lambda * (lambda * lambda - 1.) / 2. +
+                   p.prestress * p.A * lambda;
+          };
+          const auto balance = [&](const double l) {
+            const Point<3>     x = position(l);
+            const Tensor<1, 3> eA =
+              (Point<3>(-b, 0, 0) - x) / (x.distance(Point<3>(-b, 0, 0)));
+            const Tensor<1, 3> eB =
+              (Point<3>(b, 0, 0) - x) / (x.distance(Point<3>(b, 0, 0)));
+            return tension(l) * (eA + eB).norm() - P.norm();
+          };
+          const double l_root =
+            bisect(balance,
+                   std::max(2. * b, p.unstretched_length) * (1. + 1e-14),
+                   10. * p.unstretched_length);
+          const Point<3> x_ref = position(l_root);
+          const Point<3> x =
+            s.node_position(ring) + s.node_displacement(u, ring);
+          const double T = s.line_meshes[0]->force[0];
+          return {{"cable tension T [N]", T, tension(l_root)},
+                  {"ring position x [m]", x[0], x_ref[0], false},
+                  {"ring position z [m]", x[2], x_ref[2]},
+                  {"|ring position - exact| / b",
+                   x.distance(x_ref) / b,
+                   0.,
+                   true,
+                   true}};
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+      private:
+        unsigned int A = 0, B = 0, ring = 0;
+      };
+
+
+      // ------------------------------------------------------------------
+      /**
+       * A brake in series with a cable: anchor (0,0,0), brake to
+       * (L_b,0,0), cable to (L_b + L_c,0,0), whose end is pulled along x
+       * by lambda U (displacement control, following the load path). At
+       * every step: force N on the plateau = F_a + H s, dissipated energy
+       * D = F_a s + H s^2/2, and the closed form of the series: for end
+       * displacement U on the plateau, N = F_a + H s, U = N/k_e + s +
+       * d_c(N), with the cable elongation d_c from N = EA lambda (lambda^2 -
+       * 1)/2, lambda = 1 + d_c/L_c.
+       */
+      class BrakeTest : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "brake in series with a cable, pulled and released";
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          auto brake              = std::make_shared<Talus::Structure::Brake>();
+          brake->stiffness        = p.brake_k;
+          brake->activation_force = p.brake_Fa;
+          brake->hardening        = p.brake_H;
+          brake->stroke_limit     = p.brake_smax;
+          brake->slack_stiffness_ratio = p.slack_ratio;
+          const Point<3> a(0, 0, 0), b(p.brake_length, 0, 0),
+            c(p.brake_length + p.cable_length, 0, 0);
+          make_line(s.add_line_mesh("brake", brake).triangulation, a, b, 1);
+          make_line(s.add_line_mesh("cable", line_element()).triangulation,
+                    b,
+                    c,
+                    p.elements);
+          s.setup_dofs();
+          anchor = node_at(s, a);
+          end    = node_at(s, c);
+          for (unsigned int k = 0; k < s.n_nodes(); ++k)
+            {
+              s.prescribe(k, 1);
+              s.prescribe(k, 2);
+            }
+          for (unsigned int c2 = 0; c2 < 3; ++c2)
+            s.prescribe(anchor, c2);
+          s.prescribe(end, 0, p.prescribed_displacement);
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          (void)s;
+          (void)u;
+        }
+
+        /** Elongation of the cable under force N: EA lambda (lambda^2 -
+         * 1)/2 + A sigma_0 lambda = N, d_c = L_c (lambda - 1). */
+        double
+        cable_elongation(const double N) const
+        {
+          const double EA = p.E * p.A;
+          return p.cable_length * (bisect(
+                                     [&](const double lambda) {
+                                       return EA * lambda *
+                                                (lambda * lambda - 1.) / 2. +
+                                              p.A * p.prestress * lambda - N;
+                                     },
+                                     0.5,
+                                     2.) -
+                                   1.);
+        }
+
+        /** Closed-form stroke and force on the plateau for end pull U. */
+        std::pair<double, double>
+        plateau(const double U) const
+        {
+          const double s = bisect(
+            [&](const double s) {
+              const double N = p.brake_Fa + p.brake_H * s;
+              return N / p.brake_k + s + cable_elongation(N) - U;
+            },
+            0.,
+            U);
+          return {s, p.brake_Fa + p.brake_H * s};
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure &s, const Vector<double> &u, double) override
+        {
+          const auto  &brake   = *s.line_meshes[0];
+          const double N       = brake.force[0];
+          const double st      = brake.state[0].plastic;
+          const double D       = brake.state[0].accumulated;
+          const double U       = s.node_displacement(u, end)[0];
+          const double D_exact = p.brake_Fa * st + 0.5 * p.brake_H * st * st;
+          max_D_error =
+            std::max(max_D_error,
+                     std::abs(D - D_exact) / std::max(D_exact, 1e-300));
+          const bool blocked =
+            p.brake_smax > 0. && st >= p.brake_smax * (1. - 1e-12);
+          if (st > last_stroke * (1. + 1e-12) && st > 0. && !blocked)
+            {
+              // Loading on the plateau: N = F_a + H s and the series.
+              const auto [s_ex, N_ex] = plateau(U);
+              max_plateau_error =
+                std::max(max_plateau_error, std::abs(N - N_ex) / N_ex);
+              max_stroke_error =
+                std::max(max_stroke_error, std::abs(st - s_ex) / s_ex);
+            }
+          last_stroke = st;
+          rows.push_back({{U, N, st, D}});
+          return {{"end_displacement", U},
+                  {"brake_force", N},
+                  {"stroke", st},
+                  {"dissipated_energy", D}};
+        }
+
+        std::vector<Result>
+        results(const Structure &, const Vector<double> &) override
+        {
+          std::cout << "  path (U: end displacement [m], N: force [N], s: "
+                       "stroke [m], D: dissipated energy [J]):\n";
+          for (const auto &r : rows)
+            std::cout << "    U = " << std::setw(8) << std::setprecision(5)
+                      << r[0] << "  N = " << std::setw(11) << r[1]
+                      << "  s = " << std::setw(9) << r[2]
+                      << "  D = " << std::setw(11) << r[3] << '\n';
+          // Final state: on the plateau or blocked at the stroke limit,
+          // N = k_e (d_b - s_max), U = N/k_e + s_max + d_c(N).
+          const double U = rows.back()[0], N = rows.back()[1],
+                       st = rows.back()[2];
+          double N_exact = 0., s_exact = 0.;
+          if (p.brake_smax > 0. && st >= p.brake_smax * (1. - 1e-12))
+            {
+              s_exact = p.brake_smax;
+              N_exact = bisect(
+                [&](const double N) {
+                  return N / p.brake_k + p.brake_smax + cable_elongation(N) - U;
+                },
+                0.,
+                p.brake_k * U);
+            }
+          else
+            std::tie(s_exact, N_exact) = plateau(U);
+          return {
+            {"max |D - (F_a s + H s^2/2)| / D", max_D_error, 0., true, true},
+            {"max |N - N_exact| / N_exact on the plateau",
+             max_plateau_error,
+             0.,
+             true,
+             true},
+            {"max |s - s_exact| / s_exact on the plateau",
+             max_stroke_error,
+             0.,
+             true,
+             true},
+            {"final force [N]", N, N_exact},
+            {"final stroke [m]", st, s_exact}};
+        }
+
+        double max_D_error = 0., max_plateau_error = 0., max_stroke_error = 0.;
+
+      private:
+        unsigned int                       anchor = 0, end = 0;
+        double                             last_stroke = 0.;
+        std::vector<std::array<double, 4>> rows;
+      };
+
+
+      // ------------------------------------------------------------------
+      /**
+       * A line mesh from a Gmsh file (cables or trusses), the vertices of
+       * only one cell (the ends) fixed, under gravity; or a membrane mesh
+       * (quadrilaterals), its boundary fixed, under pressure and gravity.
+       * The largest nodal displacement is reported, and compared with
+       * 'reference largest displacement' if that is set (e.g. the
+       * taut-string sag, the square membrane's w_max).
+       */
+      class LineFromFile : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return p.mesh_is_membrane ?
+                   "membrane mesh from a file, boundary fixed, pressure and "
+                   "gravity" :
+                   "line mesh from a file, ends fixed, gravity";
+        }
+
+        template <int dim>
+        void
+        read(Triangulation<dim, 3> &tria, const std::string &what) const
+        {
+          GridIn<dim, 3> grid_in;
+          grid_in.attach_triangulation(tria);
+          std::ifstream in(p.mesh_file);
+          if (!in)
+            InputFile::reject(S + "/Geometry",
+                              "mesh file",
+                              p.mesh_file,
+                              "the file cannot be opened");
+          try
+            {
+              grid_in.read(in, GridIn<dim, 3>::Format::msh);
+            }
+          catch (const std::exception &)
+            {
+              InputFile::reject(S + "/Geometry",
+                                "mesh file",
+                                p.mesh_file,
+                                "it is not a readable Gmsh (.msh) file of " +
+                                  what);
+            }
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          if (p.mesh_is_membrane)
+            {
+              auto &mesh = s.add_membrane("mesh", membrane());
+              read(mesh.triangulation, "quadrilaterals");
+              s.setup_dofs();
+              // Fix the boundary: vertices of faces without a neighbour.
+              for (const auto &cell :
+                   mesh.triangulation.active_cell_iterators())
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->at_boundary(f))
+                    for (unsigned int v = 0; v < 2; ++v)
+                      for (unsigned int c = 0; c < 3; ++c)
+                        s.prescribe(node_at(s, cell->face(f)->vertex(v)), c);
+              s.gravity = p.gravity;
+              return;
+            }
+          auto &mesh = s.add_line_mesh("mesh", line_element());
+          read(mesh.triangulation, "line elements");
+          s.setup_dofs();
+          // Fix the two ends (vertices of one cell only).
+          std::vector<unsigned int> count(mesh.triangulation.n_vertices(), 0);
+          for (const auto &cell : mesh.triangulation.active_cell_iterators())
+            for (const unsigned int v : cell->vertex_indices())
+              ++count[cell->vertex_index(v)];
+          for (const auto &cell : mesh.triangulation.active_cell_iterators())
+            for (const unsigned int v : cell->vertex_indices())
+              if (count[cell->vertex_index(v)] == 1)
+                for (unsigned int c = 0; c < 3; ++c)
+                  s.prescribe(node_at(s, cell->vertex(v)), c);
+          s.gravity = p.gravity;
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          double umax = 0.;
+          for (unsigned int k = 0; k < s.n_nodes(); ++k)
+            umax = std::max(umax, s.node_displacement(u, k).norm());
+          if (p.reference_displacement > 0.)
+            return {
+              {"largest displacement [m]", umax, p.reference_displacement}};
+          return {{"largest displacement [m]", umax, 0., false}};
+        }
+      };
+
+
+      /**
+       * The standard barrier (BarrierBuilder) under pre-stress and gravity.
+       * Reference: global equilibrium. The reactions at all supports must
+       * balance the total weight W = g (sum rho A L of posts, cables and
+       * ropes + rho t A of the net), computed from the geometry.
+       */
+      class Barrier : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "standard three-field barrier under pre-stress and gravity";
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          builder            = p.barrier;
+          builder.net        = *membrane();
+          builder.brake_k    = p.brake_k;
+          builder.brake_Fa   = p.brake_Fa;
+          builder.brake_H    = p.brake_H;
+          builder.brake_smax = p.brake_smax;
+          builder.build(s);
+          s.gravity = p.gravity;
+          // Stage 1 of the form finding: post heads held, so that the net
+          // and the support cables find their pre-stressed shape first.
+          for (const unsigned int n : builder.post_heads)
+            for (unsigned int c = 0; c < 3; ++c)
+              s.prescribe(n, c);
+        }
+
+        void
+        before_load_steps(Structure                      &s,
+                          Talus::Structure::StaticSolver &solver) override
+        {
+          // Stage 2: release the heads (posts and ropes take over) and find
+          // the pre-stressed equilibrium of the whole barrier.
+          const Vector<double> u = solver.displacement;
+          for (const unsigned int n : builder.post_heads)
+            for (unsigned int c = 0; c < 3; ++c)
+              s.release(n, c);
+          s.setup_system();
+          solver.setup();
+          solver.displacement = u;
+          const auto status   = solver.solve(0.);
+          std::cout << "  stage 2 (post heads released, pre-stress): "
+                    << (status.converged ? "converged" : "FAILED") << " in "
+                    << status.iterations << " Newton iterations\n";
+          if (!status.converged)
+            throw ExcSimulationFailed("the pre-stressed barrier with free "
+                                      "post heads did not converge: " +
+                                      status.failure);
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return true;
+        }
+
+        bool
+        supports_dynamics() const override
+        {
+          return true;
+        }
+
+        bool
+        relax_to_equilibrium() const override
+        {
+          return true;
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure &,
+                const Vector<double> &,
+                const double) override
+        {
+          return {{"time", time}, {"total_energy", total_energy}};
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          const auto    &b     = builder;
+          const double   theta = b.inclination * numbers::PI / 180.;
+          const double   Hs    = b.height / std::cos(theta);
+          const double   L     = b.n_fields * b.field_width;
+          const Point<3> head0(0., -Hs * std::sin(theta), Hs * std::cos(theta));
+          const Point<3> anchor_left(-b.end_anchor_offset, 0, 0);
+          double mass = (b.n_fields + 1) * b.post_density * b.post_A * Hs;
+          mass += b.cable_density * b.cable_A *
+                  (2. * anchor_left.distance(head0) + L + // top
+                   L + 2. * b.end_anchor_offset +         // bottom
+                   2. * Hs);                              // edges
+          for (unsigned int i = 0; i <= b.n_fields; ++i)
+            for (const double side : {-1., 1.})
+              {
+                const Point<3> head(i * b.field_width,
+                                    -Hs * std::sin(theta),
+                                    Hs * std::cos(theta));
+                const Point<3> anchor(i * b.field_width +
+                                        side * b.anchor_spread,
+                                      b.anchor_distance,
+                                      0.);
+                mass += b.rope_density * b.rope_A *
+                        (head.distance(anchor) - b.brake_length);
+              }
+          mass += p.membrane_density * p.thickness * L * Hs;
+          const Tensor<1, 3> W = mass * p.gravity;
+          Tensor<1, 3>       R;
+          for (const unsigned int n : b.supports)
+            R += s.reaction(n);
+          double umax = 0.;
+          for (unsigned int k = 0; k < s.n_nodes(); ++k)
+            umax = std::max(umax, s.node_displacement(u, k).norm());
+          const auto max_force = [&](const unsigned int mesh) {
+            double f = 0.;
+            for (const double x : s.line_meshes[mesh]->force)
+              f = std::max(f, std::abs(x));
+            return f;
+          };
+          double max_stroke = 0.;
+          for (const auto &st : s.line_meshes[b.brake_meshes[0]]->state)
+            max_stroke = std::max(max_stroke, st.plastic);
+          return {{"|sum of reactions + weight| / |weight|",
+                   (R + W).norm() / W.norm(),
+                   0.,
+                   true,
+                   true},
+                  {"total weight [N]", W.norm(), 0., false},
+                  {"largest displacement [m]", umax, 0., false},
+                  {"top cable tension [N]",
+                   max_force(b.support_cable_meshes[0]),
+                   0.,
+                   false},
+                  {"bottom cable tension [N]",
+                   max_force(b.support_cable_meshes[1]),
+                   0.,
+                   false},
+                  {"largest retaining rope force [N]",
+                   max_force(b.rope_meshes[0]),
+                   0.,
+                   false},
+                  {"largest post force (compression) [N]",
+                   max_force(b.post_meshes[0]),
+                   0.,
+                   false},
+                  {"largest brake stroke [m]", max_stroke, 0., false}};
+        }
+
+      private:
+        Talus::Structure::BarrierBuilder builder;
+      };
+
+
+      /**
+       * Columns of the CSV common to all models: the stored elastic energy,
+       * the largest axial force of every line mesh (the tension of a sliding
+       * cable), and for brakes the largest stroke and the dissipated energy.
+       */
+      std::vector<std::pair<std::string, double>>
+      structure_columns(const Structure &s)
+      {
+        std::vector<std::pair<std::string, double>> c = {
+          {"strain_energy", s.strain_energy()}};
+        for (const auto &m : s.line_meshes)
+          {
+            double f = 0.;
+            for (const double x : m->force)
+              f = std::max(f, std::abs(x));
+            c.emplace_back(m->name + "_max_force", f);
+            if (m->element && m->element->name() == "brake")
+              {
+                double stroke = 0., D = 0.;
+                for (const auto &st : m->state)
+                  {
+                    stroke = std::max(stroke, st.plastic);
+                    D += st.accumulated;
+                  }
+                c.emplace_back(m->name + "_max_stroke", stroke);
+                c.emplace_back(m->name + "_dissipated_energy", D);
+              }
+          }
+        return c;
+      }
+
+
+      /**
+       * Capstan (Euler-Eytelwein): a SlidingCable with friction coefficient
+       * mu from the fixed end A = (-R, 0, -1) up to a drum (fixed nodes on
+       * the circle of radius R in the x-z plane), around it by the wrap
+       * angle theta and off tangentially to the free end B, pulled along the
+       * cable by F = |point load|. The cable slides towards B: T_B = F and
+       * T_A = F exp(-mu theta), whatever the number of drum nodes (the
+       * deviation angles add up to theta).
+       */
+      class Capstan : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "capstan: cable with friction around a drum";
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          auto cable = std::make_shared<Talus::Structure::SlidingCable>();
+          cable->youngs_modulus        = p.E;
+          cable->area                  = p.A;
+          cable->prestress             = p.prestress;
+          cable->slack_stiffness_ratio = p.slack_ratio;
+          cable->friction_coefficient  = p.friction;
+          const double          R      = p.drum_radius;
+          const double          theta  = p.wrap_angle * numbers::PI / 180.;
+          const unsigned int    n      = p.elements;
+          std::vector<Point<3>> x      = {Point<3>(-R, 0, -1.)};
+          for (unsigned int k = 0; k <= n; ++k)
+            {
+              const double phi = numbers::PI - k * theta / n;
+              x.emplace_back(R * std::cos(phi), 0., R * std::sin(phi));
+            }
+          const double phi_n = numbers::PI - theta;
+          direction = Tensor<1, 3>({std::sin(phi_n), 0., -std::cos(phi_n)});
+          x.push_back(x.back() + direction);
+          make_polyline(s.add_sliding_cable("cable", cable).triangulation, x);
+          s.setup_dofs();
+          for (unsigned int k = 0; k + 1 < x.size(); ++k)
+            for (unsigned int c = 0; c < 3; ++c)
+              s.prescribe(node_at(s, x[k]), c);
+          end = node_at(s, x.back());
+          s.prescribe(end, 1);
+          s.add_point_load(end, p.point_load.norm() * direction);
+        }
+
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          // A taut start: the free end 0.1 mm further out.
+          for (unsigned int c = 0; c < 3; ++c)
+            u[s.node_dof(end, c)] = 1e-4 * direction[c];
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &) override
+        {
+          const auto  &mesh  = *s.line_meshes[0];
+          const double T_A   = mesh.force[mesh.chain_cells.front()];
+          const double T_B   = mesh.force[mesh.chain_cells.back()];
+          const double F     = p.point_load.norm();
+          const double theta = p.wrap_angle * numbers::PI / 180.;
+          return {{"tension at the pulled end T_B [N]", T_B, F},
+                  {"tension at the fixed end T_A [N]",
+                   T_A,
+                   F * std::exp(-p.friction * theta)},
+                  {"T_B / T_A", T_B / T_A, std::exp(p.friction * theta)}};
+        }
+
+      private:
+        unsigned int end = 0;
+        Tensor<1, 3> direction;
+      };
+
+
+      /**
+       * A square membrane (side a, isotropic, no pre-stress) in simple
+       * shear, in its plane (u_z = 0 everywhere): every boundary node
+       * displaced by u_x = lambda gamma (y + a/2).
+       * The homogeneous state is the solution. Taut (no wrinkling): shear
+       * stress G gamma. With the wrinkling law the compressive principal
+       * stress vanishes (tension field): uniaxial tension E gamma/2 along
+       * the diagonal, shear stress E gamma/4 (the law gives exactly this:
+       * doc/verification.md). Measured: the x-reactions of the boundary
+       * nodes with y > 0 (top edge; the side edges' normal tractions
+       * cancel), F = tau t a, to first order in gamma.
+       */
+      class ShearedMembrane : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return std::string("square membrane in simple shear") +
+                 (p.wrinkling ? ", wrinkling (tension field)" : ", taut");
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          make_flat_mesh(s.add_membrane("membrane", membrane()).triangulation,
+                         false,
+                         p.side,
+                         p.refinements + level);
+          s.setup_dofs();
+          boundary = s.find_nodes([&](const Point<3> &x) {
+            return std::max(std::abs(x[0]), std::abs(x[1])) >
+                   0.5 * p.side * (1. - 1e-10);
+          });
+          for (const unsigned int n : boundary)
+            {
+              s.prescribe(
+                n, 0, p.shear_strain * (s.node_position(n)[1] + 0.5 * p.side));
+              s.prescribe(n, 1);
+            }
+          // In-plane problem: a flat membrane has no stiffness normal to
+          // itself before it is stressed.
+          for (unsigned int n = 0; n < s.n_nodes(); ++n)
+            s.prescribe(n, 2);
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &) override
+        {
+          double F = 0.;
+          for (const unsigned int n : boundary)
+            if (s.node_position(n)[1] > 1e-10 * p.side)
+              F += s.reaction(n)[0];
+          double min_principal = 1e300, max_principal = -1e300;
+          for (const auto &o : s.membrane_meshes[0]->cell_output)
+            {
+              min_principal = std::min(min_principal, o.min_principal);
+              max_principal = std::max(max_principal, o.max_principal);
+            }
+          const double E = p.membrane_E, nu = p.membrane_nu;
+          const double tau = p.wrinkling ?
+                               E * p.shear_strain / 4. :
+                               E / (2. * (1. + nu)) * p.shear_strain;
+          return {{"shear force on the top edge [N]",
+                   F,
+                   tau * p.thickness * p.side},
+                  {"largest principal stress [Pa]",
+                   max_principal,
+                   p.wrinkling ? E * p.shear_strain / 2. : tau,
+                   true},
+                  {p.wrinkling ? "compression: max(0, -sigma_min) / sigma_max" :
+                                 "sigma_min / sigma_max (taut: -1)",
+                   p.wrinkling ? std::max(0., -min_principal / max_principal) :
+                                 min_principal / max_principal,
+                   p.wrinkling ? 0. : -1.,
+                   true,
+                   p.wrinkling}};
+        }
+
+      private:
+        std::vector<unsigned int> boundary;
+      };
+
+
+      /**
+       * A pre-stressed Cable of span L in two elements (ends fixed), its
+       * middle node released from the deflection A (y fixed): for small A
+       * one degree of freedom with k = 4 N/L (N = A sigma_0, the lateral
+       * stiffness of the two taut halves) and the lumped mass m = rho A L/2,
+       * omega^2 = 8 sigma_0/(rho L^2). Reference: the scalar Bossak-Newmark
+       * recurrence for m a + k u = 0 with the same alpha and dt, iterated
+       * here independently: (1 - alpha) a_{n+1} + alpha a_n + omega^2
+       * u_{n+1} = 0 with the Newmark updates (beta = (1-alpha)^2/4, gamma =
+       * 1/2 - alpha). The largest difference over the run checks the time
+       * integration including its numerical damping; for alpha = 0 the
+       * period is also compared with 2 pi/omega.
+       */
+      class VibratingString : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "vibrating pre-stressed cable, one degree of freedom";
+        }
+
+        bool
+        supports_dynamics() const override
+        {
+          return true;
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          const double L = p.span;
+          make_line(s.add_line_mesh("cable", line_element()).triangulation,
+                    Point<3>(-0.5 * L, 0, 0),
+                    Point<3>(0.5 * L, 0, 0),
+                    2);
+          s.setup_dofs();
+          for (const double x : {-0.5 * L, 0.5 * L})
+            for (unsigned int c = 0; c < 3; ++c)
+              s.prescribe(node_at(s, Point<3>(x, 0, 0)), c);
+          mid = node_at(s, Point<3>());
+          s.prescribe(mid, 1);
+          omega = std::sqrt(8. * p.prestress / (p.density * L * L));
+        }
+
+        void
+        initial_guess(const Structure &s, Vector<double> &u) const override
+        {
+          u[s.node_dof(mid, 2)] = p.string_amplitude;
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure      &s,
+                const Vector<double> &u,
+                const double) override
+        {
+          const double w = u[s.node_dof(mid, 2)];
+          if (samples.empty())
+            {
+              // The reference starts from the same state (rest, w = A).
+              ref_u = w;
+              ref_v = 0.;
+              ref_a = -omega * omega * w;
+            }
+          else
+            {
+              const double dt = time - times.back(), al = p.bossak_alpha;
+              const double beta  = 0.25 * (1. - al) * (1. - al),
+                           gamma = 0.5 - al;
+              const double ubar =
+                ref_u + dt * ref_v + dt * dt * (0.5 - beta) * ref_a;
+              const double c  = (1. - al) / (beta * dt * dt);
+              const double u1 = (c * ubar - al * ref_a) / (c + omega * omega);
+              const double a1 = (u1 - ubar) / (beta * dt * dt);
+              ref_v += dt * ((1. - gamma) * ref_a + gamma * a1);
+              ref_u = u1;
+              ref_a = a1;
+            }
+          max_difference = std::max(max_difference, std::abs(w - ref_u));
+          if (!samples.empty() && (w > 0.) != (samples.back() > 0.))
+            crossings.push_back(time - (time - times.back()) * w /
+                                         (w - samples.back()));
+          samples.push_back(w);
+          times.push_back(time);
+          return {{"time", time},
+                  {"middle_deflection", w},
+                  {"bossak_recurrence", ref_u}};
+        }
+
+        std::vector<Result>
+        results(const Structure &, const Vector<double> &) override
+        {
+          std::vector<Result> r = {
+            {"max |w - w_Bossak| / A over the run",
+             max_difference / std::abs(p.string_amplitude),
+             0.,
+             true,
+             true},
+            {"|w_Bossak(T_end)| / A (end of the run)",
+             std::abs(ref_u) / std::abs(p.string_amplitude),
+             0.,
+             false}};
+          if (crossings.size() >= 2)
+            {
+              const double period =
+                2. * (crossings.back() - crossings[0]) / (crossings.size() - 1);
+              const double wdt = omega * p.dynamic_time_step;
+              // Average acceleration: period elongation (omega dt)^2/12.
+              r.push_back({"period [s]",
+                           period,
+                           2. * numbers::PI / omega *
+                             (p.bossak_alpha == 0. ? 1. + wdt * wdt / 12. : 1.),
+                           p.bossak_alpha == 0.});
+            }
+          return r;
+        }
+
+      private:
+        unsigned int        mid   = 0;
+        double              omega = 0.;
+        double              ref_u = 0., ref_v = 0., ref_a = 0.;
+        double              max_difference = 0.;
+        std::vector<double> samples, times, crossings;
+      };
+
+
+      std::unique_ptr<Model>
+      create_model(const Parameters &p)
+      {
+        if (p.model == "vibrating string")
+          return std::make_unique<VibratingString>(p);
+        if (p.model == "sheared membrane")
+          return std::make_unique<ShearedMembrane>(p);
+        if (p.model == "capstan")
+          return std::make_unique<Capstan>(p);
+        if (p.model == "barrier")
+          return std::make_unique<Barrier>(p);
+        if (p.model == "von Mises truss")
+          return std::make_unique<VonMisesTruss>(p);
+        if (p.model == "catenary")
+          return std::make_unique<Catenary>(p);
+        if (p.model == "circular membrane")
+          return std::make_unique<CircularMembrane>(p);
+        if (p.model == "square membrane")
+          return std::make_unique<SquareMembrane>(p);
+        if (p.model == "sliding ring")
+          return std::make_unique<SlidingRing>(p);
+        if (p.model == "brake")
+          return std::make_unique<BrakeTest>(p);
+        return std::make_unique<LineFromFile>(p);
+      }
+
+
+      Parameters
+      parse_parameters(ParameterHandler &prm)
+      {
+        Parameters p;
+        prm.enter_subsection(S);
+        p.model = prm.get("model");
+
+        const std::string lm = S + "/Line members";
+        prm.enter_subsection("Line members");
+        p.line_element = prm.get("element");
+        p.E            = get_positive(prm, lm, "Young's modulus");
+        p.A            = get_positive(prm, lm, "cross-section area");
+        p.prestress    = prm.get_double("prestress");
+        p.density      = get_non_negative(prm, lm, "density");
+        p.yield_stress = get_non_negative(prm, lm, "yield stress");
+        p.hardening    = get_non_negative(prm, lm, "hardening modulus");
+        p.elements     = prm.get_integer("elements per member");
+        if (p.elements < 1)
+          InputFile::reject(lm,
+                            "elements per member",
+                            prm.get("elements per member"),
+                            "a member needs at least one element (two nodes)");
+        p.slack_ratio = get_positive(prm, lm, "slack stiffness ratio");
+        p.friction    = get_non_negative(prm, lm, "friction coefficient");
+        prm.leave_subsection();
+
+        const std::string ms = S + "/Membrane";
+        prm.enter_subsection("Membrane");
+        p.membrane_E = get_positive(prm, ms, "Young's modulus");
+        p.membrane_nu =
+          get_in_open_interval(prm, ms, "Poisson's ratio", -1., 0.5 + 1e-12);
+        p.orthotropic = prm.get_bool("orthotropic");
+        if (p.orthotropic)
+          {
+            p.membrane_E2 = get_positive(prm, ms, "Young's modulus 2");
+            p.membrane_G  = get_positive(prm, ms, "shear modulus");
+          }
+        p.thickness          = get_positive(prm, ms, "thickness");
+        p.mode_amplitude     = prm.get_double("initial mode amplitude");
+        p.membrane_density   = get_non_negative(prm, ms, "density");
+        p.membrane_prestress = get_vector(prm, ms, "prestress");
+        p.wrinkling          = prm.get_bool("wrinkling");
+        p.initial_deflection = prm.get_double("initial deflection");
+        p.shear_strain       = prm.get_double("shear strain");
+        prm.leave_subsection();
+
+        const std::string bs = S + "/Brake";
+        prm.enter_subsection("Brake");
+        p.brake_k      = get_positive(prm, bs, "stiffness");
+        p.brake_Fa     = get_positive(prm, bs, "activation force");
+        p.brake_H      = get_non_negative(prm, bs, "hardening");
+        p.brake_smax   = get_non_negative(prm, bs, "stroke limit");
+        p.brake_length = get_positive(prm, bs, "length");
+        prm.leave_subsection();
+
+        const std::string gs = S + "/Geometry";
+        prm.enter_subsection("Geometry");
+        p.half_span          = get_positive(prm, gs, "half span");
+        p.rise               = get_positive(prm, gs, "rise");
+        p.span               = get_positive(prm, gs, "span");
+        p.unstretched_length = get_positive(prm, gs, "unstretched length");
+        p.radius             = get_positive(prm, gs, "radius");
+        p.side               = get_positive(prm, gs, "side");
+        p.cable_length       = get_positive(prm, gs, "cable length");
+        p.spring_EA          = get_non_negative(prm, gs, "spring EA");
+        p.string_amplitude   = prm.get_double("string amplitude");
+        p.wrap_angle         = prm.get_double("wrap angle");
+        p.drum_radius        = get_positive(prm, gs, "drum radius");
+        p.spring_length      = get_positive(prm, gs, "spring length");
+        p.refinements        = prm.get_integer("refinements");
+        p.mesh_file          = prm.get("mesh file");
+        p.mesh_is_membrane   = prm.get("mesh file type") == "membrane";
+        prm.leave_subsection();
+        if (p.model == "catenary" && !(p.unstretched_length > p.span))
+          InputFile::reject(gs,
+                            "unstretched length",
+                            std::to_string(p.unstretched_length),
+                            "the catenary needs a cable longer than the span");
+        if (p.model == "mesh file" && p.mesh_file.empty())
+          InputFile::reject(gs,
+                            "mesh file",
+                            "",
+                            "model 'mesh file' needs the name of a Gmsh file");
+
+        const std::string ls = S + "/Loads";
+        prm.enter_subsection("Loads");
+        p.gravity                 = get_vector(prm, ls, "gravity");
+        p.point_load              = get_vector(prm, ls, "point load");
+        p.pressure                = prm.get_double("pressure");
+        p.prescribed_displacement = prm.get_double("prescribed displacement");
+        p.load_path               = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("load path")));
+        prm.leave_subsection();
+        if (p.model == "catenary" && !(p.density > 0. && p.gravity.norm() > 0.))
+          InputFile::reject(lm,
+                            "density",
+                            std::to_string(p.density),
+                            "the catenary needs a weight: density > 0 and a "
+                            "non-zero 'gravity' in subsection Loads");
+        if ((p.model == "sliding ring" || p.model == "capstan") &&
+            !(p.point_load.norm() > 0.))
+          InputFile::reject(ls,
+                            "point load",
+                            prm.get("Loads/point load"),
+                            "the sliding ring needs a non-zero load in the "
+                            "x-z plane");
+
+        p.barrier.parse_parameters(prm, S + "/Barrier");
+        prm.enter_subsection("Solver");
+        p.arc_length_control = prm.get("control") == "arc length";
+        prm.leave_subsection();
+
+        prm.enter_subsection("Dynamics");
+        p.dynamic           = prm.get_bool("dynamic");
+        p.mass_damping      = prm.get_double("mass damping");
+        p.bossak_alpha      = prm.get_double("Bossak alpha");
+        p.dynamic_time_step = prm.get_double("time step");
+        prm.leave_subsection();
+        if (p.dynamic && p.model != "square membrane" && p.model != "barrier" &&
+            p.model != "vibrating string")
+          InputFile::reject(S + "/Dynamics",
+                            "dynamic",
+                            "true",
+                            "only models 'square membrane', 'vibrating "
+                            "string' and 'barrier' run in time so far");
+        if (!p.dynamic && p.model == "vibrating string")
+          InputFile::reject(S + "/Dynamics",
+                            "dynamic",
+                            "false",
+                            "model 'vibrating string' needs 'dynamic = true'");
+
+        prm.enter_subsection("Output");
+        p.directory = prm.get("output directory");
+        p.write_vtu = prm.get_bool("write vtu");
+        p.test_mode = prm.get_bool("test mode");
+        prm.leave_subsection();
+
+        prm.enter_subsection("Verification");
+        p.tolerance = prm.get_double("tolerance");
+        p.reference_displacement =
+          prm.get_double("reference largest displacement");
+        p.n_levels     = prm.get_integer("number of levels");
+        p.first_level  = prm.get_integer("first level");
+        p.minimum_rate = prm.get_double("minimum rate");
+        prm.leave_subsection();
+        prm.leave_subsection();
+        return p;
+      }
+    } // namespace
+
+
+    void
+    declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection(S);
+      prm.declare_entry(
+        "model",
+        "von Mises truss",
+        Patterns::Selection("von Mises truss|catenary|circular membrane|"
+                            "square membrane|sheared membrane|vibrating string|"
+                            "sliding ring|capstan|brake|mesh file|barrier"),
+        "Structural model built from the subsections below (used with "
+        "'set problem = structure'): 'von Mises truss' (two bars, apex "
+        "pushed down by 'prescribed displacement'), 'catenary' (cable "
+        "under self weight between two supports), 'circular membrane' "
+        "(Hencky: clamped disk under pressure), 'square membrane' "
+        "(pre-stressed, clamped, small pressure), 'sheared membrane' "
+        "(square in simple shear: tension field with wrinkling), "
+        "'vibrating string' (pre-stressed cable of two elements, middle node "
+        "released: one degree of freedom against the Bossak recurrence), "
+        "'sliding ring' (ring "
+        "on a frictionless cable under 'point load'), 'capstan' (a sliding "
+        "cable with friction around a drum, its free end pulled by "
+        "|point load|), 'brake' (brake in "
+        "series with a cable, end pulled by 'prescribed displacement'), "
+        "'mesh file' (a line or membrane mesh read from 'mesh file', "
+        "ends or boundary fixed, gravity and pressure), 'barrier' (the standard barrier of subsection Barrier "
+        "with net, posts, support cables, retaining ropes and brakes, "
+        "pre-stressed, under gravity; experimental: it does not reach "
+        "equilibrium yet, doc/verification.md). Each model with a closed "
+        "form reports and checks it.");
+
+      prm.enter_subsection("Line members");
+      prm.declare_entry("element",
+                        "truss",
+                        Patterns::Selection("truss|cable"),
+                        "Element of the bars/cables: 'truss' (tension and "
+                        "compression, optional plasticity) or 'cable' "
+                        "(tension only, slack in compression).");
+      prm.declare_entry("Young's modulus",
+                        "2e11",
+                        Patterns::Double(),
+                        "E of the line members [Pa], > 0.");
+      prm.declare_entry("cross-section area",
+                        "1e-4",
+                        Patterns::Double(),
+                        "A of the line members [m^2], > 0.");
+      prm.declare_entry("prestress",
+                        "0",
+                        Patterns::Double(),
+                        "PK2 pre-stress sigma_0 added to E eps [Pa].");
+      prm.declare_entry("density",
+                        "0",
+                        Patterns::Double(),
+                        "Density [kg/m^3] (weight rho A g per unstretched "
+                        "length), >= 0.");
+      prm.declare_entry("yield stress",
+                        "0",
+                        Patterns::Double(),
+                        "Truss yield stress (PK2) [Pa]; 0: elastic.");
+      prm.declare_entry("hardening modulus",
+                        "0",
+                        Patterns::Double(),
+                        "Linear isotropic hardening H of the truss [Pa].");
+      prm.declare_entry("elements per member",
+                        "1",
+                        Patterns::Integer(),
+                        "Elements along each bar or cable [-], >= 1 (the "
+                        "catenary: on the coarsest level, even).");
+      prm.declare_entry("friction coefficient",
+                        "0",
+                        Patterns::Double(),
+                        "Capstan friction coefficient mu of sliding cables "
+                        "at their interior nodes (model 'capstan') [-], >= "
+                        "0; the cable slides towards its last node.");
+      prm.declare_entry("slack stiffness ratio",
+                        "1e-8",
+                        Patterns::Double(),
+                        "Stiffness of a slack cable or brake in the Newton "
+                        "matrix only (never in the forces), as a fraction "
+                        "of EA/L (brake: of k_e) [-], > 0.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Membrane");
+      prm.declare_entry("Young's modulus",
+                        "1e9",
+                        Patterns::Double(),
+                        "E (isotropic) or E1 along material axis 1 [Pa], > "
+                        "0.");
+      prm.declare_entry("Poisson's ratio",
+                        "0.3",
+                        Patterns::Double(),
+                        "nu (isotropic) or nu12 [-], in (-1, 0.5].");
+      prm.declare_entry("orthotropic",
+                        "false",
+                        Patterns::Bool(),
+                        "Orthotropic plane-stress SVK with E2 and G12 below "
+                        "(axis 1: global x projected on the surface).");
+      prm.declare_entry("Young's modulus 2",
+                        "1e9",
+                        Patterns::Double(),
+                        "E2 along material axis 2 (orthotropic) [Pa].");
+      prm.declare_entry("shear modulus",
+                        "4e8",
+                        Patterns::Double(),
+                        "G12 (orthotropic) [Pa].");
+      prm.declare_entry("thickness",
+                        "1e-3",
+                        Patterns::Double(),
+                        "Membrane thickness t [m], > 0.");
+      prm.declare_entry("density",
+                        "0",
+                        Patterns::Double(),
+                        "Density [kg/m^3], >= 0.");
+      prm.declare_entry("prestress",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "In-plane PK2 pre-stress S11, S22, S12 in the "
+                        "material axes [Pa].");
+      prm.declare_entry("wrinkling",
+                        "false",
+                        Patterns::Bool(),
+                        "Tension-field law: no compressive principal stress "
+                        "(taut / wrinkled / slack).");
+      prm.declare_entry("initial mode amplitude",
+                        "0",
+                        Patterns::Double(),
+                        "Dynamic square membrane: initial deflection A "
+                        "cos(pi x/a) cos(pi y/a) (the first mode) [m], "
+                        "released from rest.");
+      prm.declare_entry("shear strain",
+                        "1e-4",
+                        Patterns::Double(),
+                        "Model 'sheared membrane': engineering shear strain "
+                        "gamma imposed on the boundary (u_x = gamma (y + "
+                        "a/2)) at load factor 1 [-].");
+      prm.declare_entry("initial deflection",
+                        "0",
+                        Patterns::Double(),
+                        "Start of Newton for the circular membrane: a "
+                        "paraboloid bulge of this height [m] (a flat "
+                        "unstressed membrane has no stiffness normal to "
+                        "itself). It does not change the solution.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Brake");
+      prm.declare_entry("stiffness",
+                        "1e6",
+                        Patterns::Double(),
+                        "Elastic stiffness k_e [N/m], > 0.");
+      prm.declare_entry("activation force",
+                        "5e4",
+                        Patterns::Double(),
+                        "Force F_a at which the brake starts to slip [N], > "
+                        "0.");
+      prm.declare_entry("hardening",
+                        "0",
+                        Patterns::Double(),
+                        "Hardening H: force rise per metre of stroke [N/m], "
+                        ">= 0.");
+      prm.declare_entry("stroke limit",
+                        "0",
+                        Patterns::Double(),
+                        "Stroke s_max after which the brake blocks [m]; 0: "
+                        "unlimited.");
+      prm.declare_entry("length",
+                        "1",
+                        Patterns::Double(),
+                        "Reference length of the brake element [m], > 0.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Geometry");
+      prm.declare_entry("half span",
+                        "1",
+                        Patterns::Double(),
+                        "Half the distance between the supports b (von "
+                        "Mises truss, sliding ring) [m], > 0.");
+      prm.declare_entry("rise",
+                        "0.1",
+                        Patterns::Double(),
+                        "Height h of the truss apex above the supports [m], "
+                        "> 0.");
+      prm.declare_entry("wrap angle",
+                        "180",
+                        Patterns::Double(1, 720),
+                        "Capstan: angle the cable is wrapped around the drum "
+                        "[degrees], 1 to 720 (more than 360: helix in the "
+                        "plane is not modelled, keep <= 360).");
+      prm.declare_entry("drum radius",
+                        "0.5",
+                        Patterns::Double(),
+                        "Capstan: radius of the drum (fixed nodes on a "
+                        "circle in the x-z plane) [m], > 0.");
+      prm.declare_entry("string amplitude",
+                        "1e-3",
+                        Patterns::Double(),
+                        "Model 'vibrating string': initial deflection of "
+                        "the middle node, released from rest [m].");
+      prm.declare_entry("spring EA",
+                        "0",
+                        Patterns::Double(),
+                        "von Mises truss: if > 0, a vertical Truss spring of "
+                        "this axial stiffness E A [N] stands on the apex and "
+                        "carries the load at its top (snap-back under load "
+                        "control when EA/L_s < EA h^2/L0^3).");
+      prm.declare_entry("spring length",
+                        "1",
+                        Patterns::Double(),
+                        "Length L_s of that spring [m], > 0.");
+      prm.declare_entry("span",
+                        "10",
+                        Patterns::Double(),
+                        "Distance between the catenary supports l [m], > 0.");
+      prm.declare_entry("unstretched length",
+                        "12",
+                        Patterns::Double(),
+                        "Stress-free length of the catenary or ring cable "
+                        "[m], > 0.");
+      prm.declare_entry("radius",
+                        "1",
+                        Patterns::Double(),
+                        "Radius a of the circular membrane [m], > 0.");
+      prm.declare_entry("side",
+                        "1",
+                        Patterns::Double(),
+                        "Side a of the square membrane [m], > 0.");
+      prm.declare_entry("cable length",
+                        "5",
+                        Patterns::Double(),
+                        "Length of the cable behind the brake [m], > 0.");
+      prm.declare_entry("refinements",
+                        "3",
+                        Patterns::Integer(0, 10),
+                        "Global refinements of the membrane meshes (level 0 "
+                        "of a convergence study) [-].");
+      prm.declare_entry("mesh file type",
+                        "lines",
+                        Patterns::Selection("lines|membrane"),
+                        "What the file of model 'mesh file' holds: 'lines' "
+                        "(a cable or truss, element of subsection Line "
+                        "members) or 'membrane' (quadrilaterals, material of "
+                        "subsection Membrane).");
+      prm.declare_entry("mesh file",
+                        "",
+                        Patterns::Anything(),
+                        "Gmsh (.msh) file of a line mesh for model 'mesh "
+                        "file'.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Loads");
+      prm.declare_entry("gravity",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "Gravity acceleration [m/s^2], scaled by the load "
+                        "factor.");
+      prm.declare_entry("point load",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "Load at the model's load point (the ring) [N].");
+      prm.declare_entry("pressure",
+                        "0",
+                        Patterns::Double(),
+                        "Follower pressure on the membranes, along the "
+                        "normal t1 x t2 of the current surface [Pa].");
+      prm.declare_entry("prescribed displacement",
+                        "0",
+                        Patterns::Double(),
+                        "Displacement of the controlled node at load factor "
+                        "1 (truss apex down, brake cable end along x) [m].");
+      prm.declare_entry("load path",
+                        "",
+                        Patterns::List(Patterns::Double()),
+                        "Load factors to visit in order (e.g. '1, 0.5, 1.5' "
+                        "to load, unload, reload), each leg in 'load steps' "
+                        "increments; empty: 0 to 1 [-].");
+      prm.leave_subsection();
+
+      Talus::Structure::BarrierBuilder::declare_parameters(prm);
+      Talus::Structure::StaticSolver::declare_parameters(prm);
+      Talus::Structure::DynamicSolver::declare_parameters(prm);
+
+      prm.enter_subsection("Output");
+      prm.declare_entry("output directory",
+                        "output-structure",
+                        Patterns::Anything(),
+                        "Directory of the VTU files and of "
+                        "load_steps.csv.");
+      prm.declare_entry("write vtu",
+                        "false",
+                        Patterns::Bool(),
+                        "Write one VTU file per mesh and load step (and a "
+                        ".pvd per mesh).");
+      prm.declare_entry("test mode",
+                        "false",
+                        Patterns::Bool(),
+                        "Deterministic terminal output: no step lines.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Verification");
+      prm.declare_entry("tolerance",
+                        "0",
+                        Patterns::Double(0),
+                        "If > 0: the run fails (exit code 3) when a checked "
+                        "quantity misses its closed form by more than this "
+                        "relative error on the finest level [-].");
+      prm.declare_entry("reference largest displacement",
+                        "0",
+                        Patterns::Double(0),
+                        "Model 'mesh file': if > 0, the largest nodal "
+                        "displacement is compared with this value [m].");
+      prm.declare_entry("number of levels",
+                        "1",
+                        Patterns::Integer(1, 8),
+                        "Number of meshes, each refined once more (membranes: "
+                        "one global refinement, catenary: twice the "
+                        "elements) [-].");
+      prm.declare_entry("first level",
+                        "0",
+                        Patterns::Integer(0, 8),
+                        "Refinement level of the first run [-].");
+      prm.declare_entry("minimum rate",
+                        "0",
+                        Patterns::Double(0),
+                        "If > 0: the study fails when the rate of a checked "
+                        "error between the last two levels is below this "
+                        "[-].");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+
+    int
+    run_parameter_file(const std::string &filename)
+    {
+      ParameterHandler prm;
+      prm.declare_entry("problem", "structure", Patterns::Anything());
+      prm.declare_entry("dimension", "3", Patterns::Integer(2, 3));
+      declare_parameters(prm);
+      prm.parse_input(filename);
+      if (prm.get_integer("dimension") != 3)
+        InputFile::reject("",
+                          "dimension",
+                          prm.get("dimension"),
+                          "the structure models are three-dimensional "
+                          "(remove the entry or set it to 3)");
+      const Parameters p = parse_parameters(prm);
+      try
+        {
+          std::filesystem::create_directories(p.directory);
+        }
+      catch (const std::exception &)
+        {
+          InputFile::reject(S + "/Output",
+                            "output directory",
+                            p.directory,
+                            "the directory cannot be created");
+        }
+
+      std::cout << "Talus: barrier structure, model '" << p.model
+                << "': " << create_model(p)->description() << '\n';
+      ConvergenceTable                 table;
+      std::vector<std::vector<Result>> level_results;
+      for (unsigned int level = p.first_level;
+           level < p.first_level + p.n_levels;
+           ++level)
+        {
+          auto      model = create_model(p);
+          Structure structure;
+          model->build(structure, level);
+          structure.setup_system();
+          Talus::Structure::StaticSolver solver(structure);
+          prm.enter_subsection(S);
+          solver.parse_parameters(prm);
+          prm.leave_subsection();
+          solver.setup();
+          model->initial_guess(structure, solver.displacement);
+
+          unsigned int n_cells = 0;
+          for (const auto &m : structure.line_meshes)
+            n_cells += m->triangulation.n_active_cells();
+          for (const auto &m : structure.membrane_meshes)
+            n_cells += m->triangulation.n_active_cells();
+          std::cout << "Level " << level << ": " << structure.line_meshes.size()
+                    << " line mesh(es), " << structure.membrane_meshes.size()
+                    << " membrane mesh(es), " << n_cells << " cells, "
+                    << structure.n_nodes() << " nodes, " << structure.n_dofs()
+                    << " DoFs\n";
+
+          // Load factors to visit.
+          std::vector<double> path;
+          {
+            const std::vector<double> legs =
+              p.load_path.empty() ? std::vector<double>{1.} : p.load_path;
+            double from = 0.;
+            for (const double target : legs)
+              {
+                for (unsigned int k = 1; k <= solver.load_steps; ++k)
+                  path.push_back(from +
+                                 (target - from) * k / solver.load_steps);
+                from = target;
+              }
+            if (p.load_path.empty())
+              {
+                for (const double x : model->extra_load_factors())
+                  path.push_back(x);
+                std::sort(path.begin(), path.end());
+              }
+          }
+
+          const std::string csv_name =
+            p.directory + "/load_steps" +
+            (p.n_levels > 1 ? "_level" + std::to_string(level) : "") + ".csv";
+          std::ofstream csv(csv_name);
+          if (!csv)
+            InputFile::reject(S + "/Output",
+                              "output directory",
+                              p.directory,
+                              "the file <" + csv_name +
+                                "> cannot be written there");
+          csv << std::setprecision(10);
+          bool header = false;
+
+          const auto run_step = [&](const unsigned int step,
+                                    const double       lambda) {
+            const auto status = solver.solve(lambda);
+            if (!status.converged)
+              {
+                std::ostringstream msg;
+                msg << "the load step to load factor " << lambda
+                    << " did not converge: " << status.failure
+                    << ". Use more 'load steps' or more 'maximum Newton "
+                       "iterations' in subsection Structure/Solver.";
+                throw ExcSimulationFailed(msg.str());
+              }
+            auto values =
+              model->monitor(structure, solver.displacement, lambda);
+            for (const auto &c : structure_columns(structure))
+              values.push_back(c);
+            if (!header)
+              {
+                csv << "step,load_factor,newton_iterations,residual";
+                for (const auto &v : values)
+                  csv << ',' << v.first;
+                csv << '\n';
+                header = true;
+              }
+            csv << step << ',' << lambda << ',' << status.iterations << ','
+                << status.residual;
+            for (const auto &v : values)
+              csv << ',' << v.second;
+            csv << '\n';
+            if (p.write_vtu)
+              structure.write_vtu(solver.displacement,
+                                  p.directory,
+                                  step,
+                                  lambda);
+            if (!p.test_mode)
+              std::cout << "  step " << std::setw(4) << step << "  load factor "
+                        << std::setw(10) << lambda << "  Newton "
+                        << std::setw(2) << status.iterations << "  |r| "
+                        << std::scientific << std::setprecision(2)
+                        << status.residual << std::defaultfloat
+                        << std::setprecision(6) << '\n';
+            return status;
+          };
+
+          Talus::Structure::DynamicSolver dynamics(structure, solver);
+          prm.enter_subsection(S);
+          dynamics.parse_parameters(prm);
+          prm.leave_subsection();
+          if (dynamics.enabled)
+            {
+              dynamics.initialize();
+              const auto energy = [&]() {
+                return dynamics.kinetic_energy() + structure.strain_energy() +
+                       structure.load_potential(solver.displacement, 1.);
+              };
+              model->time         = 0.;
+              model->total_energy = energy();
+              model->monitor(structure, solver.displacement, 0.);
+              unsigned int       step = 0, newton = 0;
+              double             t       = 0.;
+              const unsigned int n_steps = static_cast<unsigned int>(
+                std::max(1.,
+                         std::round(dynamics.end_time / dynamics.time_step)));
+              // Equal steps that end exactly at the end time.
+              const double dt = dynamics.end_time / n_steps;
+              while (step < n_steps)
+                {
+                  const auto status = dynamics.solve_step(dt);
+                  if (!status.converged)
+                    throw ExcSimulationFailed(
+                      "the time step from t = " + std::to_string(t) +
+                      " s did not converge: " + status.failure +
+                      ". Reduce 'time step' in subsection Structure/Dynamics.");
+                  dynamics.commit_step();
+                  t = (step + 1) * dt;
+                  ++step;
+                  newton += status.iterations;
+                  // Energies at the committed state.
+                  dealii::Vector<double> r;
+                  structure.assemble(solver.displacement, 1., r, nullptr);
+                  model->time         = t;
+                  model->total_energy = energy();
+                  auto values =
+                    model->monitor(structure, solver.displacement, t);
+                  for (const auto &c : structure_columns(structure))
+                    values.push_back(c);
+                  if (step == 1)
+                    {
+                      csv << "step,newton_iterations,residual";
+                      for (const auto &v : values)
+                        csv << ',' << v.first;
+                      csv << '\n';
+                    }
+                  csv << step << ',' << status.iterations << ','
+                      << status.residual;
+                  for (const auto &v : values)
+                    csv << ',' << v.second;
+                  csv << '\n';
+                  if (p.write_vtu)
+                    structure.write_vtu(solver.displacement,
+                                        p.directory,
+                                        step,
+                                        t);
+                }
+              std::cout << "  " << step << " time steps, "
+                        << std::setprecision(3)
+                        << static_cast<double>(newton) / step
+                        << " Newton iterations per step\n"
+                        << std::setprecision(6);
+              path.clear();
+              if (model->relax_to_equilibrium())
+                {
+                  const double T      = dynamics.kinetic_energy();
+                  const auto   status = solver.solve(1.);
+                  if (!status.converged)
+                    throw ExcSimulationFailed(
+                      "the static equilibrium after the dynamic relaxation "
+                      "did not converge: " +
+                      status.failure + ". Run the relaxation longer.");
+                  std::cout << "  static equilibrium from the relaxed state "
+                               "(kinetic energy "
+                            << std::setprecision(3) << std::scientific << T
+                            << " J): " << status.iterations
+                            << " Newton iterations\n"
+                            << std::defaultfloat << std::setprecision(6);
+                }
+            }
+          else if (model->prestress_step())
+            {
+              const auto status = run_step(0, 0.);
+              std::cout << "  pre-stress equilibrium (load factor 0): "
+                        << (status.iterations == 0 ? "already in equilibrium" :
+                                                     "reached")
+                        << '\n';
+            }
+          if (!dynamics.enabled)
+            model->before_load_steps(structure, solver);
+          if (!dynamics.enabled && solver.control == "arc length")
+            {
+              // Arc-length steps: the load factor is an unknown.
+              double                 lambda = 0.;
+              dealii::Vector<double> direction;
+              unsigned int           newton = 0;
+              for (unsigned int k = 1; k <= solver.load_steps; ++k)
+                {
+                  const auto status = solver.solve_arc_length(lambda,
+                                                              solver.arc_length,
+                                                              direction);
+                  if (!status.converged)
+                    throw ExcSimulationFailed(
+                      "arc-length step " + std::to_string(k) +
+                      " did not converge: " + status.failure + ".");
+                  newton += status.iterations;
+                  auto values =
+                    model->monitor(structure, solver.displacement, lambda);
+                  for (const auto &c : structure_columns(structure))
+                    values.push_back(c);
+                  if (k == 1)
+                    {
+                      csv << "step,load_factor,newton_iterations,residual";
+                      for (const auto &v : values)
+                        csv << ',' << v.first;
+                      csv << '\n';
+                    }
+                  csv << k << ',' << lambda << ',' << status.iterations << ','
+                      << status.residual;
+                  for (const auto &v : values)
+                    csv << ',' << v.second;
+                  csv << '\n';
+                  if (p.write_vtu)
+                    structure.write_vtu(solver.displacement,
+                                        p.directory,
+                                        k,
+                                        lambda);
+                }
+              std::cout << "  " << solver.load_steps << " arc-length steps, "
+                        << std::setprecision(3)
+                        << static_cast<double>(newton) / solver.load_steps
+                        << " Newton iterations per step\n"
+                        << std::setprecision(6);
+            }
+          else if (!dynamics.enabled)
+            {
+              unsigned int newton = 0;
+              for (unsigned int k = 0; k < path.size(); ++k)
+                newton += run_step(k + 1, path[k]).iterations;
+              std::cout << "  " << path.size() << " load steps, "
+                        << std::setprecision(3)
+                        << static_cast<double>(newton) / path.size()
+                        << " Newton iterations per step\n"
+                        << std::setprecision(6);
+            }
+
+          const auto results = model->results(structure, solver.displacement);
+          std::cout << "  " << std::left << std::setw(44) << "quantity"
+                    << std::right << std::setw(15) << "computed"
+                    << std::setw(15) << "reference" << std::setw(12)
+                    << "rel. error" << '\n';
+          for (const auto &r : results)
+            {
+              std::cout << "  " << std::left << std::setw(44) << r.name
+                        << std::right << std::setprecision(7) << std::setw(15)
+                        << r.computed;
+              if (r.checked)
+                std::cout << std::setw(15) << r.reference << std::setw(12)
+                          << std::setprecision(3) << std::scientific
+                          << r.error() << std::defaultfloat;
+              std::cout << '\n' << std::setprecision(6);
+            }
+          level_results.push_back(results);
+
+          table.add_value("level", level);
+          table.add_value("DoFs", structure.n_dofs());
+          for (const auto &r : results)
+            if (r.checked)
+              {
+                table.add_value(r.name, r.error());
+                table.set_scientific(r.name, true);
+                table.set_precision(r.name, 3);
+              }
+        }
+
+      if (p.n_levels > 1)
+        {
+          for (const auto &r : level_results.back())
+            if (r.checked)
+              table.evaluate_convergence_rates(
+                r.name, ConvergenceTable::reduction_rate_log2);
+          std::cout << "Convergence table (relative errors; rate: log2 of "
+                       "the error reduction per level):\n";
+          table.write_text(
+            std::cout, TableHandler::table_with_separate_column_description);
+        }
+
+      bool passed = true;
+      if (p.tolerance > 0.)
+        for (const auto &r : level_results.back())
+          if (r.checked)
+            {
+              const bool ok = r.error() <= p.tolerance;
+              std::cout << "  check " << r.name << ": "
+                        << (ok ? "ok" : "FAILED") << " (tolerance "
+                        << p.tolerance << ")\n";
+              passed = passed && ok;
+            }
+      if (p.n_levels > 1 && p.minimum_rate > 0.)
+        {
+          const auto &fine   = level_results[p.n_levels - 1];
+          const auto &coarse = level_results[p.n_levels - 2];
+          for (unsigned int i = 0; i < fine.size(); ++i)
+            if (fine[i].checked && !fine[i].is_error)
+              {
+                const double rate =
+                  std::log2(coarse[i].error() / fine[i].error());
+                const bool ok = rate >= p.minimum_rate;
+                std::cout << "  check rate of " << fine[i].name << ": "
+                          << std::setprecision(3) << std::fixed << rate
+                          << std::defaultfloat << std::setprecision(6)
+                          << (ok ? "  ok" : "  FAILED") << " (minimum "
+                          << p.minimum_rate << ")\n";
+                passed = passed && ok;
+              }
+        }
+      if (!passed)
+        throw ExcVerificationFailed(
+          "the structure misses its closed-form reference (see the checks "
+          "above).");
+      return 0;
+    }
+  } // namespace StructureSimulation
+} // namespace Talus

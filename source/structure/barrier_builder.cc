@@ -1,0 +1,287 @@
+#include <talus/base/input.h>
+#include <talus/structure/barrier_builder.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <cmath>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    using namespace dealii;
+
+    void
+    BarrierBuilder::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Barrier");
+      prm.declare_entry("number of fields",
+                        "3",
+                        Patterns::Integer(1, 20),
+                        "Fields of net between the posts (posts: fields + "
+                        "1) [-].");
+      prm.declare_entry("field width",
+                        "5",
+                        Patterns::Double(),
+                        "Distance between neighbouring posts [m], > 0.");
+      prm.declare_entry("height",
+                        "3.5",
+                        Patterns::Double(),
+                        "Height of the post heads above the bases [m], > 0.");
+      prm.declare_entry("post inclination",
+                        "10",
+                        Patterns::Double(0, 45),
+                        "Downslope inclination of the posts from the "
+                        "vertical [degrees], 0 to 45.");
+      prm.declare_entry("anchor distance",
+                        "6",
+                        Patterns::Double(),
+                        "Upslope distance of the retaining rope anchors "
+                        "from the post bases [m], > 0.");
+      prm.declare_entry("anchor spread",
+                        "1.5",
+                        Patterns::Double(0),
+                        "The two retaining ropes of a post end at x_post "
+                        "+- this value [m].");
+      prm.declare_entry("end anchor offset",
+                        "4",
+                        Patterns::Double(),
+                        "Ground anchors of the top and bottom support "
+                        "cables: this far beyond the outer posts [m], > 0.");
+      prm.declare_entry("net cells per field",
+                        "4",
+                        Patterns::Integer(1, 256),
+                        "Membrane cells along the barrier per field [-].");
+      prm.declare_entry("net cells over height",
+                        "4",
+                        Patterns::Integer(1, 256),
+                        "Membrane cells between bottom and top [-].");
+      prm.declare_entry("brake length",
+                        "0.5",
+                        Patterns::Double(),
+                        "Length of the brake element at the anchor end of "
+                        "each retaining rope [m], > 0.");
+      const auto member = [&](const std::string &name,
+                              const std::string &E,
+                              const std::string &A,
+                              const std::string &prestress) {
+        prm.enter_subsection(name);
+        prm.declare_entry("Young's modulus",
+                          E,
+                          Patterns::Double(),
+                          "E [Pa], > 0.");
+        prm.declare_entry("cross-section area",
+                          A,
+                          Patterns::Double(),
+                          "A [m^2], > 0.");
+        prm.declare_entry("density",
+                          "7850",
+                          Patterns::Double(),
+                          "Density [kg/m^3], >= 0.");
+        if (!prestress.empty())
+          prm.declare_entry("prestress",
+                            prestress,
+                            Patterns::Double(),
+                            "PK2 pre-stress [Pa], >= 0.");
+        prm.leave_subsection();
+      };
+      member("Posts", "2.1e11", "3e-3", "");
+      member("Support cables", "1.2e11", "2e-4", "1e8");
+      member("Retaining ropes", "1.2e11", "2e-4", "2e7");
+      prm.leave_subsection();
+    }
+
+
+    void
+    BarrierBuilder::parse_parameters(ParameterHandler  &prm,
+                                     const std::string &path)
+    {
+      prm.enter_subsection("Barrier");
+      n_fields          = prm.get_integer("number of fields");
+      field_width       = get_positive(prm, path, "field width");
+      height            = get_positive(prm, path, "height");
+      inclination       = prm.get_double("post inclination");
+      anchor_distance   = get_positive(prm, path, "anchor distance");
+      anchor_spread     = prm.get_double("anchor spread");
+      end_anchor_offset = get_positive(prm, path, "end anchor offset");
+      cells_per_field   = prm.get_integer("net cells per field");
+      cells_over_height = prm.get_integer("net cells over height");
+      brake_length      = get_positive(prm, path, "brake length");
+      const auto member = [&](const std::string &name,
+                              double            &E,
+                              double            &A,
+                              double            &rho,
+                              double            *prestress) {
+        prm.enter_subsection(name);
+        E   = get_positive(prm, path + "/" + name, "Young's modulus");
+        A   = get_positive(prm, path + "/" + name, "cross-section area");
+        rho = get_non_negative(prm, path + "/" + name, "density");
+        if (prestress != nullptr)
+          *prestress = get_non_negative(prm, path + "/" + name, "prestress");
+        prm.leave_subsection();
+      };
+      member("Posts", post_E, post_A, post_density, nullptr);
+      member(
+        "Support cables", cable_E, cable_A, cable_density, &cable_prestress);
+      member("Retaining ropes", rope_E, rope_A, rope_density, &rope_prestress);
+      prm.leave_subsection();
+    }
+
+
+    namespace
+    {
+      void
+      polyline(Triangulation<1, 3> &tria, const std::vector<Point<3>> &x)
+      {
+        std::vector<CellData<1>> cells(x.size() - 1);
+        for (unsigned int i = 0; i + 1 < x.size(); ++i)
+          cells[i].vertices = {i, i + 1};
+        tria.create_triangulation(x, cells, SubCellData());
+      }
+
+      /** Disconnected segments (a, b) in one mesh. */
+      void
+      segments(Triangulation<1, 3>                              &tria,
+               const std::vector<std::pair<Point<3>, Point<3>>> &ab)
+      {
+        std::vector<Point<3>>    x;
+        std::vector<CellData<1>> cells(ab.size());
+        for (unsigned int i = 0; i < ab.size(); ++i)
+          {
+            x.push_back(ab[i].first);
+            x.push_back(ab[i].second);
+            cells[i].vertices = {2 * i, 2 * i + 1};
+          }
+        tria.create_triangulation(x, cells, SubCellData());
+      }
+    } // namespace
+
+
+    void
+    BarrierBuilder::build(Structure &s)
+    {
+      const double theta = inclination * numbers::PI / 180.;
+      const double L     = n_fields * field_width;
+      const double Hs    = height / std::cos(theta); // post length
+      // Point of the net plane at (x, distance s along the post).
+      const auto net_point = [&](const double x, const double s_) {
+        return Point<3>(x, -s_ * std::sin(theta), s_ * std::cos(theta));
+      };
+      const unsigned int nx = n_fields * cells_per_field;
+      const unsigned int nz = cells_over_height;
+
+      // Posts: one Truss each, base to head.
+      auto post            = std::make_shared<Truss>();
+      post->youngs_modulus = post_E;
+      post->area           = post_A;
+      post->density        = post_density;
+      std::vector<std::pair<Point<3>, Point<3>>> post_segments;
+      for (unsigned int i = 0; i <= n_fields; ++i)
+        post_segments.emplace_back(net_point(i * field_width, 0.),
+                                   net_point(i * field_width, Hs));
+      post_meshes = {static_cast<unsigned int>(s.line_meshes.size())};
+      segments(s.add_line_mesh("posts", post).triangulation, post_segments);
+
+      // Sliding support cables.
+      auto cable            = std::make_shared<SlidingCable>();
+      cable->youngs_modulus = cable_E;
+      cable->area           = cable_A;
+      cable->prestress      = cable_prestress;
+      cable->density        = cable_density;
+      const Point<3> anchor_left(-end_anchor_offset, 0, 0),
+        anchor_right(L + end_anchor_offset, 0, 0);
+      std::vector<Point<3>> top = {anchor_left}, bottom = {anchor_left};
+      for (unsigned int k = 0; k <= nx; ++k)
+        {
+          top.push_back(net_point(k * L / nx, Hs));
+          bottom.push_back(net_point(k * L / nx, 0.));
+        }
+      top.push_back(anchor_right);
+      bottom.push_back(anchor_right);
+      std::vector<Point<3>> edge_left, edge_right;
+      for (unsigned int j = 0; j <= nz; ++j)
+        {
+          edge_left.push_back(net_point(0., j * Hs / nz));
+          edge_right.push_back(net_point(L, j * Hs / nz));
+        }
+      support_cable_meshes.clear();
+      for (const auto &[name, points] :
+           std::vector<std::pair<std::string, std::vector<Point<3>>>>{
+             {"top_cable", top},
+             {"bottom_cable", bottom},
+             {"edge_cable_left", edge_left},
+             {"edge_cable_right", edge_right}})
+        {
+          support_cable_meshes.push_back(s.line_meshes.size());
+          polyline(s.add_sliding_cable(name, cable).triangulation, points);
+        }
+
+      // Retaining ropes with a brake at the anchor end.
+      auto rope               = std::make_shared<Cable>();
+      rope->youngs_modulus    = rope_E;
+      rope->area              = rope_A;
+      rope->prestress         = rope_prestress;
+      rope->density           = rope_density;
+      auto brake              = std::make_shared<Brake>();
+      brake->stiffness        = brake_k;
+      brake->activation_force = brake_Fa;
+      brake->hardening        = brake_H;
+      brake->stroke_limit     = brake_smax;
+      std::vector<std::pair<Point<3>, Point<3>>> ropes, brakes;
+      std::vector<Point<3>> anchors = {anchor_left, anchor_right};
+      for (unsigned int i = 0; i <= n_fields; ++i)
+        for (const double side : {-1., 1.})
+          {
+            const Point<3>     head = net_point(i * field_width, Hs);
+            const Point<3>     anchor(i * field_width + side * anchor_spread,
+                                  anchor_distance,
+                                  0.);
+            const Tensor<1, 3> d = (head - anchor) / head.distance(anchor);
+            const Point<3>     p = anchor + brake_length * d;
+            brakes.emplace_back(anchor, p);
+            ropes.emplace_back(p, head);
+            anchors.push_back(anchor);
+          }
+      rope_meshes = {static_cast<unsigned int>(s.line_meshes.size())};
+      segments(s.add_line_mesh("retaining_ropes", rope).triangulation, ropes);
+      brake_meshes = {static_cast<unsigned int>(s.line_meshes.size())};
+      segments(s.add_line_mesh("brakes", brake).triangulation, brakes);
+
+      // The net.
+      {
+        auto &mesh = s.add_membrane("net", std::make_shared<Membrane>(net));
+        Triangulation<2> flat;
+        GridGenerator::subdivided_hyper_rectangle(flat,
+                                                  {nx, nz},
+                                                  Point<2>(0., 0.),
+                                                  Point<2>(L, Hs));
+        GridGenerator::flatten_triangulation(flat, mesh.triangulation);
+        GridTools::transform(
+          [&](const Point<3> &p) { return net_point(p[0], p[1]); },
+          mesh.triangulation);
+      }
+
+      s.setup_dofs();
+      supports.clear();
+      post_heads.clear();
+      const double tol = 1e-8 * (L + Hs);
+      for (unsigned int i = 0; i <= n_fields; ++i)
+        {
+          supports.push_back(s.find_node(net_point(i * field_width, 0.), tol));
+          post_heads.push_back(
+            s.find_node(net_point(i * field_width, Hs), tol));
+        }
+      for (const auto &a : anchors)
+        supports.push_back(s.find_node(a, tol));
+      for (const unsigned int n : supports)
+        {
+          AssertThrow(n != numbers::invalid_unsigned_int,
+                      ExcMessage("internal: barrier support not found"));
+          for (unsigned int c = 0; c < 3; ++c)
+            s.prescribe(n, c);
+        }
+    }
+  } // namespace Structure
+} // namespace Talus

@@ -1,0 +1,210 @@
+#include <talus/structure/sliding_cable.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    double
+    SlidingCable::compute(const std::vector<dealii::Tensor<1, 3>> &X,
+                          const std::vector<dealii::Tensor<1, 3>> &x,
+                          dealii::Vector<double>                  &f,
+                          dealii::FullMatrix<double>              &K,
+                          double                                  *energy) const
+    {
+      const unsigned int n_nodes = X.size();
+      if (n_nodes < 2 || x.size() != n_nodes)
+        throw std::runtime_error("A sliding cable needs at least 2 nodes.");
+      if (friction_coefficient > 0.)
+        {
+          K.reinit(3 * n_nodes, 3 * n_nodes);
+          const double N0     = friction_forces(X, x, f);
+          double       l_mean = 0.;
+          for (unsigned int i = 0; i + 1 < n_nodes; ++i)
+            l_mean += (x[i + 1] - x[i]).norm() / (n_nodes - 1);
+          const double h = 1e-7 * l_mean;
+          // Central differences of the forces.
+          const std::vector<double> saved = segment_forces;
+          dealii::Vector<double>    fp, fm;
+          for (unsigned int j = 0; j < 3 * n_nodes; ++j)
+            {
+              auto xp = x, xm = x;
+              xp[j / 3][j % 3] += h;
+              xm[j / 3][j % 3] -= h;
+              friction_forces(X, xp, fp);
+              friction_forces(X, xm, fm);
+              for (unsigned int i = 0; i < 3 * n_nodes; ++i)
+                K(i, j) = (fp[i] - fm[i]) / (2. * h);
+            }
+          segment_forces = saved;
+          if (N0 == 0.)
+            {
+              // Slack: regularising stiffness only.
+              double L = 0.;
+              for (unsigned int i = 0; i + 1 < n_nodes; ++i)
+                L += (X[i + 1] - X[i]).norm();
+              const double k =
+                slack_stiffness_ratio * youngs_modulus * area / L;
+              for (unsigned int i = 0; i + 1 < n_nodes; ++i)
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    K(3 * i + d, 3 * i + d) += k;
+                    K(3 * (i + 1) + d, 3 * (i + 1) + d) += k;
+                    K(3 * i + d, 3 * (i + 1) + d) -= k;
+                    K(3 * (i + 1) + d, 3 * i + d) -= k;
+                  }
+            }
+          if (energy != nullptr)
+            *energy = 0.; // not defined with friction (dissipative)
+          return N0;
+        }
+      f.reinit(3 * n_nodes);
+      K.reinit(3 * n_nodes, 3 * n_nodes);
+
+      double                            L = 0., l = 0.;
+      std::vector<double>               li(n_nodes - 1);
+      std::vector<dealii::Tensor<1, 3>> e(n_nodes - 1);
+      for (unsigned int i = 0; i + 1 < n_nodes; ++i)
+        {
+          L += (X[i + 1] - X[i]).norm();
+          li[i] = (x[i + 1] - x[i]).norm();
+          if (!(li[i] > 0.))
+            throw std::runtime_error(
+              "A sliding cable has two coincident consecutive nodes.");
+          e[i] = (x[i + 1] - x[i]) / li[i];
+          l += li[i];
+        }
+      const double eps = (l * l - L * L) / (2. * L * L);
+      const double S   = youngs_modulus * eps + prestress;
+      if (energy != nullptr)
+        *energy =
+          S <= 0. ?
+            -area * L * prestress * prestress / (2. * youngs_modulus) :
+            area * L * (0.5 * youngs_modulus * eps * eps + prestress * eps);
+      if (S < 0.)
+        {
+          // Slack: regularising stiffness on every segment only.
+          const double k = slack_stiffness_ratio * youngs_modulus * area / L;
+          for (unsigned int i = 0; i + 1 < n_nodes; ++i)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                K(3 * i + d, 3 * i + d) += k;
+                K(3 * (i + 1) + d, 3 * (i + 1) + d) += k;
+                K(3 * i + d, 3 * (i + 1) + d) -= k;
+                K(3 * (i + 1) + d, 3 * i + d) -= k;
+              }
+          return 0.;
+        }
+      const double N = area * S * l / L;
+
+      std::vector<dealii::Tensor<1, 3>> g(n_nodes);
+      for (unsigned int i = 0; i + 1 < n_nodes; ++i)
+        {
+          g[i] -= e[i];
+          g[i + 1] += e[i];
+        }
+      const double k_axial =
+        youngs_modulus * area * l * l / (L * L * L) + area * S / L;
+      for (unsigned int a = 0; a < n_nodes; ++a)
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            f[3 * a + i] = N * g[a][i];
+            for (unsigned int b = 0; b < n_nodes; ++b)
+              for (unsigned int j = 0; j < 3; ++j)
+                K(3 * a + i, 3 * b + j) = k_axial * g[a][i] * g[b][j];
+          }
+      for (unsigned int s = 0; s + 1 < n_nodes; ++s)
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              const double k =
+                N / li[s] * ((i == j ? 1. : 0.) - e[s][i] * e[s][j]);
+              K(3 * s + i, 3 * s + j) += k;
+              K(3 * (s + 1) + i, 3 * (s + 1) + j) += k;
+              K(3 * s + i, 3 * (s + 1) + j) -= k;
+              K(3 * (s + 1) + i, 3 * s + j) -= k;
+            }
+      return N;
+    }
+
+
+    double
+    SlidingCable::friction_forces(const std::vector<dealii::Tensor<1, 3>> &X,
+                                  const std::vector<dealii::Tensor<1, 3>> &x,
+                                  dealii::Vector<double> &f) const
+    {
+      const unsigned int n_nodes = X.size();
+      const unsigned int n_seg   = n_nodes - 1;
+      f.reinit(3 * n_nodes);
+      double                            L = 0.;
+      std::vector<double>               l(n_seg), c(n_seg);
+      std::vector<dealii::Tensor<1, 3>> e(n_seg);
+      for (unsigned int i = 0; i < n_seg; ++i)
+        {
+          L += (X[i + 1] - X[i]).norm();
+          l[i] = (x[i + 1] - x[i]).norm();
+          if (!(l[i] > 0.))
+            throw std::runtime_error(
+              "A sliding cable has two coincident consecutive nodes.");
+          e[i] = (x[i + 1] - x[i]) / l[i];
+        }
+      // Tension factors from the deviation angles (sliding towards the
+      // last node: the tension grows in that direction).
+      c[0] = 1.;
+      for (unsigned int i = 1; i < n_seg; ++i)
+        {
+          const double cos_theta = std::max(-1., std::min(1., e[i - 1] * e[i]));
+          c[i] =
+            c[i - 1] * std::exp(friction_coefficient * std::acos(cos_theta));
+        }
+      const double EA = youngs_modulus * area, As0 = area * prestress;
+      // Stretch of a segment under force N: EA (l^3 - l)/2 + A s0 l = N.
+      const auto stretch = [&](const double N) {
+        double lambda = 1. + N / EA;
+        for (unsigned int k = 0; k < 60; ++k)
+          {
+            const double g =
+              0.5 * EA * (lambda * lambda - 1.) * lambda + As0 * lambda - N;
+            const double dg   = 0.5 * EA * (3. * lambda * lambda - 1.) + As0;
+            const double step = g / dg;
+            lambda -= step;
+            if (std::abs(step) < 1e-15 * lambda)
+              break;
+          }
+        return lambda;
+      };
+      // Material length in the cable at base tension N0, minus L.
+      const auto excess = [&](const double N0) {
+        double m = 0.;
+        for (unsigned int i = 0; i < n_seg; ++i)
+          m += l[i] / stretch(N0 * c[i]);
+        return m - L;
+      };
+      segment_forces.assign(n_seg, 0.);
+      if (excess(0.) <= 0.)
+        return 0.; // slack
+      double hi = EA * 1e-6 + std::abs(As0);
+      while (excess(hi) > 0.)
+        hi *= 2.;
+      double lo = 0.;
+      for (unsigned int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k)
+        {
+          const double mid             = 0.5 * (lo + hi);
+          (excess(mid) > 0. ? lo : hi) = mid;
+        }
+      const double N0 = 0.5 * (lo + hi);
+      for (unsigned int i = 0; i < n_seg; ++i)
+        {
+          segment_forces[i] = N0 * c[i];
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              f[3 * i + d] -= segment_forces[i] * e[i][d];
+              f[3 * (i + 1) + d] += segment_forces[i] * e[i][d];
+            }
+        }
+      return N0;
+    }
+  } // namespace Structure
+} // namespace Talus

@@ -1,0 +1,924 @@
+#include <talus/structure/structure.h>
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    using dealii::types::global_dof_index;
+
+    LineMesh &
+    Structure::add_line_mesh(const std::string                        &name,
+                             const std::shared_ptr<const LineElement> &element)
+    {
+      line_meshes.push_back(std::make_unique<LineMesh>());
+      line_meshes.back()->name    = name;
+      line_meshes.back()->element = element;
+      return *line_meshes.back();
+    }
+
+
+    LineMesh &
+    Structure::add_sliding_cable(
+      const std::string                         &name,
+      const std::shared_ptr<const SlidingCable> &cable)
+    {
+      line_meshes.push_back(std::make_unique<LineMesh>());
+      line_meshes.back()->name          = name;
+      line_meshes.back()->sliding_cable = cable;
+      return *line_meshes.back();
+    }
+
+
+    MembraneMesh &
+    Structure::add_membrane(const std::string                     &name,
+                            const std::shared_ptr<const Membrane> &membrane)
+    {
+      membrane_meshes.push_back(std::make_unique<MembraneMesh>());
+      membrane_meshes.back()->name     = name;
+      membrane_meshes.back()->membrane = membrane;
+      return *membrane_meshes.back();
+    }
+
+
+    namespace
+    {
+      struct VertexEntry
+      {
+        dealii::Point<3>                X;
+        std::array<global_dof_index, 3> dofs;
+      };
+
+      template <int dim>
+      void
+      collect_vertices(const dealii::DoFHandler<dim, 3> &dof_handler,
+                       const global_dof_index            offset,
+                       std::vector<VertexEntry>         &entries)
+      {
+        std::vector<bool> seen(dof_handler.get_triangulation().n_vertices(),
+                               false);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          for (const unsigned int v : cell->vertex_indices())
+            if (!seen[cell->vertex_index(v)])
+              {
+                seen[cell->vertex_index(v)] = true;
+                VertexEntry e;
+                e.X = cell->vertex(v);
+                for (unsigned int c = 0; c < 3; ++c)
+                  e.dofs[c] = offset + cell->vertex_dof_index(v, c);
+                entries.push_back(e);
+              }
+      }
+
+      unsigned int
+      find_root(std::vector<unsigned int> &parent, unsigned int i)
+      {
+        while (parent[i] != i)
+          i = parent[i] = parent[parent[i]];
+        return i;
+      }
+    } // namespace
+
+
+    void
+    Structure::setup_dofs(const double tolerance)
+    {
+      total_dofs = 0;
+      std::vector<VertexEntry> entries;
+      for (auto &mesh : line_meshes)
+        {
+          if (mesh->triangulation.n_active_cells() == 0)
+            throw std::runtime_error("The line mesh <" + mesh->name +
+                                     "> has no cells.");
+          mesh->dof_handler.reinit(mesh->triangulation);
+          mesh->dof_handler.distribute_dofs(line_fe);
+          mesh->offset = total_dofs;
+          total_dofs += mesh->dof_handler.n_dofs();
+          const unsigned int n_cells = mesh->triangulation.n_active_cells();
+          mesh->state.assign(n_cells, LineState());
+          mesh->trial_state = mesh->state;
+          mesh->force.assign(n_cells, 0.);
+          collect_vertices(mesh->dof_handler, mesh->offset, entries);
+        }
+      for (auto &mesh : membrane_meshes)
+        {
+          if (mesh->triangulation.n_active_cells() == 0)
+            throw std::runtime_error("The membrane mesh <" + mesh->name +
+                                     "> has no cells.");
+          mesh->dof_handler.reinit(mesh->triangulation);
+          mesh->dof_handler.distribute_dofs(membrane_fe);
+          mesh->offset = total_dofs;
+          total_dofs += mesh->dof_handler.n_dofs();
+          mesh->cell_output.assign(mesh->triangulation.n_active_cells(),
+                                   MembraneCellOutput());
+          collect_vertices(mesh->dof_handler, mesh->offset, entries);
+        }
+
+      // Merge coincident vertices (sweep over x).
+      dealii::Point<3> lo = entries[0].X, hi = entries[0].X;
+      for (const auto &e : entries)
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            lo[d] = std::min(lo[d], e.X[d]);
+            hi[d] = std::max(hi[d], e.X[d]);
+          }
+      const double tol = tolerance * std::max(lo.distance(hi), 1e-300);
+      std::vector<unsigned int> order(entries.size());
+      std::iota(order.begin(), order.end(), 0u);
+      std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
+        return entries[a].X[0] < entries[b].X[0];
+      });
+      std::vector<unsigned int> parent(entries.size());
+      std::iota(parent.begin(), parent.end(), 0u);
+      for (unsigned int a = 0; a < order.size(); ++a)
+        for (unsigned int b = a + 1;
+             b < order.size() &&
+             entries[order[b]].X[0] - entries[order[a]].X[0] <= tol;
+             ++b)
+          if (entries[order[a]].X.distance(entries[order[b]].X) <= tol)
+            {
+              const unsigned int ra = find_root(parent, order[a]);
+              const unsigned int rb = find_root(parent, order[b]);
+              // The entry that comes first (earlier mesh) is the master.
+              parent[std::max(ra, rb)] = std::min(ra, rb);
+            }
+
+      nodes.clear();
+      dof_to_node.assign(total_dofs, dealii::numbers::invalid_unsigned_int);
+      std::map<unsigned int, unsigned int> root_to_node;
+      for (unsigned int i = 0; i < entries.size(); ++i)
+        {
+          const unsigned int root = find_root(parent, i);
+          auto               it   = root_to_node.find(root);
+          if (it == root_to_node.end())
+            {
+              // Roots come first: i == root for the first entry of a group.
+              Node n;
+              n.X    = entries[root].X;
+              n.dofs = entries[root].dofs;
+              nodes.push_back(n);
+              it = root_to_node.emplace(root, nodes.size() - 1).first;
+            }
+          Node &n = nodes[it->second];
+          if (entries[i].dofs != n.dofs)
+            n.slaves.push_back(entries[i].dofs);
+          for (unsigned int c = 0; c < 3; ++c)
+            dof_to_node[entries[i].dofs[c]] = it->second;
+        }
+
+      // Sliding cables: nodes in cable order.
+      for (auto &mesh : line_meshes)
+        if (mesh->sliding_cable)
+          {
+            const auto                            &tria = mesh->triangulation;
+            std::vector<std::vector<unsigned int>> vertex_cells(
+              tria.n_vertices());
+            std::vector<decltype(mesh->dof_handler.begin_active())> cells;
+            for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+              {
+                cells.push_back(cell);
+                for (const unsigned int v : cell->vertex_indices())
+                  vertex_cells[cell->vertex_index(v)].push_back(cells.size() -
+                                                                1);
+              }
+            unsigned int start = dealii::numbers::invalid_unsigned_int;
+            for (unsigned int v = 0; v < tria.n_vertices(); ++v)
+              {
+                if (vertex_cells[v].size() > 2)
+                  throw std::runtime_error("The sliding cable <" + mesh->name +
+                                           "> branches at a vertex.");
+                if (vertex_cells[v].size() == 1 &&
+                    start == dealii::numbers::invalid_unsigned_int)
+                  start = v;
+              }
+            if (start == dealii::numbers::invalid_unsigned_int)
+              throw std::runtime_error("The sliding cable <" + mesh->name +
+                                       "> is closed (it has no end).");
+            mesh->chain.clear();
+            mesh->chain_X.clear();
+            mesh->chain_cells.clear();
+            std::vector<bool> used(cells.size(), false);
+            unsigned int      v = start;
+            while (true)
+              {
+                unsigned int next_cell = dealii::numbers::invalid_unsigned_int;
+                for (const unsigned int c : vertex_cells[v])
+                  if (!used[c])
+                    next_cell = c;
+                const auto &cell =
+                  cells[next_cell == dealii::numbers::invalid_unsigned_int ?
+                          vertex_cells[v][0] :
+                          next_cell];
+                const unsigned int local = cell->vertex_index(0) == v ? 0 : 1;
+                std::array<global_dof_index, 3> d;
+                for (unsigned int c = 0; c < 3; ++c)
+                  d[c] = mesh->offset + cell->vertex_dof_index(local, c);
+                mesh->chain.push_back(d);
+                mesh->chain_X.push_back(cell->vertex(local));
+                if (next_cell == dealii::numbers::invalid_unsigned_int)
+                  break;
+                used[next_cell] = true;
+                mesh->chain_cells.push_back(
+                  cells[next_cell]->active_cell_index());
+                v = cells[next_cell]->vertex_index(1 - local);
+              }
+            if (mesh->chain.size() != tria.n_active_cells() + 1)
+              throw std::runtime_error("The sliding cable <" + mesh->name +
+                                       "> is not one connected chain.");
+          }
+
+      external_forces.reinit(total_dofs);
+      prescribed.clear();
+      point_loads.clear();
+    }
+
+
+    unsigned int
+    Structure::find_node(const dealii::Point<3> &p,
+                         const double            tolerance) const
+    {
+      unsigned int best   = dealii::numbers::invalid_unsigned_int;
+      double       best_d = tolerance;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        {
+          const double d = nodes[i].X.distance(p);
+          if (d <= best_d)
+            {
+              best   = i;
+              best_d = d;
+            }
+        }
+      return best;
+    }
+
+
+    std::vector<unsigned int>
+    Structure::find_nodes(
+      const std::function<bool(const dealii::Point<3> &)> &predicate) const
+    {
+      std::vector<unsigned int> result;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        if (predicate(nodes[i].X))
+          result.push_back(i);
+      return result;
+    }
+
+
+    unsigned int
+    Structure::n_nodes() const
+    {
+      return nodes.size();
+    }
+
+
+    const dealii::Point<3> &
+    Structure::node_position(const unsigned int node) const
+    {
+      return nodes[node].X;
+    }
+
+
+    global_dof_index
+    Structure::node_dof(const unsigned int node, const unsigned int c) const
+    {
+      return nodes[node].dofs[c];
+    }
+
+
+    void
+    Structure::prescribe(const unsigned int node,
+                         const unsigned int c,
+                         const double       value)
+    {
+      const global_dof_index dof = nodes[node].dofs[c];
+      for (auto &p : prescribed)
+        if (p.first == dof)
+          {
+            p.second = value;
+            return;
+          }
+      prescribed.emplace_back(dof, value);
+    }
+
+
+    void
+    Structure::release(const unsigned int node, const unsigned int c)
+    {
+      const global_dof_index dof = nodes[node].dofs[c];
+      prescribed.erase(std::remove_if(prescribed.begin(),
+                                      prescribed.end(),
+                                      [&](const auto &p) {
+                                        return p.first == dof;
+                                      }),
+                       prescribed.end());
+    }
+
+
+    void
+    Structure::add_point_load(const unsigned int          node,
+                              const dealii::Tensor<1, 3> &F)
+    {
+      point_loads.emplace_back(node, F);
+    }
+
+
+    void
+    Structure::setup_system()
+    {
+      ties.clear();
+      for (const auto &node : nodes)
+        for (const auto &slave : node.slaves)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              ties.add_line(slave[c]);
+              ties.add_entry(slave[c], node.dofs[c], 1.);
+            }
+      ties.close();
+
+      constraints.clear();
+      for (const auto &node : nodes)
+        for (const auto &slave : node.slaves)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              constraints.add_line(slave[c]);
+              constraints.add_entry(slave[c], node.dofs[c], 1.);
+            }
+      for (const auto &p : prescribed)
+        constraints.add_line(p.first);
+      constraints.close();
+
+      dealii::DynamicSparsityPattern dsp(total_dofs);
+      std::vector<global_dof_index>  indices;
+      for (const auto &mesh : line_meshes)
+        if (mesh->sliding_cable)
+          {
+            indices.clear();
+            for (const auto &d : mesh->chain)
+              indices.insert(indices.end(), d.begin(), d.end());
+            constraints.add_entries_local_to_global(indices, dsp, false);
+          }
+        else
+          {
+            indices.resize(line_fe.n_dofs_per_cell());
+            for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+              {
+                cell->get_dof_indices(indices);
+                for (auto &i : indices)
+                  i += mesh->offset;
+                constraints.add_entries_local_to_global(indices, dsp, false);
+              }
+          }
+      indices.resize(membrane_fe.n_dofs_per_cell());
+      for (const auto &mesh : membrane_meshes)
+        for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+          {
+            cell->get_dof_indices(indices);
+            for (auto &i : indices)
+              i += mesh->offset;
+            constraints.add_entries_local_to_global(indices, dsp, false);
+          }
+      // Diagonal entries for every DoF (constrained rows too).
+      for (global_dof_index i = 0; i < total_dofs; ++i)
+        dsp.add(i, i);
+      sparsity.copy_from(dsp);
+      raw_residual.reinit(total_dofs);
+
+      // Lumped mass, onto the master DoFs.
+      dealii::Vector<double> raw_mass(total_dofs);
+      for (const auto &mesh : line_meshes)
+        {
+          if (mesh->sliding_cable)
+            {
+              const double rhoA =
+                mesh->sliding_cable->density * mesh->sliding_cable->area;
+              for (unsigned int k = 0; k + 1 < mesh->chain.size(); ++k)
+                {
+                  const double m =
+                    0.5 * rhoA *
+                    (mesh->chain_X[k + 1] - mesh->chain_X[k]).norm();
+                  for (unsigned int c = 0; c < 3; ++c)
+                    {
+                      raw_mass[mesh->chain[k][c]] += m;
+                      raw_mass[mesh->chain[k + 1][c]] += m;
+                    }
+                }
+              continue;
+            }
+          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+            {
+              const double m = 0.5 * mesh->element->mass_per_length() *
+                               cell->vertex(0).distance(cell->vertex(1));
+              for (unsigned int v = 0; v < 2; ++v)
+                for (unsigned int c = 0; c < 3; ++c)
+                  raw_mass[mesh->offset + cell->vertex_dof_index(v, c)] += m;
+            }
+        }
+      if (!membrane_meshes.empty())
+        {
+          const dealii::QGauss<2>       quadrature(2);
+          dealii::FEValues<2, 3>        fe_values(membrane_fe,
+                                           quadrature,
+                                           dealii::update_values |
+                                             dealii::update_JxW_values);
+          std::vector<global_dof_index> indices(membrane_fe.n_dofs_per_cell());
+          for (const auto &mesh : membrane_meshes)
+            {
+              const double rho_t =
+                mesh->membrane->density * mesh->membrane->material.thickness;
+              for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+                {
+                  fe_values.reinit(cell);
+                  cell->get_dof_indices(indices);
+                  for (unsigned int i = 0; i < indices.size(); ++i)
+                    {
+                      const unsigned int c =
+                        membrane_fe.system_to_component_index(i).first;
+                      for (unsigned int q = 0; q < quadrature.size(); ++q)
+                        raw_mass[mesh->offset + indices[i]] +=
+                          rho_t * fe_values.shape_value_component(i, q, c) *
+                          fe_values.JxW(q);
+                    }
+                }
+            }
+        }
+      mass.reinit(total_dofs);
+      for (const auto &node : nodes)
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            mass[node.dofs[c]] = raw_mass[node.dofs[c]];
+            for (const auto &slave : node.slaves)
+              mass[node.dofs[c]] += raw_mass[slave[c]];
+          }
+    }
+
+
+    void
+    Structure::assemble_consistent_mass(dealii::SparseMatrix<double> &M) const
+    {
+      M.reinit(sparsity);
+      std::vector<global_dof_index> indices;
+      dealii::FullMatrix<double>    Me;
+      for (const auto &mesh : line_meshes)
+        {
+          if (mesh->sliding_cable)
+            {
+              // Lumped: the nodes slide along the cable.
+              const double rhoA =
+                mesh->sliding_cable->density * mesh->sliding_cable->area;
+              indices.resize(6);
+              Me.reinit(6, 6);
+              for (unsigned int k = 0; k + 1 < mesh->chain.size(); ++k)
+                {
+                  const double m =
+                    0.5 * rhoA *
+                    (mesh->chain_X[k + 1] - mesh->chain_X[k]).norm();
+                  for (unsigned int c = 0; c < 3; ++c)
+                    {
+                      indices[c]       = mesh->chain[k][c];
+                      indices[3 + c]   = mesh->chain[k + 1][c];
+                      Me(c, c)         = m;
+                      Me(3 + c, 3 + c) = m;
+                    }
+                  constraints.distribute_local_to_global(Me, indices, M);
+                }
+              continue;
+            }
+          indices.resize(6);
+          Me.reinit(6, 6);
+          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+            {
+              const double m = mesh->element->mass_per_length() *
+                               cell->vertex(0).distance(cell->vertex(1));
+              Me = 0.;
+              for (unsigned int v = 0; v < 2; ++v)
+                for (unsigned int w = 0; w < 2; ++w)
+                  for (unsigned int c = 0; c < 3; ++c)
+                    Me(3 * v + c, 3 * w + c) = m / 6. * (v == w ? 2. : 1.);
+              for (unsigned int v = 0; v < 2; ++v)
+                for (unsigned int c = 0; c < 3; ++c)
+                  indices[3 * v + c] =
+                    mesh->offset + cell->vertex_dof_index(v, c);
+              constraints.distribute_local_to_global(Me, indices, M);
+            }
+        }
+      if (!membrane_meshes.empty())
+        {
+          const dealii::QGauss<2> quadrature(2);
+          dealii::FEValues<2, 3>  fe_values(membrane_fe,
+                                           quadrature,
+                                           dealii::update_values |
+                                             dealii::update_JxW_values);
+          const unsigned int      n = membrane_fe.n_dofs_per_cell();
+          indices.resize(n);
+          Me.reinit(n, n);
+          for (const auto &mesh : membrane_meshes)
+            {
+              const double rho_t =
+                mesh->membrane->density * mesh->membrane->material.thickness;
+              for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+                {
+                  fe_values.reinit(cell);
+                  cell->get_dof_indices(indices);
+                  for (auto &i : indices)
+                    i += mesh->offset;
+                  Me = 0.;
+                  for (unsigned int i = 0; i < n; ++i)
+                    for (unsigned int j = 0; j < n; ++j)
+                      {
+                        const unsigned int ci =
+                          membrane_fe.system_to_component_index(i).first;
+                        if (ci !=
+                            membrane_fe.system_to_component_index(j).first)
+                          continue;
+                        for (unsigned int q = 0; q < quadrature.size(); ++q)
+                          Me(i, j) +=
+                            rho_t * fe_values.shape_value_component(i, q, ci) *
+                            fe_values.shape_value_component(j, q, ci) *
+                            fe_values.JxW(q);
+                      }
+                  constraints.distribute_local_to_global(Me, indices, M);
+                }
+            }
+        }
+    }
+
+
+    double
+    Structure::strain_energy() const
+    {
+      return last_strain_energy;
+    }
+
+
+    const dealii::Vector<double> &
+    Structure::lumped_mass() const
+    {
+      return mass;
+    }
+
+
+    double
+    Structure::load_potential(const dealii::Vector<double> &u,
+                              const double                  load_factor) const
+    {
+      double V = 0.;
+      for (global_dof_index i = 0; i < total_dofs; ++i)
+        V -= external_forces[i] * u[i];
+      for (const auto &node : nodes)
+        for (unsigned int c = 0; c < 3; ++c)
+          V -= load_factor * mass[node.dofs[c]] * gravity[c] * u[node.dofs[c]];
+      for (const auto &[node, F] : point_loads)
+        for (unsigned int c = 0; c < 3; ++c)
+          V -= load_factor * F[c] * u[nodes[node].dofs[c]];
+      return V;
+    }
+
+
+    void
+    Structure::apply_prescribed(dealii::Vector<double> &u,
+                                const double            load_factor) const
+    {
+      for (const auto &p : prescribed)
+        u[p.first] = load_factor * p.second;
+      ties.distribute(u);
+    }
+
+
+    double
+    Structure::assemble(const dealii::Vector<double> &u,
+                        const double                  load_factor,
+                        dealii::Vector<double>       &r,
+                        dealii::SparseMatrix<double> *K)
+    {
+      r.reinit(total_dofs);
+      raw_residual       = 0.;
+      last_strain_energy = 0.;
+      if (K != nullptr)
+        *K = 0.;
+      const auto add = [&](const dealii::FullMatrix<double>    &Ke,
+                           const dealii::Vector<double>        &re,
+                           const std::vector<global_dof_index> &indices) {
+        for (unsigned int i = 0; i < indices.size(); ++i)
+          raw_residual[indices[i]] += re[i];
+        if (K != nullptr)
+          constraints.distribute_local_to_global(Ke, re, indices, *K, r);
+        else
+          constraints.distribute_local_to_global(re, indices, r);
+      };
+      const dealii::Tensor<1, 3> g = load_factor * gravity;
+
+      // Line meshes.
+      std::vector<global_dof_index> indices(6);
+      LineResponse                  response;
+      for (auto &mesh : line_meshes)
+        {
+          if (mesh->sliding_cable)
+            {
+              const unsigned int                n = mesh->chain.size();
+              std::vector<dealii::Tensor<1, 3>> x(n);
+              indices.clear();
+              for (unsigned int k = 0; k < n; ++k)
+                {
+                  for (unsigned int c = 0; c < 3; ++c)
+                    {
+                      x[k][c] = mesh->chain_X[k][c] + u[mesh->chain[k][c]];
+                      indices.push_back(mesh->chain[k][c]);
+                    }
+                }
+              dealii::Vector<double>     f;
+              dealii::FullMatrix<double> Ke;
+              const double               N =
+                mesh->sliding_cable->compute(mesh->chain_X, x, f, Ke);
+              const double rhoA =
+                mesh->sliding_cable->density * mesh->sliding_cable->area;
+              for (unsigned int k = 0; k + 1 < n; ++k)
+                {
+                  const double L =
+                    (mesh->chain_X[k + 1] - mesh->chain_X[k]).norm();
+                  for (unsigned int c = 0; c < 3; ++c)
+                    {
+                      f[3 * k + c] -= 0.5 * rhoA * L * g[c];
+                      f[3 * (k + 1) + c] -= 0.5 * rhoA * L * g[c];
+                    }
+                }
+              std::fill(mesh->force.begin(), mesh->force.end(), N);
+              if (mesh->sliding_cable->friction_coefficient > 0.)
+                for (unsigned int k = 0; k < mesh->chain_cells.size(); ++k)
+                  mesh->force[mesh->chain_cells[k]] =
+                    mesh->sliding_cable->segment_forces[k];
+              add(Ke, f, indices);
+              indices.resize(6);
+              continue;
+            }
+          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+            {
+              dealii::Tensor<1, 3> X[2], x[2];
+              for (unsigned int v = 0; v < 2; ++v)
+                for (unsigned int c = 0; c < 3; ++c)
+                  {
+                    indices[3 * v + c] =
+                      mesh->offset + cell->vertex_dof_index(v, c);
+                    X[v][c] = cell->vertex(v)[c];
+                    x[v][c] = X[v][c] + u[indices[3 * v + c]];
+                  }
+              const unsigned int k = cell->active_cell_index();
+              mesh->element->compute(
+                X[0], X[1], x[0], x[1], mesh->state[k], response);
+              mesh->trial_state[k] = response.state;
+              mesh->force[k]       = response.force;
+              last_strain_energy += response.energy;
+              const double m =
+                mesh->element->mass_per_length() * (X[1] - X[0]).norm();
+              for (unsigned int v = 0; v < 2; ++v)
+                for (unsigned int c = 0; c < 3; ++c)
+                  response.f[3 * v + c] -= 0.5 * m * g[c];
+              add(response.K, response.f, indices);
+            }
+        }
+
+      // Membranes.
+      if (!membrane_meshes.empty())
+        {
+          const dealii::QGauss<2>       quadrature(2);
+          dealii::FEValues<2, 3>        fe_values(membrane_fe,
+                                           quadrature,
+                                           dealii::update_values |
+                                             dealii::update_gradients |
+                                             dealii::update_jacobians |
+                                             dealii::update_JxW_values);
+          const unsigned int            n = membrane_fe.n_dofs_per_cell();
+          std::vector<global_dof_index> mindices(n);
+          std::vector<double>           ue(n);
+          dealii::Vector<double>        re;
+          dealii::FullMatrix<double>    Ke;
+          for (auto &mesh : membrane_meshes)
+            {
+              const Membrane &membrane = *mesh->membrane;
+              const double    rho_t =
+                membrane.density * membrane.material.thickness;
+              for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+                {
+                  fe_values.reinit(cell);
+                  cell->get_dof_indices(mindices);
+                  for (unsigned int i = 0; i < n; ++i)
+                    {
+                      mindices[i] += mesh->offset;
+                      ue[i] = u[mindices[i]];
+                    }
+                  membrane.compute(
+                    fe_values,
+                    ue,
+                    load_factor,
+                    re,
+                    Ke,
+                    &mesh->cell_output[cell->active_cell_index()]);
+                  last_strain_energy +=
+                    mesh->cell_output[cell->active_cell_index()].strain_energy;
+                  if (rho_t != 0.)
+                    for (unsigned int q = 0; q < quadrature.size(); ++q)
+                      for (unsigned int i = 0; i < n; ++i)
+                        {
+                          const unsigned int c =
+                            membrane_fe.system_to_component_index(i).first;
+                          re[i] -= rho_t * g[c] *
+                                   fe_values.shape_value_component(i, q, c) *
+                                   fe_values.JxW(q);
+                        }
+                  add(Ke, re, mindices);
+                }
+            }
+        }
+
+      // Point loads and external forces.
+      {
+        std::vector<global_dof_index> one(1);
+        dealii::Vector<double>        value(1);
+        for (const auto &[node, F] : point_loads)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              one[0]   = nodes[node].dofs[c];
+              value[0] = -load_factor * F[c];
+              raw_residual[one[0]] += value[0];
+              constraints.distribute_local_to_global(value, one, r);
+            }
+        for (global_dof_index i = 0; i < total_dofs; ++i)
+          if (external_forces[i] != 0.)
+            {
+              one[0]   = i;
+              value[0] = -external_forces[i];
+              raw_residual[i] += value[0];
+              constraints.distribute_local_to_global(value, one, r);
+            }
+      }
+      return r.l2_norm();
+    }
+
+
+    void
+    Structure::commit_state()
+    {
+      for (auto &mesh : line_meshes)
+        mesh->state = mesh->trial_state;
+    }
+
+
+    dealii::Tensor<1, 3>
+    Structure::reaction(const unsigned int node) const
+    {
+      dealii::Tensor<1, 3> R;
+      for (unsigned int c = 0; c < 3; ++c)
+        {
+          R[c] = raw_residual[nodes[node].dofs[c]];
+          for (const auto &s : nodes[node].slaves)
+            R[c] += raw_residual[s[c]];
+        }
+      return R;
+    }
+
+
+    dealii::Tensor<1, 3>
+    Structure::node_displacement(const dealii::Vector<double> &u,
+                                 const unsigned int            node) const
+    {
+      dealii::Tensor<1, 3> d;
+      for (unsigned int c = 0; c < 3; ++c)
+        d[c] = u[nodes[node].dofs[c]];
+      return d;
+    }
+
+
+    namespace
+    {
+      template <int dim>
+      void
+      write_mesh(
+        const dealii::DoFHandler<dim, 3> &dof_handler,
+        const global_dof_index            offset,
+        const dealii::Vector<double>     &u,
+        const std::vector<std::pair<std::string, dealii::Vector<double>>>
+                          &cell_data,
+        const std::string &filename)
+      {
+        dealii::Vector<double> local(dof_handler.n_dofs());
+        for (global_dof_index i = 0; i < local.size(); ++i)
+          local[i] = u[offset + i];
+        dealii::DataOut<dim, 3> data_out;
+        data_out.attach_dof_handler(dof_handler);
+        const std::vector<std::string> names(3, "displacement");
+        const std::vector<
+          dealii::DataComponentInterpretation::DataComponentInterpretation>
+          interpretation(
+            3,
+            dealii::DataComponentInterpretation::component_is_part_of_vector);
+        data_out.add_data_vector(local,
+                                 names,
+                                 dealii::DataOut<dim, 3>::type_dof_data,
+                                 interpretation);
+        for (const auto &[name, values] : cell_data)
+          data_out.add_data_vector(values, name);
+        data_out.build_patches();
+        std::ofstream out(filename);
+        if (!out)
+          throw std::runtime_error("Cannot write the file <" + filename + ">.");
+        data_out.write_vtu(out);
+      }
+    } // namespace
+
+
+    void
+    Structure::write_vtu(const dealii::Vector<double> &u,
+                         const std::string            &directory,
+                         const unsigned int            step,
+                         const double                  time)
+    {
+      const std::string suffix =
+        "_" + dealii::Utilities::int_to_string(step, 5) + ".vtu";
+      pvd_records.emplace_back(time, suffix);
+      const auto write_pvd = [&](const std::string &name) {
+        std::vector<std::pair<double, std::string>> records;
+        for (const auto &[t, s] : pvd_records)
+          records.emplace_back(t, name + s);
+        std::ofstream pvd(directory + "/" + name + ".pvd");
+        dealii::DataOutBase::write_pvd_record(pvd, records);
+      };
+      for (const auto &mesh : line_meshes)
+        {
+          dealii::Vector<double> force(mesh->force.begin(), mesh->force.end());
+          std::vector<std::pair<std::string, dealii::Vector<double>>> data = {
+            {"axial_force", force}};
+          if (mesh->element && mesh->element->name() == "brake")
+            {
+              dealii::Vector<double> stroke(mesh->state.size());
+              for (unsigned int k = 0; k < stroke.size(); ++k)
+                stroke[k] = mesh->state[k].plastic;
+              data.emplace_back("stroke", stroke);
+            }
+          write_mesh(mesh->dof_handler,
+                     mesh->offset,
+                     u,
+                     data,
+                     directory + "/" + mesh->name + suffix);
+          write_pvd(mesh->name);
+        }
+      for (const auto &mesh : membrane_meshes)
+        {
+          const unsigned int     n = mesh->cell_output.size();
+          dealii::Vector<double> mean(n), smax(n), smin(n), state(n);
+          for (unsigned int k = 0; k < n; ++k)
+            {
+              mean[k]  = mesh->cell_output[k].mean_stress;
+              smax[k]  = mesh->cell_output[k].max_principal;
+              smin[k]  = mesh->cell_output[k].min_principal;
+              state[k] = mesh->cell_output[k].n_slack > 0 ?
+                           2. :
+                           (mesh->cell_output[k].n_wrinkled > 0 ? 1. : 0.);
+            }
+          write_mesh(mesh->dof_handler,
+                     mesh->offset,
+                     u,
+                     {{"mean_stress", mean},
+                      {"max_principal_stress", smax},
+                      {"min_principal_stress", smin},
+                      {"wrinkling_state", state}},
+                     directory + "/" + mesh->name + suffix);
+          write_pvd(mesh->name);
+        }
+    }
+
+
+    global_dof_index
+    Structure::n_dofs() const
+    {
+      return total_dofs;
+    }
+
+
+    const dealii::AffineConstraints<double> &
+    Structure::get_constraints() const
+    {
+      return constraints;
+    }
+
+
+    const dealii::SparsityPattern &
+    Structure::get_sparsity_pattern() const
+    {
+      return sparsity;
+    }
+  } // namespace Structure
+} // namespace Talus

@@ -1,0 +1,431 @@
+// Patch checks of the barrier structure elements (doc/verification.md,
+// "Barrier structures"; VERIFICATION.md 3):
+//  - Truss, Cable: rigid rotation by 90 degrees gives no force; uniaxial
+//    stretch lambda gives N = EA lambda (lambda^2 - 1)/2; tangent equals
+//    central differences of the forces (also elasto-plastic, prestressed,
+//    and the lateral stiffness A S/L of a straight prestressed cable); a
+//    compressed cable carries nothing
+//  - Brake: plateau at F_a + H s, unloading along k_e, slack, stroke limit,
+//    dissipated energy F_a s + H s^2/2, tangent
+//  - SlidingCable: uniform tension at every node, tangent
+//  - Membrane: rigid rotation, uniaxial strain with lateral constraint
+//    (edge force t W lambda S11), tangent with pre-stress and follower
+//    pressure, wrinkled state (no compressive principal stress; tangent)
+// Relative differences are printed rounded (or as "ok" below a bound).
+
+#include <talus/structure/line_elements.h>
+#include <talus/structure/membrane.h>
+#include <talus/structure/sliding_cable.h>
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+using namespace dealii;
+using namespace Talus::Structure;
+
+namespace
+{
+  std::ofstream out("output");
+
+  /** max |A - B| / max |A| */
+  double
+  relative_difference(const FullMatrix<double> &A, const FullMatrix<double> &B)
+  {
+    double d = 0., a = 0.;
+    for (unsigned int i = 0; i < A.m(); ++i)
+      for (unsigned int j = 0; j < A.n(); ++j)
+        {
+          d = std::max(d, std::abs(A(i, j) - B(i, j)));
+          a = std::max(a, std::abs(A(i, j)));
+        }
+    return d / a;
+  }
+
+  void
+  report(const std::string &what, const double value, const double bound)
+  {
+    out << "  " << what << ": " << (value <= bound ? "ok" : "FAILED") << " (< "
+        << bound << ")\n";
+    if (value > bound)
+      std::cout << what << " = " << value << std::endl;
+  }
+
+  /** Forces and central-difference tangent of a two-node element. */
+  double
+  line_tangent_error(const LineElement  &element,
+                     const Tensor<1, 3> &X0,
+                     const Tensor<1, 3> &X1,
+                     const Tensor<1, 3> &x0,
+                     const Tensor<1, 3> &x1,
+                     const LineState    &state)
+  {
+    LineResponse r;
+    element.compute(X0, X1, x0, x1, state, r);
+    FullMatrix<double> K_fd(6, 6);
+    const double       h = 1e-6 * (X1 - X0).norm();
+    for (unsigned int j = 0; j < 6; ++j)
+      {
+        Tensor<1, 3> p0 = x0, p1 = x1, m0 = x0, m1 = x1;
+        (j < 3 ? p0 : p1)[j % 3] += h;
+        (j < 3 ? m0 : m1)[j % 3] -= h;
+        LineResponse rp, rm;
+        element.compute(X0, X1, p0, p1, state, rp);
+        element.compute(X0, X1, m0, m1, state, rm);
+        for (unsigned int i = 0; i < 6; ++i)
+          K_fd(i, j) = (rp.f[i] - rm.f[i]) / (2. * h);
+      }
+    return relative_difference(r.K, K_fd);
+  }
+
+  void
+  check_two_node(const LineElement &element, const double EA)
+  {
+    const Tensor<1, 3> X0({0.2, -0.1, 0.3}), X1({1.4, 0.5, -0.2});
+    const double       L = (X1 - X0).norm();
+    LineState          state;
+    LineResponse       r;
+
+    // Rigid rotation by 90 degrees about z, plus a translation.
+    const auto rotate = [](const Tensor<1, 3> &a) {
+      return Tensor<1, 3>({-a[1] + 3., a[0] - 1., a[2] + 2.});
+    };
+    element.compute(X0, X1, rotate(X0), rotate(X1), state, r);
+    report("rigid rotation: |f| / (EA)", r.f.linfty_norm() / EA, 1e-14);
+
+    // Uniaxial stretch lambda = 1.2 along the element.
+    const double lambda = 1.2;
+    element.compute(X0, X1, X0, X0 + lambda * (X1 - X0), state, r);
+    const double N_exact = EA * lambda * (lambda * lambda - 1.) / 2.;
+    out << "  stretch 1.2: N / (EA) = " << std::setprecision(8) << r.force / EA
+        << " (exact " << N_exact / EA << ")\n";
+    report("stretch 1.2: |N - N_exact| / N_exact",
+           std::abs(r.force - N_exact) / N_exact,
+           1e-13);
+    // Tangent in a general configuration.
+    const Tensor<1, 3> x0({0.25, -0.05, 0.31}), x1({1.5, 0.7, -0.1});
+    report("tangent vs central differences (stretched, rotated)",
+           line_tangent_error(element, X0, X1, x0, x1, state),
+           1e-6);
+    (void)L;
+  }
+} // namespace
+
+
+int
+main()
+{
+  out << std::setprecision(8);
+
+  // ---------------------------------------------------------------- Truss
+  {
+    out << "Truss (E = 2e11 Pa, A = 1e-4 m^2)\n";
+    Truss truss;
+    truss.youngs_modulus = 2e11;
+    truss.area           = 1e-4;
+    check_two_node(truss, 2e7);
+
+    out << "Truss with prestress 1e8 Pa\n";
+    truss.prestress = 1e8;
+    const Tensor<1, 3> X0({0, 0, 0}), X1({2, 0, 0});
+    LineResponse       r;
+    truss.compute(X0, X1, X0, X1, LineState(), r);
+    out << "  unstretched: N = " << r.force << " N (A sigma_0 = 10000)\n";
+    report("straight prestressed truss: tangent vs central differences",
+           line_tangent_error(truss, X0, X1, X0, X1, LineState()),
+           1e-6);
+    out << "  lateral stiffness K(yy) = " << r.K(1, 1)
+        << " N/m (A sigma_0 / L = 5000)\n";
+
+    out << "Elasto-plastic truss (sigma_y = 2.5e8 Pa, H = 2e9 Pa)\n";
+    truss.prestress    = 0.;
+    truss.yield_stress = 2.5e8;
+    truss.hardening    = 2e9;
+    // Green-Lagrange strain 0.01: S_trial = 2e9 > sigma_y.
+    const double lambda = std::sqrt(1.02);
+    truss.compute(X0, X1, X0, lambda * X1, LineState(), r);
+    const double dgamma = (2e9 - 2.5e8) / (2e11 + 2e9);
+    const double S      = 2e9 - 2e11 * dgamma;
+    out << "  eps = 0.01: S = " << r.force / (1e-4 * lambda) << " Pa (exact "
+        << S << "), plastic strain " << r.state.plastic << " (exact " << dgamma
+        << ")\n";
+    report("plastic: tangent vs central differences",
+           line_tangent_error(truss, X0, X1, X0, lambda * X1, LineState()),
+           1e-6);
+    // Unloading to eps = 0.009 is elastic: S = E (0.009 - eps_p).
+    LineResponse r2;
+    truss.compute(X0, X1, X0, std::sqrt(1.018) * X1, r.state, r2);
+    out << "  unloaded to eps = 0.009: S = "
+        << r2.force / (1e-4 * std::sqrt(1.018)) << " Pa (exact "
+        << 2e11 * (0.009 - dgamma) << ")\n";
+    // Back to l = L: reverse yielding in compression,
+    // S = S_trial + E dgamma2, dgamma2 = (|S_trial| - sigma_y - H alpha)/(E+H).
+    truss.compute(X0, X1, X0, X1, r.state, r2);
+    const double S_trial = -2e11 * dgamma;
+    const double dgamma2 = (-S_trial - 2.5e8 - 2e9 * dgamma) / (2e11 + 2e9);
+    out << "  back to l = L: S = " << r2.force / 1e-4
+        << " Pa (exact, reverse yielding: " << S_trial + 2e11 * dgamma2
+        << ")\n";
+    report("reverse yielding: tangent vs central differences",
+           line_tangent_error(truss, X0, X1, X0, X1, r.state),
+           1e-6);
+  }
+
+  // ---------------------------------------------------------------- Cable
+  {
+    out << "Cable (E = 1e11 Pa, A = 2e-4 m^2)\n";
+    Cable cable;
+    cable.youngs_modulus = 1e11;
+    cable.area           = 2e-4;
+    check_two_node(cable, 2e7);
+    const Tensor<1, 3> X0({0, 0, 0}), X1({2, 0, 0});
+    LineResponse       r;
+    cable.compute(X0, X1, X0, 0.9 * X1, LineState(), r);
+    out << "  compressed (l = 0.9 L): N = " << r.force
+        << ", |f| = " << r.f.linfty_norm() << ", slack = " << r.slack
+        << ", K(0,0) / (EA/L) = " << r.K(0, 0) / (1e11 * 2e-4 / 2.)
+        << " (regularisation only)\n";
+    cable.prestress = 5e7;
+    cable.compute(X0, X1, X0, X1, LineState(), r);
+    out << "  prestressed 5e7 Pa, straight: N = " << r.force
+        << " N, lateral stiffness K(yy) = " << r.K(1, 1)
+        << " N/m (A S / L = 5000)\n";
+    report("straight prestressed cable: tangent vs central differences",
+           line_tangent_error(cable, X0, X1, X0, X1, LineState()),
+           1e-6);
+    cable.compute(X0, X1, X0, 0.9999 * X1, LineState(), r);
+    out << "  prestressed, shortened by 1e-4 L: N = " << r.force
+        << " N (A (E eps + sigma_0) l/L = "
+        << 2e-4 * (1e11 * (0.9999 * 0.9999 - 1.) / 2. + 5e7) * 0.9999 << ")\n";
+  }
+
+  // ---------------------------------------------------------------- Brake
+  {
+    out << "Brake (k_e = 1e6 N/m, F_a = 5e4 N, H = 1e4 N/m, s_max = 1 m)\n";
+    Brake brake;
+    brake.stiffness        = 1e6;
+    brake.activation_force = 5e4;
+    brake.hardening        = 1e4;
+    brake.stroke_limit     = 1.;
+    const Tensor<1, 3> X0({0, 0, 0}), X1({1, 0, 0});
+    LineState          state;
+    LineResponse       r;
+    double             max_D_error = 0.;
+    out << "  elongation [m]  N [N]  stroke [m]  dissipated [J]\n";
+    const std::vector<double> path = {
+      0.02, 0.05, 0.1, 0.3, 0.6, 0.59, 0.55, 0.2, 0.8, 1.3, 0.5};
+    for (const double d : path)
+      {
+        brake.compute(X0, X1, X0, (1. + d) * X1, state, r);
+        state             = r.state;
+        const double s    = state.plastic;
+        const double D_ex = 5e4 * s + 0.5 * 1e4 * s * s;
+        max_D_error =
+          std::max(max_D_error,
+                   std::abs(state.accumulated - D_ex) / std::max(D_ex, 1.));
+        out << "  " << d << "  " << r.force << "  " << s << "  "
+            << state.accumulated << (r.slack ? "  slack" : "") << '\n';
+      }
+    report("dissipated energy = F_a s + H s^2/2", max_D_error, 1e-12);
+    LineState plastic;
+    plastic.plastic = 0.2;
+    report("tangent on the plateau",
+           line_tangent_error(
+             brake, X0, X1, X0 + Tensor<1, 3>({0, 0.01, 0}), 1.3 * X1, plastic),
+           1e-6);
+  }
+
+  // -------------------------------------------------------- Sliding cable
+  {
+    out << "Sliding cable through 5 nodes (E = 1e11 Pa, A = 1e-4 m^2)\n";
+    SlidingCable cable;
+    cable.youngs_modulus              = 1e11;
+    cable.area                        = 1e-4;
+    cable.prestress                   = 1e7;
+    const std::vector<Tensor<1, 3>> X = {Tensor<1, 3>({0, 0, 0}),
+                                         Tensor<1, 3>({1, 0, 0}),
+                                         Tensor<1, 3>({2, 0, 0}),
+                                         Tensor<1, 3>({3, 0, 0}),
+                                         Tensor<1, 3>({4, 0, 0})};
+    std::vector<Tensor<1, 3>>       x = {Tensor<1, 3>({0, 0, 0}),
+                                         Tensor<1, 3>({0.7, -0.4, 0.1}),
+                                         Tensor<1, 3>({2.1, -0.6, 0}),
+                                         Tensor<1, 3>({3.2, -0.2, -0.1}),
+                                         Tensor<1, 3>({4.01, 0, 0})};
+    Vector<double>                  f;
+    FullMatrix<double>              K;
+    const double                    N = cable.compute(X, x, f, K);
+    double                          l = 0.;
+    for (unsigned int i = 0; i + 1 < 5; ++i)
+      l += (x[i + 1] - x[i]).norm();
+    const double N_exact = 1e-4 * (1e11 * (l * l - 16.) / 32. + 1e7) * l / 4.;
+    report("uniform tension N = A (E eps + sigma_0) l/L",
+           std::abs(N - N_exact) / N_exact,
+           1e-13);
+    // Each interior node: N (e_{k-1} - e_k); |f| at the ends = N.
+    const double end_force = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    report("end node force |f_0| = N", std::abs(end_force - N) / N, 1e-13);
+    // Sum of all forces = N (e_last - e_first): a free body check.
+    FullMatrix<double> K_fd(15, 15);
+    const double       h = 1e-6;
+    for (unsigned int j = 0; j < 15; ++j)
+      {
+        auto xp = x, xm = x;
+        xp[j / 3][j % 3] += h;
+        xm[j / 3][j % 3] -= h;
+        Vector<double>     fp, fm;
+        FullMatrix<double> dummy;
+        cable.compute(X, xp, fp, dummy);
+        cable.compute(X, xm, fm, dummy);
+        for (unsigned int i = 0; i < 15; ++i)
+          K_fd(i, j) = (fp[i] - fm[i]) / (2. * h);
+      }
+    report("tangent vs central differences",
+           relative_difference(K, K_fd),
+           1e-6);
+  }
+
+  // -------------------------------------------------------------- Membrane
+  {
+    out << "Membrane: one Q1 cell, 2 m x 1 m, in an inclined plane\n";
+    // Reference cell: corners of a 2 x 1 rectangle rotated about x by 30 deg.
+    const double             c = std::cos(M_PI / 6.), s = std::sin(M_PI / 6.);
+    const Tensor<1, 3>       a({1., 0., 0.}), b({0., c, s});
+    std::vector<Point<3>>    vertices = {Point<3>(),
+                                         Point<3>(2. * a),
+                                         Point<3>(b),
+                                         Point<3>(2. * a + b)};
+    std::vector<CellData<2>> cells(1);
+    cells[0].vertices = {0, 1, 2, 3};
+    Triangulation<2, 3> tria;
+    tria.create_triangulation(vertices, cells, SubCellData());
+    FESystem<2, 3>   fe(FE_Q<2, 3>(1), 3);
+    DoFHandler<2, 3> dof_handler(tria);
+    dof_handler.distribute_dofs(fe);
+    QGauss<2>      quadrature(2);
+    FEValues<2, 3> fe_values(fe,
+                             quadrature,
+                             update_values | update_gradients |
+                               update_jacobians | update_JxW_values);
+    fe_values.reinit(dof_handler.begin_active());
+    const unsigned int n = fe.n_dofs_per_cell();
+    // Reference position of each dof's node.
+    std::vector<Point<3>> X(n);
+    for (unsigned int i = 0; i < n; ++i)
+      X[i] = dof_handler.begin_active()->vertex(
+        i / 3); // FESystem(FE_Q(1),3): vertex by vertex
+    for (unsigned int i = 0; i < n; ++i)
+      if (fe.system_to_component_index(i).first != i % 3)
+        out << "unexpected dof order\n";
+
+    Membrane membrane;
+    membrane.material.thickness = 1e-3;
+    membrane.material.set_isotropic(1e9, 0.3);
+    membrane.fibre_direction = a;
+    Vector<double>     r;
+    FullMatrix<double> K;
+    const auto         displacement =
+      [&](const std::function<Tensor<1, 3>(const Point<3> &)> &map) {
+        std::vector<double> u(n);
+        for (unsigned int i = 0; i < n; ++i)
+          u[i] = map(X[i])[i % 3] - X[i][i % 3];
+        return u;
+      };
+
+    // Rigid rotation by 90 degrees about the axis (1,1,1)/sqrt(3).
+    const auto rotation = [](const Point<3> &p) {
+      const Tensor<1, 3> k(
+        {1. / std::sqrt(3.), 1. / std::sqrt(3.), 1. / std::sqrt(3.)});
+      // Rodrigues, 90 degrees: p' = (k x p) + k (k.p)
+      return Tensor<1, 3>(cross_product_3d(k, p) + (k * p) * k);
+    };
+    membrane.compute(fe_values, displacement(rotation), 0., r, K);
+    report("rigid rotation: |f| / (E t)", r.linfty_norm() / 1e6, 1e-14);
+
+    // Uniaxial stretch lambda along a, no lateral strain.
+    const double lambda  = 1.1;
+    const auto   stretch = [&](const Point<3> &p) {
+      return Tensor<1, 3>(p + (lambda - 1.) * (p * a) * a);
+    };
+    membrane.compute(fe_values, displacement(stretch), 0., r, K);
+    double F_edge = 0.;
+    for (unsigned int i = 0; i < n; ++i)
+      if (X[i] * a > 1.5)
+        F_edge += r[i] * a[i % 3];
+    const double S11 = 1e9 / (1. - 0.09) * (lambda * lambda - 1.) / 2.;
+    out << "  uniaxial strain 1.1: edge force = " << F_edge
+        << " N (t W lambda S11 = " << 1e-3 * 1. * lambda * S11 << ")\n";
+    report("uniaxial strain: edge force error",
+           std::abs(F_edge - 1e-3 * lambda * S11) / (1e-3 * lambda * S11),
+           1e-12);
+
+    // Tangent with pre-stress, orthotropy and follower pressure.
+    membrane.material.youngs_modulus_2 = 4e8;
+    membrane.material.shear_modulus    = 1e8;
+    membrane.material.prestress        = Tensor<1, 3>({2e6, 1e6, 3e5});
+    membrane.pressure                  = 5e4;
+    const std::vector<double> u0       = {
+            0.01, -0.02, 0.03, 0.05, 0.01, -0.02, -0.03, 0.02, 0.1, 0.02, 0.04, 0.07};
+    const auto fd_error = [&](const std::vector<double> &u) {
+      membrane.compute(fe_values, u, 1., r, K);
+      FullMatrix<double> K_fd(n, n);
+      const double       h = 1e-7;
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          auto up = u, um = u;
+          up[j] += h;
+          um[j] -= h;
+          Vector<double>     rp, rm;
+          FullMatrix<double> dummy;
+          membrane.compute(fe_values, up, 1., rp, dummy);
+          membrane.compute(fe_values, um, 1., rm, dummy);
+          for (unsigned int i = 0; i < n; ++i)
+            K_fd(i, j) = (rp[i] - rm[i]) / (2. * h);
+        }
+      return relative_difference(K, K_fd);
+    };
+    report("orthotropic, pre-stress, follower pressure: tangent vs central "
+           "differences",
+           fd_error(u0),
+           1e-6);
+
+    // Wrinkling: compress along a by 5 %, stretch across by 2 %.
+    membrane.material.set_isotropic(1e9, 0.3);
+    membrane.material.prestress = Tensor<1, 3>();
+    membrane.material.wrinkling = true;
+    membrane.pressure           = 0.;
+    const auto wrinkle          = [&](const Point<3> &p) {
+      return Tensor<1, 3>(p - 0.05 * (p * a) * a + 0.02 * (p * b) * b +
+                          0.01 * (p * b) * a);
+    };
+    MembraneCellOutput output;
+    membrane.compute(fe_values, displacement(wrinkle), 0., r, K, &output);
+    out << "  wrinkled: " << output.n_wrinkled
+        << " of 4 points wrinkled, min principal stress / max = "
+        << (std::abs(output.min_principal) < 1e-6 * output.max_principal ?
+              0. :
+              output.min_principal / output.max_principal)
+        << '\n';
+    report("wrinkled: tangent vs central differences",
+           fd_error(displacement(wrinkle)),
+           1e-5);
+    const auto slack = [&](const Point<3> &p) {
+      return Tensor<1, 3>(p - 0.05 * (p * a) * a - 0.01 * (p * b) * b);
+    };
+    membrane.compute(fe_values, displacement(slack), 0., r, K, &output);
+    out << "  biaxial compression: " << output.n_slack
+        << " of 4 points slack, |f| = " << r.linfty_norm() << '\n';
+  }
+  return 0;
+}

@@ -1,0 +1,152 @@
+// The Structure and its solvers as the coupling will use them
+// (doc/architecture.md, "The structure module"):
+//  - several meshes (two cables and a post) tied at a common vertex: node
+//    count, tied DoFs equal their master after a solve
+//  - external nodal forces set from outside (Structure::external_forces):
+//    the reactions balance them (global equilibrium to round-off)
+//  - DynamicSolver::solve_step() is repeatable: solving again from the same
+//    committed state, also after a solve with other external forces (a
+//    coupling iteration), gives the same displacement; commit_step()
+//    advances
+//  - the load potential and the lumped mass (total mass = sum rho A L)
+
+#include <talus/structure/dynamic_solver.h>
+#include <talus/structure/static_solver.h>
+#include <talus/structure/structure.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+
+using namespace dealii;
+using namespace Talus::Structure;
+
+namespace
+{
+  std::ofstream out("output");
+
+  void
+  line(Triangulation<1, 3> &tria, const Point<3> &a, const Point<3> &b, int n)
+  {
+    std::vector<Point<3>>    x;
+    std::vector<CellData<1>> cells(n);
+    for (int i = 0; i <= n; ++i)
+      x.push_back(a + (b - a) * (double(i) / n));
+    for (int i = 0; i < n; ++i)
+      cells[i].vertices = {unsigned(i), unsigned(i + 1)};
+    tria.create_triangulation(x, cells, SubCellData());
+  }
+
+  void
+  build(Structure &s)
+  {
+    auto cable            = std::make_shared<Cable>();
+    cable->youngs_modulus = 1e11;
+    cable->area           = 1e-4;
+    cable->prestress      = 1e8;
+    cable->density        = 8000;
+    auto post             = std::make_shared<Truss>();
+    post->youngs_modulus  = 2e11;
+    post->area            = 1e-3;
+    post->density         = 8000;
+    line(s.add_line_mesh("cable_a", cable).triangulation,
+         Point<3>(0, 0, 0),
+         Point<3>(1, 0, 0),
+         2);
+    line(s.add_line_mesh("cable_b", cable).triangulation,
+         Point<3>(1, 0, 0),
+         Point<3>(2, 0, 0),
+         1);
+    line(s.add_line_mesh("post", post).triangulation,
+         Point<3>(1, 0, 0),
+         Point<3>(1, 0, -1),
+         1);
+    s.setup_dofs();
+    for (const Point<3> p :
+         {Point<3>(0, 0, 0), Point<3>(2, 0, 0), Point<3>(1, 0, -1)})
+      for (unsigned int c = 0; c < 3; ++c)
+        s.prescribe(s.find_node(p, 1e-12), c);
+    s.setup_system();
+  }
+} // namespace
+
+
+int
+main()
+{
+  out << std::setprecision(10);
+  Structure s;
+  build(s);
+  out << "nodes: " << s.n_nodes() << ", DoFs (with tied copies): " << s.n_dofs()
+      << '\n';
+  double mass = 0.;
+  for (unsigned int i = 0; i < s.n_dofs(); ++i)
+    mass += s.lumped_mass()[i];
+  out << "lumped mass (x, y, z summed): " << mass / 3.
+      << " kg (8000 (1e-4 * 2 + 1e-3 * 1) = 9.6)\n";
+
+  // Static: external forces at the joint and at the middle of cable_a.
+  StaticSolver solver(s);
+  solver.setup();
+  const unsigned int joint = s.find_node(Point<3>(1, 0, 0), 1e-12);
+  const unsigned int mid   = s.find_node(Point<3>(0.5, 0, 0), 1e-12);
+  s.external_forces[s.node_dof(joint, 2)] = 2000.;
+  s.external_forces[s.node_dof(joint, 1)] = 300.;
+  s.external_forces[s.node_dof(mid, 2)]   = -500.;
+  const auto status                       = solver.solve(1.);
+  out << "static solve: converged " << status.converged << '\n';
+  Tensor<1, 3> sum;
+  for (const unsigned int n : {s.find_node(Point<3>(0, 0, 0), 1e-12),
+                               s.find_node(Point<3>(2, 0, 0), 1e-12),
+                               s.find_node(Point<3>(1, 0, -1), 1e-12)})
+    sum += s.reaction(n);
+  const Tensor<1, 3> F({0., 300., 1500.});
+  out << "sum of reactions + external forces: "
+      << ((sum + F).norm() < 1e-9 * F.norm() ? "0 (to 1e-9)" : "NOT ZERO")
+      << '\n';
+  out << "post force: " << s.line_meshes[2]->force[0]
+      << " N (tension, carries most of the 2 kN at the joint)\n";
+  // Tied copies equal their master.
+  double tie_error = 0.;
+  for (const auto &mesh : s.line_meshes)
+    for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+      for (const unsigned int v : cell->vertex_indices())
+        {
+          const unsigned int n = s.find_node(cell->vertex(v), 1e-12);
+          for (unsigned int c = 0; c < 3; ++c)
+            tie_error =
+              std::max(tie_error,
+                       std::abs(
+                         solver.displacement[mesh->offset +
+                                             cell->vertex_dof_index(v, c)] -
+                         solver.displacement[s.node_dof(n, c)]));
+        }
+  out << "largest difference of tied copies: " << tie_error << '\n';
+
+  // Dynamics: repeatable solve_step with changing external forces.
+  DynamicSolver dynamics(s, solver);
+  dynamics.enabled = true;
+  dynamics.initialize();
+  const auto step = [&](const double Fz) {
+    s.external_forces[s.node_dof(joint, 2)] = Fz;
+    const auto st                           = dynamics.solve_step(1e-4);
+    return std::make_pair(st.converged, solver.displacement);
+  };
+  const auto     first = step(4000.);
+  const auto     other = step(-3000.);
+  const auto     again = step(4000.);
+  Vector<double> d     = first.second;
+  d -= again.second;
+  Vector<double> d2 = first.second;
+  d2 -= other.second;
+  out << "solve_step converged: " << first.first << other.first << again.first
+      << '\n'
+      << "same forces again gives the same step: "
+      << (d.linfty_norm() == 0. ? "identical" : "DIFFERENT") << '\n'
+      << "other forces give another step: "
+      << (d2.linfty_norm() > 0. ? "yes" : "NO") << '\n';
+  dynamics.commit_step();
+  out << "after commit_step: kinetic energy > 0: "
+      << (dynamics.kinetic_energy() > 0. ? "yes" : "no") << '\n';
+  return 0;
+}
