@@ -107,3 +107,6 @@ if __name__ == "__main__":
         write(f"{out}/incline_rotated_{rho}_mu0.prm", rho, 0.0, "contact")
         write(f"{out}/incline_rotated_{rho}_mu01.prm", rho, 0.1, "friction")
         write(f"{out}/incline_rotated_{rho}_stick.prm", rho, 0.7, "friction")
+    # the cell-wise constraint (one mean gap per cell and boundary)
+    write(f"{out}/incline_rotated_30_mu01_per_cell.prm", 30, 0.1, "friction",
+          method_lines="    set constraint = per cell\n")

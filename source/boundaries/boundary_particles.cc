@@ -184,6 +184,17 @@ namespace Talus
             "modulus of the material and h the smallest background cell "
             "size; the penetration under a normal stress sigma is about "
             "sigma h / (factor M) [-].");
+          prm.declare_entry(
+            "constraint",
+            "per particle",
+            Selection("per particle|per cell"),
+            "Where the condition holds: 'per particle' (at every boundary "
+            "particle) or 'per cell' (for the weighted mean gap of the "
+            "particles of one boundary in one background cell: one "
+            "constraint per cell, the penalty form of cell-wise constant "
+            "Lagrange multipliers, Singer et al. 2024; avoids the "
+            "over-constraint of bilinear fields by many points on a "
+            "boundary inclined to the grid) [-].");
           prm.declare_entry("penalty parameter",
                             "0",
                             Double(0.),
@@ -260,6 +271,7 @@ namespace Talus
                               prm.get("penalty factor"),
                               "a positive number");
           b.particles_per_cell = prm.get_integer("particles per cell");
+          b.cellwise           = prm.get("constraint") == "per cell";
           b.flip_normals       = prm.get_bool("flip normals");
           b.material_inside    = prm.get("material side") == "inside";
 

@@ -2048,14 +2048,23 @@ namespace Talus
                     active_share += bp.N[k];
                 // dissipated: -f . (relative increment - elastic gap change)
                 work -= bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
-                auto particle = bp.particle;
-                auto props    = particle->get_properties();
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    props[BP::gap + d]      = bf.gap[d];
-                    props[BP::reaction + d] = -active_share * bf.force[d];
-                  }
-                props[BP::state] = bf.state;
+                // a merged (cell-wise) point shares its gap, state and,
+                // by weight, its reaction among its particles
+                const auto write = [&](auto particle, const double share) {
+                  auto props = particle->get_properties();
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      props[BP::gap + d] = bf.gap[d];
+                      props[BP::reaction + d] =
+                        -share * active_share * bf.force[d];
+                    }
+                  props[BP::state] = bf.state;
+                };
+                if (bp.members.empty())
+                  write(bp.particle, 1.);
+                else
+                  for (unsigned int m = 0; m < bp.members.size(); ++m)
+                    write(bp.members[m], bp.member_weights[m] / bp.weight);
               }
           friction_dissipation +=
             dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
@@ -2281,6 +2290,69 @@ namespace Talus
                   N.resize(n_nodes);
                   for (unsigned int k = 0; k < n_nodes; ++k)
                     N[k] = fe_values.shape_value(k, q);
+                }
+            }
+          // Cell-wise constraints: merge the particles of each such
+          // boundary into one point with weight-averaged data.
+          bool any_cellwise = false;
+          for (unsigned int q = 0; q < n; ++q)
+            any_cellwise =
+              any_cellwise ||
+              boundary_particles
+                ->boundary(boundary_points[c.first_boundary + q].boundary)
+                .cellwise;
+          if (any_cellwise)
+            {
+              std::map<unsigned int, BoundaryPoint> merged;
+              std::vector<BoundaryPoint>            kept;
+              for (unsigned int q = 0; q < n; ++q)
+                {
+                  BoundaryPoint &bp = boundary_points[c.first_boundary + q];
+                  if (!boundary_particles->boundary(bp.boundary).cellwise)
+                    {
+                      kept.push_back(std::move(bp));
+                      continue;
+                    }
+                  auto it = merged.find(bp.boundary);
+                  if (it == merged.end())
+                    {
+                      BoundaryPoint m  = bp;
+                      m.members        = {bp.particle};
+                      m.member_weights = {bp.weight};
+                      m.normal *= bp.weight;
+                      m.du_bar *= bp.weight;
+                      m.gap_old *= bp.weight;
+                      for (auto &v : m.N)
+                        v *= bp.weight;
+                      merged.emplace(bp.boundary, std::move(m));
+                      continue;
+                    }
+                  BoundaryPoint &m = it->second;
+                  m.members.push_back(bp.particle);
+                  m.member_weights.push_back(bp.weight);
+                  m.weight += bp.weight;
+                  m.normal += bp.weight * bp.normal;
+                  m.du_bar += bp.weight * bp.du_bar;
+                  m.gap_old += bp.weight * bp.gap_old;
+                  for (unsigned int k = 0; k < m.N.size(); ++k)
+                    m.N[k] += bp.weight * bp.N[k];
+                }
+              if (!merged.empty())
+                {
+                  for (auto &entry : merged)
+                    {
+                      BoundaryPoint &m = entry.second;
+                      m.normal /= m.normal.norm();
+                      m.du_bar /= m.weight;
+                      m.gap_old /= m.weight;
+                      for (auto &v : m.N)
+                        v /= m.weight;
+                      kept.push_back(std::move(m));
+                    }
+                  boundary_points.resize(c.first_boundary);
+                  for (auto &bp : kept)
+                    boundary_points.push_back(std::move(bp));
+                  c.n_boundary = kept.size();
                 }
             }
           boundary_cells.push_back(std::move(c));

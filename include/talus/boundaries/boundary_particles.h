@@ -74,6 +74,12 @@ namespace Talus
       double       penalty_factor       = 100.;
       double       penalty_parameter    = 0.; ///< [Pa/m], 0: automatic
       unsigned int particles_per_cell   = 2;
+      /**
+       * Constrain the gap per particle, or its weighted mean per cell
+       * (one constraint per background cell and boundary: the penalty
+       * limit of cell-wise constant Lagrange multipliers).
+       */
+      bool                            cellwise = false;
       std::vector<dealii::Point<dim>> vertices;
       dealii::Point<dim>              center;
       double                          radius = 0.;

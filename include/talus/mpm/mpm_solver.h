@@ -195,6 +195,13 @@ namespace Talus
         dealii::Tensor<1, dim> gap_old;
         /** Shape values of the cell's nodes at the particle. */
         std::vector<double> N;
+        /**
+         * For a cell-wise constraint: the particles merged into this
+         * point (weight-averaged N, normal, gaps; summed weight) and
+         * their weights; empty for a single particle.
+         */
+        std::vector<typename dealii::Particles::ParticleIterator<dim>> members;
+        std::vector<double> member_weights;
       };
 
       /** Force of a boundary particle on the material and its state. */
