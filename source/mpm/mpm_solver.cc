@@ -2120,6 +2120,11 @@ namespace Talus
         grid.mpi_communicator);
       dealii::FullMatrix<double> k_local(dofs_per_cell, dofs_per_cell);
       dealii::Vector<double>     r_local(dofs_per_cell);
+      // states per point: a point that changes state 3 times keeps it
+      std::vector<int>          last(boundary_points.size(), -1);
+      std::vector<int>          frozen(boundary_points.size(), -1);
+      std::vector<unsigned int> switches(boundary_points.size(), 0);
+      bool                      converged = false;
       for (unsigned int it = 0; it < 30; ++it)
         {
           a_ghosted = a;
@@ -2131,9 +2136,11 @@ namespace Talus
               r_local = 0.;
               for (unsigned int b = 0; b < c.n_boundary; ++b)
                 {
-                  BoundaryPoint bp = boundary_points[c.first_boundary + b];
-                  bp.du_bar        = 0.;
-                  bp.gap_old       = 0.;
+                  const unsigned int idx = c.first_boundary + b;
+                  BoundaryPoint      bp  = boundary_points[idx];
+                  bp.du_bar              = 0.;
+                  bp.gap_old             = 0.;
+                  bp.frozen              = frozen[idx];
                   dealii::Tensor<1, dim> a_b;
                   for (unsigned int i = 0; i < dofs_per_cell; ++i)
                     {
@@ -2141,6 +2148,14 @@ namespace Talus
                       a_b[ci.first] += bp.N[ci.second] * a_ghosted(c.dofs[i]);
                     }
                   const BoundaryForce bf = boundary_force(bp, tau2 * a_b);
+                  if (frozen[idx] < 0)
+                    {
+                      if (last[idx] >= 0 && bf.state != last[idx])
+                        ++switches[idx];
+                      last[idx] = bf.state;
+                      if (switches[idx] >= 3)
+                        frozen[idx] = bf.state;
+                    }
                   for (unsigned int i = 0; i < dofs_per_cell; ++i)
                     {
                       const auto   ci = fe.system_to_component_index(i);
@@ -2183,13 +2198,23 @@ namespace Talus
             std::cerr << "  initial acceleration " << it << ": " << r / r0_norm
                       << std::endl;
           if (r <= 1e-10 * r0_norm)
-            break;
+            {
+              converged = true;
+              break;
+            }
           dealii::SolverControl                  control(1, 0.);
           dealii::TrilinosWrappers::SolverDirect solver(control);
           increment = 0.;
           solver.solve(matrix, increment, residual);
           a += increment;
         }
+      if (!converged &&
+          dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) == 0)
+        std::cerr << "Warning: the initial accelerations with the boundary "
+                     "particles did not converge in 30 iterations (contact "
+                     "states keep changing); the first steps start from "
+                     "the last iterate."
+                  << std::endl;
       (void)n_nodes;
     }
 
@@ -2388,7 +2413,7 @@ namespace Talus
             r.state     = 1;
             break;
           case Condition::contact:
-            if (gn < 0.)
+            if (b.frozen < 0 ? gn < 0. : b.frozen != 0)
               {
                 r.force     = -k * gn * n;
                 r.dforce_du = -k * nn;
@@ -2397,14 +2422,16 @@ namespace Talus
               }
             break;
           case Condition::friction:
-            if (gn < 0.)
+            if (b.frozen < 0 ? gn < 0. :
+                               (b.frozen == 1 || (b.frozen == 2 && gn < 0.)))
               {
                 const double                 fn      = -k * gn; // > 0
                 const dealii::Tensor<1, dim> g_t     = g - gn * n;
                 const dealii::Tensor<1, dim> f_trial = -k * g_t;
                 const double                 norm    = f_trial.norm();
                 const double                 limit   = b.mu * fn;
-                if (norm <= limit)
+                if (b.frozen < 0 ? norm <= limit :
+                                   (b.frozen == 1 || norm == 0.))
                   {
                     r.force     = fn * n + f_trial;
                     r.dforce_du = -k * I;

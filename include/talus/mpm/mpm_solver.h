@@ -202,6 +202,12 @@ namespace Talus
          */
         std::vector<typename dealii::Particles::ParticleIterator<dim>> members;
         std::vector<double> member_weights;
+        /**
+         * Contact state the point is held in (-1: free to change; 0 open,
+         * 1 closed/stick, 2 slip); used by the initial acceleration
+         * iteration after 3 changes of state.
+         */
+        int frozen = -1;
       };
 
       /** Force of a boundary particle on the material and its state. */
