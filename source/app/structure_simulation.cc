@@ -241,6 +241,19 @@ namespace Talus
           return t;
         }
 
+        /** A sliding cable with the line parameters of the file. */
+        std::shared_ptr<Talus::Structure::SlidingCable>
+        sliding_cable() const
+        {
+          auto cable = std::make_shared<Talus::Structure::SlidingCable>();
+          cable->youngs_modulus        = p.E;
+          cable->area                  = p.A;
+          cable->prestress             = p.prestress;
+          cable->density               = p.density;
+          cable->slack_stiffness_ratio = p.slack_ratio;
+          return cable;
+        }
+
         std::shared_ptr<Talus::Structure::Membrane>
         membrane() const
         {
@@ -1037,13 +1050,8 @@ namespace Talus
         void
         build(Structure &s, const unsigned int) override
         {
-          auto cable = std::make_shared<Talus::Structure::SlidingCable>();
-          cable->youngs_modulus        = p.E;
-          cable->area                  = p.A;
-          cable->prestress             = p.prestress;
-          cable->density               = p.density;
-          cable->slack_stiffness_ratio = p.slack_ratio;
-          const double b               = p.half_span;
+          auto         cable = sliding_cable();
+          const double b     = p.half_span;
           // Reference: the ring below the middle, chords adding up to L_u.
           const double L = p.unstretched_length;
           if (!(L > 2. * b))
@@ -1625,16 +1633,12 @@ namespace Talus
         void
         build(Structure &s, const unsigned int) override
         {
-          auto cable = std::make_shared<Talus::Structure::SlidingCable>();
-          cable->youngs_modulus        = p.E;
-          cable->area                  = p.A;
-          cable->prestress             = p.prestress;
-          cable->slack_stiffness_ratio = p.slack_ratio;
-          cable->friction_coefficient  = p.friction;
-          const double          R      = p.drum_radius;
-          const double          theta  = p.wrap_angle * numbers::PI / 180.;
-          const unsigned int    n      = p.elements;
-          std::vector<Point<3>> x      = {Point<3>(-R, 0, -1.)};
+          auto cable                  = sliding_cable();
+          cable->friction_coefficient = p.friction;
+          const double          R     = p.drum_radius;
+          const double          theta = p.wrap_angle * numbers::PI / 180.;
+          const unsigned int    n     = p.elements;
+          std::vector<Point<3>> x     = {Point<3>(-R, 0, -1.)};
           for (unsigned int k = 0; k <= n; ++k)
             {
               const double phi = numbers::PI - k * theta / n;
