@@ -110,3 +110,5 @@ if __name__ == "__main__":
     # the cell-wise constraint (one mean gap per cell and boundary)
     write(f"{out}/incline_rotated_30_mu01_per_cell.prm", 30, 0.1, "friction",
           method_lines="    set constraint = per cell\n")
+    write(f"{out}/incline_rotated_30_stick_per_cell.prm", 30, 0.7, "friction",
+          method_lines="    set constraint = per cell\n")

@@ -7,7 +7,7 @@ y axis against the grid, gravity rotated with it. The block is a structured
 hexahedral Gmsh mesh (format 2.2) of the rotated block.
 Reference: s(t) = g (sin 30 - mu cos 30) t^2 / 2 along t = (cos rho, 0, sin rho).
 
-    usage: make_rotated_incline_3d.py <output dir> [--with-stick]
+    usage: make_rotated_incline_3d.py <output dir>
 """
 import math
 import sys
@@ -117,8 +117,6 @@ subsection Verification
 if __name__ == "__main__":
     out = sys.argv[1] if len(sys.argv) > 1 else "."
     # ~3 min each (direct solver on the whole 3D grid): '_slow' tests, run
-    # by name. The stick case (mu = 0.7) is written too, but its Newton
-    # iteration does not converge yet (doc/verification.md).
+    # by name.
     write(out, "incline_plane_3d_20_mu01", 20, 0.1, "friction", suffix="_slow")
-    if len(sys.argv) > 2 and sys.argv[2] == "--with-stick":
-        write(out, "incline_plane_3d_20_stick", 20, 0.7, "friction")
+    write(out, "incline_plane_3d_20_stick", 20, 0.7, "friction", suffix="_slow")

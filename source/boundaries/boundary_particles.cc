@@ -343,15 +343,6 @@ namespace Talus
           parse_function(prm, *b.displacement, sub + "/Displacement");
           b.moving =
             prm.get("Function expression") != (dim == 2 ? "0; 0" : "0; 0; 0");
-          if (b.moving)
-            InputFile::reject(
-              sub + "/Displacement",
-              "Function expression",
-              prm.get("Function expression"),
-              "zero: moving boundaries are implemented but fail their "
-              "first verification (a block bonded to a moving line does not "
-              "follow it; doc/verification.md, 'Boundary particles'), so "
-              "they are switched off until that is fixed");
           prm.leave_subsection();
           prm.leave_subsection();
           boundaries.push_back(std::move(b));

@@ -757,7 +757,10 @@ namespace Talus
       const double       c_mass = with_inertia ? newmark.mass_factor(dt) : 0.;
 
       if (with_matrix)
-        matrix = 0.;
+        {
+          matrix                   = 0.;
+          reversed_boundary_points = 0;
+        }
       residual = 0.;
       if (!grid.friction_boundaries.empty())
         raw_residual = 0.;
@@ -962,11 +965,35 @@ namespace Talus
           r_local = 0.;
           for (unsigned int b = 0; b < c.n_boundary; ++b)
             {
-              const BoundaryPoint   &bp = boundary_points[c.first_boundary + b];
+              BoundaryPoint         &bp = boundary_points[c.first_boundary + b];
               dealii::Tensor<1, dim> du_b;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 du_b[comp[i]] += bp.N[node[i]] * du_local[i];
-              const BoundaryForce bf = boundary_force(bp, du_b);
+              BoundaryForce bf = boundary_force(bp, du_b);
+              // A slip direction that reverses from one iterate to the
+              // next means the solution lies in the (narrow, width
+              // 2 mu f_n / k) stick zone between them: hold the point in
+              // stick for this iterate instead of letting Newton jump
+              // across it (with the slip tangent's zero tangential
+              // stiffness it would cycle).
+              if (with_matrix && bp.frozen < 0 && bf.state == 2)
+                {
+                  dealii::Tensor<1, dim> slip =
+                    bf.gap - (bf.gap * bp.normal) * bp.normal;
+                  if (slip.norm() > 0.)
+                    slip /= slip.norm();
+                  if (bp.last_state == 2 && slip * bp.last_slip < 0.)
+                    {
+                      BoundaryPoint held = bp;
+                      held.frozen        = 1;
+                      bf                 = boundary_force(held, du_b);
+                      ++reversed_boundary_points;
+                    }
+                  else
+                    bp.last_slip = slip;
+                }
+              if (with_matrix)
+                bp.last_state = bf.state;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const double Ni = bp.N[node[i]];
@@ -1678,6 +1705,8 @@ namespace Talus
 
       dealii::TrilinosWrappers::MPI::Vector du(grid.locally_owned_dofs,
                                                grid.mpi_communicator);
+      for (auto &bp : boundary_points)
+        bp.last_state = -1;
       displacement                = du;
       const double f_ext_norm     = external_force.l2_norm();
       double       reference      = 0.;
@@ -1738,7 +1767,11 @@ namespace Talus
                          increment_tolerance *
                            std::max(du_norm, grid.minimal_cell_diameter) ||
                        r <= 1e-2 * residual_tolerance * reference);
-          if (residual_ok &&
+          const bool states_ok =
+            boundary_particles == nullptr ||
+            dealii::Utilities::MPI::sum(reversed_boundary_points,
+                                        grid.mpi_communicator) == 0;
+          if (residual_ok && states_ok &&
               (it == 0 ? r <= absolute_residual_tolerance || reference == 0. :
                          increment_ok))
             {
@@ -2093,10 +2126,10 @@ namespace Talus
       // displacements: solve M a = r0 + N^T f_b(tau^2 N a) with the lumped
       // mass M, r0 = f_ext - f_int at the initial state and the penalty
       // forces of the boundary particles for the "displacement" tau^2 a
-      // (no prescribed motion, no gap). tau^2 makes the penalty 1e4 times
-      // stiffer than the heaviest node, so that the constraints hold to
-      // about 1e-4 (bonded, slip, contact, Coulomb friction on the
-      // acceleration). Newton on this piecewise linear system.
+      // relative to the boundary's tau^2 a_bar (no gap). tau^2 makes the
+      // penalty 1e4 times stiffer than the heaviest node, so that the
+      // constraints hold to about 1e-4 (bonded, slip, contact, Coulomb friction
+      // on the acceleration). Newton on this piecewise linear system.
       const auto        &fe            = grid.fe;
       const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
       const unsigned int dofs_per_cell = fe.dofs_per_cell;
@@ -2138,7 +2171,7 @@ namespace Talus
                 {
                   const unsigned int idx = c.first_boundary + b;
                   BoundaryPoint      bp  = boundary_points[idx];
-                  bp.du_bar              = 0.;
+                  bp.du_bar              = tau2 * bp.a_bar;
                   bp.gap_old             = 0.;
                   bp.frozen              = frozen[idx];
                   dealii::Tensor<1, dim> a_b;
@@ -2290,6 +2323,23 @@ namespace Talus
                 boundary_particles->prescribed_displacement(bp.boundary,
                                                             X,
                                                             time - dt);
+              bp.a_bar = 0.;
+              if (desc.moving)
+                {
+                  // second central difference at the start of the step
+                  const double eps = 1e-2 * dt;
+                  const double t0  = time - dt;
+                  bp.a_bar =
+                    (boundary_particles->prescribed_displacement(bp.boundary,
+                                                                 X,
+                                                                 t0 + eps) -
+                     2. * boundary_particles->prescribed_displacement(
+                            bp.boundary, X, t0) +
+                     boundary_particles->prescribed_displacement(bp.boundary,
+                                                                 X,
+                                                                 t0 - eps)) /
+                    (eps * eps);
+                }
               reference_points.push_back(p->get_reference_location());
               boundary_points.push_back(std::move(bp));
             }
@@ -2317,6 +2367,29 @@ namespace Talus
                     N[k] = fe_values.shape_value(k, q);
                 }
             }
+          // Nodes without mass are constrained to zero increments: in the
+          // gap they stand for the boundary itself, so a point's prescribed
+          // increment enters only with the share S of the nodes with mass,
+          // g = g_old + sum_k N_k du_k - S du_bar. A rigid motion of the
+          // massive nodes with the boundary then leaves the gap unchanged;
+          // for a boundary at rest nothing changes.
+          {
+            std::vector<bool> massive(n_nodes);
+            for (unsigned int k = 0; k < n_nodes; ++k)
+              massive[k] =
+                nodal_mass(c.dofs[grid.fe.component_to_system_index(0, k)]) >
+                0.;
+            for (unsigned int q = 0; q < n; ++q)
+              {
+                auto  &bp = boundary_points[c.first_boundary + q];
+                double S  = 0.;
+                for (unsigned int k = 0; k < n_nodes; ++k)
+                  if (massive[k])
+                    S += bp.N[k];
+                bp.du_bar *= S;
+                bp.a_bar *= S;
+              }
+          }
           // Cell-wise constraints: merge the particles of each such
           // boundary into one point with weight-averaged data.
           bool any_cellwise = false;
@@ -2346,6 +2419,7 @@ namespace Talus
                       m.member_weights = {bp.weight};
                       m.normal *= bp.weight;
                       m.du_bar *= bp.weight;
+                      m.a_bar *= bp.weight;
                       m.gap_old *= bp.weight;
                       for (auto &v : m.N)
                         v *= bp.weight;
@@ -2358,6 +2432,7 @@ namespace Talus
                   m.weight += bp.weight;
                   m.normal += bp.weight * bp.normal;
                   m.du_bar += bp.weight * bp.du_bar;
+                  m.a_bar += bp.weight * bp.a_bar;
                   m.gap_old += bp.weight * bp.gap_old;
                   for (unsigned int k = 0; k < m.N.size(); ++k)
                     m.N[k] += bp.weight * bp.N[k];
@@ -2369,6 +2444,7 @@ namespace Talus
                       BoundaryPoint &m = entry.second;
                       m.normal /= m.normal.norm();
                       m.du_bar /= m.weight;
+                      m.a_bar /= m.weight;
                       m.gap_old /= m.weight;
                       for (auto &v : m.N)
                         v /= m.weight;

@@ -121,9 +121,9 @@ namespace Talus
      * measure JxW and carrying the unit normal that points into the
      * material (as deal.II step-70 makes particles from an immersed mesh).
      * A boundary may move with a prescribed displacement u_bar(X, t)
-     * (muparser); the particle then sits at X + u_bar(X, t). For now a
-     * non-zero u_bar is rejected as input: moving boundaries fail their
-     * first check (doc/verification.md).
+     * (muparser); the particle then sits at X + u_bar(X, t) during the
+     * step that starts at t, and the gap grows with the relative
+     * increment du - du_bar.
      *
      * The conditions are imposed by MPM::MPMSolver (see there and
      * doc/theory.md): the penalty term adds to the residual the force

@@ -191,6 +191,12 @@ namespace Talus
         dealii::Tensor<1, dim>                            normal;
         /** Prescribed displacement increment of the step [m]. */
         dealii::Tensor<1, dim> du_bar;
+        /**
+         * Prescribed acceleration at the start of the step [m/s^2]
+         * (second difference of u_bar in time; zero for a boundary at
+         * rest), used by the initial acceleration.
+         */
+        dealii::Tensor<1, dim> a_bar;
         /** Gap at the start of the step [m]. */
         dealii::Tensor<1, dim> gap_old;
         /** Shape values of the cell's nodes at the particle. */
@@ -208,6 +214,10 @@ namespace Talus
          * iteration after 3 changes of state.
          */
         int frozen = -1;
+        /** State at the last Newton iterate (-1: none yet). */
+        int last_state = -1;
+        /** Slip direction (of the elastic gap) at the last iterate. */
+        dealii::Tensor<1, dim> last_slip;
       };
 
       /** Force of a boundary particle on the material and its state. */
@@ -412,6 +422,12 @@ namespace Talus
       double                 friction_dissipation = 0.;
       dealii::Tensor<1, dim> contact_force;
       unsigned int           frozen_nodes = 0;
+      /**
+       * Boundary particles held in stick at the present Newton iterate
+       * because their slip direction reversed (the iterate is then not
+       * accepted as converged).
+       */
+      unsigned int reversed_boundary_points = 0;
 
       dealii::TrilinosWrappers::MPI::Vector nodal_mass;       // ghosted
       dealii::TrilinosWrappers::MPI::Vector velocity_n;       // ghosted
