@@ -19,6 +19,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <tuple>
@@ -1420,10 +1421,11 @@ namespace Talus
 
 
       /**
-       * The standard barrier (BarrierBuilder) under pre-stress and gravity.
-       * Reference: global equilibrium. The reactions at all supports must
-       * balance the total weight W = g (sum rho A L of posts, cables and
-       * ropes + rho t A of the net), computed from the geometry.
+       * The standard barrier (BarrierBuilder) under pre-stress, gravity and
+       * a field load F. Reference: global equilibrium. The reactions at all
+       * supports must balance the total weight W = g (sum rho A L of posts,
+       * cables and ropes + rho t A of the net), computed from the geometry,
+       * and F. Active brakes must carry F_a + H s.
        */
       class Barrier : public Model
       {
@@ -1433,7 +1435,8 @@ namespace Talus
         std::string
         description() const override
         {
-          return "standard three-field barrier under pre-stress and gravity";
+          return "standard three-field barrier under pre-stress, gravity "
+                 "and a field load";
         }
 
         void
@@ -1506,23 +1509,27 @@ namespace Talus
         std::vector<Result>
         results(const Structure &s, const Vector<double> &u) override
         {
+          // Weight from the geometry of the parameters (not from the
+          // structure's lumped masses).
           const auto    &b     = builder;
-          const double   theta = b.inclination * numbers::PI / 180.;
-          const double   Hs    = b.height / std::cos(theta);
+          const double   Hs    = b.post_length();
           const double   L     = b.n_fields * b.field_width;
-          const Point<3> head0(0., -Hs * std::sin(theta), Hs * std::cos(theta));
-          const Point<3> anchor_left(-b.end_anchor_offset, 0, 0);
+          const Point<3> head0 = b.net_point(0., Hs);
+          const Point<3> top_left(-b.end_anchor_offset, head0[1], 0.);
+          const Point<3> lateral_left(-b.lateral_anchor_offset,
+                                      head0[1] - b.lateral_anchor_downslope,
+                                      0.);
           double mass = (b.n_fields + 1) * b.post_density * b.post_A * Hs;
           mass += b.cable_density * b.cable_A *
-                  (2. * anchor_left.distance(head0) + L + // top
-                   L + 2. * b.end_anchor_offset +         // bottom
-                   2. * Hs);                              // edges
+                  (2. * top_left.distance(head0) + L + // top
+                   L + 2. * b.end_anchor_offset +      // bottom
+                   2. * Hs);                           // edges
+          mass +=
+            b.lateral_density * b.lateral_A * 2. * lateral_left.distance(head0);
           for (unsigned int i = 0; i <= b.n_fields; ++i)
             for (const double side : {-1., 1.})
               {
-                const Point<3> head(i * b.field_width,
-                                    -Hs * std::sin(theta),
-                                    Hs * std::cos(theta));
+                const Point<3> head = b.net_point(i * b.field_width, Hs);
                 const Point<3> anchor(i * b.field_width +
                                         side * b.anchor_spread,
                                       b.anchor_distance,
@@ -1532,45 +1539,113 @@ namespace Talus
               }
           mass += p.membrane_density * p.thickness * L * Hs;
           const Tensor<1, 3> W = mass * p.gravity;
+          const Tensor<1, 3> F = b.field_load;
           Tensor<1, 3>       R;
           for (const unsigned int n : b.supports)
             R += s.reaction(n);
-          double umax = 0.;
+          // R: sum of reaction() = f_int - f_ext over the supports. The
+          // residual vanishes at the free nodes and the internal forces of
+          // every element sum to zero, so R = -(sum of all external forces)
+          // = -(W + F) in equilibrium.
+          const double scale = (W.norm() + F.norm());
+          double       umax  = 0.;
           for (unsigned int k = 0; k < s.n_nodes(); ++k)
             umax = std::max(umax, s.node_displacement(u, k).norm());
-          const auto max_force = [&](const unsigned int mesh) {
+          const auto max_force = [&](const std::vector<unsigned int> &meshes) {
             double f = 0.;
-            for (const double x : s.line_meshes[mesh]->force)
-              f = std::max(f, std::abs(x));
+            for (const unsigned int mesh : meshes)
+              for (const double x : s.line_meshes[mesh]->force)
+                f = std::max(f, std::abs(x));
+            return f;
+          };
+          const auto min_force = [&](const std::vector<unsigned int> &meshes) {
+            double f = std::numeric_limits<double>::max();
+            for (const unsigned int mesh : meshes)
+              for (const double x : s.line_meshes[mesh]->force)
+                f = std::min(f, x);
             return f;
           };
           double max_stroke = 0.;
           for (const auto &st : s.line_meshes[b.brake_meshes[0]]->state)
             max_stroke = std::max(max_stroke, st.plastic);
-          return {{"|sum of reactions + weight| / |weight|",
-                   (R + W).norm() / W.norm(),
-                   0.,
-                   true,
-                   true},
-                  {"total weight [N]", W.norm(), 0., false},
-                  {"largest displacement [m]", umax, 0., false},
-                  {"top cable tension [N]",
-                   max_force(b.support_cable_meshes[0]),
-                   0.,
-                   false},
-                  {"bottom cable tension [N]",
-                   max_force(b.support_cable_meshes[1]),
-                   0.,
-                   false},
-                  {"largest retaining rope force [N]",
-                   max_force(b.rope_meshes[0]),
-                   0.,
-                   false},
-                  {"largest post force (compression) [N]",
-                   max_force(b.post_meshes[0]),
-                   0.,
-                   false},
-                  {"largest brake stroke [m]", max_stroke, 0., false}};
+          // Active brakes (stroke > 0, not blocked) carry F_a + H s.
+          double       brake_law_error = 0.;
+          unsigned int n_active        = 0;
+          {
+            const auto &m = *s.line_meshes[b.brake_meshes[0]];
+            for (unsigned int c = 0; c < m.state.size(); ++c)
+              if (m.state[c].plastic > 0. &&
+                  (b.brake_smax == 0. || m.state[c].plastic < b.brake_smax))
+                {
+                  ++n_active;
+                  brake_law_error =
+                    std::max(brake_law_error,
+                             std::abs(
+                               m.force[c] -
+                               (b.brake_Fa + b.brake_H * m.state[c].plastic)) /
+                               b.brake_Fa);
+                }
+          }
+          unsigned int n_slack_ropes = 0;
+          for (const double x : s.line_meshes[b.rope_meshes[0]]->force)
+            n_slack_ropes += (x <= 0.);
+          std::vector<Result> r = {
+            {"|R + W + F| / (|W| + |F|)",
+             (R + W + F).norm() / scale,
+             0.,
+             true,
+             true},
+            {"total weight [N]", W.norm(), 0., false},
+            {"field load [N]", F.norm(), 0., false},
+            {"sum of reactions y [N]", R[1], 0., false},
+            {"sum of reactions z [N]", R[2], 0., false},
+            {"largest displacement [m]", umax, 0., false},
+            {"top cable tension [N]",
+             max_force({b.support_cable_meshes[0]}),
+             0.,
+             false},
+            {"bottom cable tension [N]",
+             max_force({b.support_cable_meshes[1]}),
+             0.,
+             false},
+            {"edge cable tension [N]",
+             max_force({b.support_cable_meshes[2], b.support_cable_meshes[3]}),
+             0.,
+             false},
+            {"lateral rope force [N]",
+             max_force(b.lateral_rope_meshes),
+             0.,
+             false},
+            {"largest retaining rope force [N]",
+             max_force(b.rope_meshes),
+             0.,
+             false},
+            {"smallest retaining rope force [N]",
+             min_force(b.rope_meshes),
+             0.,
+             false},
+            {"slack retaining ropes", double(n_slack_ropes), 0., false},
+            {"largest brake force [N]", max_force(b.brake_meshes), 0., false},
+            {"largest post compression [N]",
+             -min_force(b.post_meshes),
+             0.,
+             false},
+            {"largest brake stroke [m]", max_stroke, 0., false},
+            {"active brakes", double(n_active), 0., false}};
+          if (n_active > 0)
+            r.push_back({"active brakes: max |N - (F_a + H s)| / F_a",
+                         brake_law_error,
+                         0.,
+                         true,
+                         true});
+          // Post forces one by one.
+          const auto &posts = s.line_meshes[b.post_meshes[0]]->force;
+          for (unsigned int i = 0; i < posts.size(); ++i)
+            r.push_back({"post " + std::to_string(i) + " axial force [N]",
+                         posts[i],
+                         0.,
+                         false});
+          return r;
         }
 
       private:
@@ -2122,9 +2197,10 @@ namespace Talus
         "series with a cable, end pulled by 'prescribed displacement'), "
         "'mesh file' (a line or membrane mesh read from 'mesh file', "
         "ends or boundary fixed, gravity and pressure), 'barrier' (the standard barrier of subsection Barrier "
-        "with net, posts, support cables, retaining ropes and brakes, "
-        "pre-stressed, under gravity; experimental: it does not reach "
-        "equilibrium yet, doc/verification.md). Each model with a closed "
+        "with net, posts, support cables, retaining and lateral ropes and "
+        "brakes: staged form finding of the pre-stressed state, then "
+        "gravity and the field load; checks the global force balance). "
+        "Each model with a closed "
         "form reports and checks it.");
 
       prm.enter_subsection("Line members");
