@@ -802,6 +802,81 @@ namespace Talus
     }
 
 
+    dealii::Point<3>
+    Structure::node_current_position(const dealii::Vector<double> &u,
+                                     const unsigned int            node) const
+    {
+      return nodes[node].X + node_displacement(u, node);
+    }
+
+
+    namespace
+    {
+      template <int dim>
+      std::vector<unsigned int>
+      vertex_nodes(const dealii::DoFHandler<dim, 3> &dof_handler,
+                   const global_dof_index            offset,
+                   const std::vector<unsigned int>  &dof_to_node)
+      {
+        std::vector<unsigned int> result(
+          dof_handler.get_triangulation().n_vertices(),
+          dealii::numbers::invalid_unsigned_int);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          for (const unsigned int v : cell->vertex_indices())
+            result[cell->vertex_index(v)] =
+              dof_to_node[offset + cell->vertex_dof_index(v, 0)];
+        return result;
+      }
+    } // namespace
+
+
+    std::vector<unsigned int>
+    Structure::membrane_vertex_nodes(const unsigned int mesh) const
+    {
+      AssertIndexRange(mesh, membrane_meshes.size());
+      return vertex_nodes(membrane_meshes[mesh]->dof_handler,
+                          membrane_meshes[mesh]->offset,
+                          dof_to_node);
+    }
+
+
+    std::vector<unsigned int>
+    Structure::line_vertex_nodes(const unsigned int mesh) const
+    {
+      AssertIndexRange(mesh, line_meshes.size());
+      return vertex_nodes(line_meshes[mesh]->dof_handler,
+                          line_meshes[mesh]->offset,
+                          dof_to_node);
+    }
+
+
+    void
+    Structure::set_external_force(const unsigned int          node,
+                                  const dealii::Tensor<1, 3> &F)
+    {
+      AssertIndexRange(node, nodes.size());
+      for (unsigned int c = 0; c < 3; ++c)
+        external_forces[nodes[node].dofs[c]] = F[c];
+    }
+
+
+    dealii::Tensor<1, 3>
+    Structure::external_force(const unsigned int node) const
+    {
+      dealii::Tensor<1, 3> F;
+      for (unsigned int c = 0; c < 3; ++c)
+        F[c] = external_forces[nodes[node].dofs[c]];
+      return F;
+    }
+
+
+    void
+    Structure::clear_external_forces()
+    {
+      external_forces = 0.;
+    }
+
+
     namespace
     {
       template <int dim>
