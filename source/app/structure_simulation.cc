@@ -111,6 +111,7 @@ namespace Talus
         bool   arc_length_control = false;
         double shear_strain       = 0.;
         double friction = 0., wrap_angle = 180., drum_radius = 0.5;
+        bool   stick_slip = false;
         double spring_EA = 0., spring_length = 1.;
         Talus::Structure::BarrierBuilder barrier;
         double                           mode_amplitude = 0.;
@@ -1693,6 +1694,14 @@ namespace Talus
        * cable by F = |point load|. The cable slides towards B: T_B = F and
        * T_A = F exp(-mu theta), whatever the number of drum nodes (the
        * deviation angles add up to theta).
+       *
+       * Stick-slip law, load path up to F_max and then down (one reversal):
+       * the segments between the fixed drum nodes keep their length, so
+       * T_A changes only when slip reaches the first node. Loading: T_A = F
+       * exp(-mu theta). Unloading: the nodes stick, then slip backwards
+       * from B, node by node; the first node slips when F = T_A exp(-mu
+       * theta), so T_A = F_max exp(-mu theta) while F >= F_max exp(-2 mu
+       * theta), and T_A = F exp(mu theta) below.
        */
       class Capstan : public Model
       {
@@ -1710,6 +1719,7 @@ namespace Talus
         {
           auto cable                  = sliding_cable();
           cable->friction_coefficient = p.friction;
+          cable->stick_slip           = p.stick_slip;
           const double          R     = p.drum_radius;
           const double          theta = p.wrap_angle * numbers::PI / 180.;
           const unsigned int    n     = p.elements;
@@ -1746,24 +1756,63 @@ namespace Talus
           return false;
         }
 
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure &s,
+                const Vector<double> &,
+                const double lambda) override
+        {
+          const auto  &mesh  = *s.line_meshes[0];
+          const double T_A   = mesh.force[mesh.chain_cells.front()];
+          const double T_B   = mesh.force[mesh.chain_cells.back()];
+          const double F     = lambda * p.point_load.norm();
+          const double theta = p.wrap_angle * numbers::PI / 180.;
+          const double e     = std::exp(p.friction * theta);
+          F_last             = F;
+          double T_A_ref     = F / e;
+          if (p.stick_slip)
+            {
+              F_max = std::max(F_max, F);
+              T_A_ref =
+                F >= F_max ? F / e : (F >= F_max / (e * e) ? F_max / e : F * e);
+              path_error = std::max({path_error,
+                                     std::abs(T_A - T_A_ref) / F_max,
+                                     std::abs(T_B - F) / F_max});
+            }
+          return {{"force_F", F},
+                  {"T_A", T_A},
+                  {"T_A_reference", T_A_ref},
+                  {"T_B", T_B}};
+        }
+
         std::vector<Result>
         results(const Structure &s, const Vector<double> &) override
         {
           const auto  &mesh  = *s.line_meshes[0];
           const double T_A   = mesh.force[mesh.chain_cells.front()];
           const double T_B   = mesh.force[mesh.chain_cells.back()];
-          const double F     = p.point_load.norm();
+          const double F     = F_last;
           const double theta = p.wrap_angle * numbers::PI / 180.;
-          return {{"tension at the pulled end T_B [N]", T_B, F},
-                  {"tension at the fixed end T_A [N]",
-                   T_A,
-                   F * std::exp(-p.friction * theta)},
-                  {"T_B / T_A", T_B / T_A, std::exp(p.friction * theta)}};
+          const double e     = std::exp(p.friction * theta);
+          if (!p.stick_slip)
+            return {{"tension at the pulled end T_B [N]", T_B, F},
+                    {"tension at the fixed end T_A [N]", T_A, F / e},
+                    {"T_B / T_A", T_B / T_A, e}};
+          return {{"largest F [N]", F_max, 0., false},
+                  {"final F [N]", F, 0., false},
+                  {"final T_A [N]", T_A, 0., false},
+                  {"final T_B / T_A", T_B / T_A, 0., false},
+                  {"exp(mu theta)", e, 0., false},
+                  {"max over the path |T_A - T_A,ref|, |T_B - F| / F_max",
+                   path_error,
+                   0.,
+                   true,
+                   true}};
         }
 
       private:
         unsigned int end = 0;
         Tensor<1, 3> direction;
+        double       F_max = 0., F_last = 0., path_error = 0.;
       };
 
 
@@ -2044,6 +2093,7 @@ namespace Talus
                             "a member needs at least one element (two nodes)");
         p.slack_ratio = get_positive(prm, lm, "slack stiffness ratio");
         p.friction    = get_non_negative(prm, lm, "friction coefficient");
+        p.stick_slip  = prm.get("friction law") == "stick-slip";
         prm.leave_subsection();
 
         const std::string ms = S + "/Membrane";
@@ -2245,7 +2295,16 @@ namespace Talus
                         Patterns::Double(),
                         "Capstan friction coefficient mu of sliding cables "
                         "at their interior nodes (model 'capstan') [-], >= "
-                        "0; the cable slides towards its last node.");
+                        "0.");
+      prm.declare_entry("friction law",
+                        "slide",
+                        Patterns::Selection("slide|stick-slip"),
+                        "Capstan friction of sliding cables: 'slide' (the "
+                        "cable slides towards its last node at every node, "
+                        "no history) or 'stick-slip' (a node sticks while "
+                        "exp(-mu theta) <= N_k/N_{k-1} <= exp(mu theta) and "
+                        "slips at the limit otherwise; history: the material "
+                        "length of every segment).");
       prm.declare_entry("slack stiffness ratio",
                         "1e-8",
                         Patterns::Double(),

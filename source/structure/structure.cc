@@ -642,8 +642,26 @@ namespace Talus
                 }
               dealii::Vector<double>     f;
               dealii::FullMatrix<double> Ke;
-              const double               N =
-                mesh->sliding_cable->compute(mesh->chain_X, x, f, Ke);
+              double                     N     = 0.;
+              const auto                &cable = *mesh->sliding_cable;
+              if (cable.stick_slip && cable.friction_coefficient > 0.)
+                {
+                  // History: material length of each segment, stored as
+                  // its change from the reference length (LineState::plastic).
+                  std::vector<double> old_lengths(n - 1), new_lengths;
+                  for (unsigned int k = 0; k + 1 < n; ++k)
+                    old_lengths[k] =
+                      (mesh->chain_X[k + 1] - mesh->chain_X[k]).norm() +
+                      mesh->state[mesh->chain_cells[k]].plastic;
+                  N = cable.compute(
+                    mesh->chain_X, x, old_lengths, f, Ke, new_lengths);
+                  for (unsigned int k = 0; k + 1 < n; ++k)
+                    mesh->trial_state[mesh->chain_cells[k]].plastic =
+                      new_lengths[k] -
+                      (mesh->chain_X[k + 1] - mesh->chain_X[k]).norm();
+                }
+              else
+                N = cable.compute(mesh->chain_X, x, f, Ke);
               const double rhoA =
                 mesh->sliding_cable->density * mesh->sliding_cable->area;
               for (unsigned int k = 0; k + 1 < n; ++k)
