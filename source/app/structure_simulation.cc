@@ -1452,9 +1452,14 @@ namespace Talus
           builder.brake_H    = p.brake_H;
           builder.brake_smax = p.brake_smax;
           builder.build(s);
-          s.gravity = p.gravity;
+          // The self weight acts from the start (the barrier is erected
+          // under gravity): it is part of the form finding, and the load
+          // factor scales the field load only.
+          s.gravity       = p.gravity;
+          s.scale_gravity = false;
           // Stage 1 of the form finding: post heads held, so that the net
-          // and the support cables find their pre-stressed shape first.
+          // and the support cables find their pre-stressed shape under
+          // their weight first.
           for (const unsigned int n : builder.post_heads)
             for (unsigned int c = 0; c < 3; ++c)
               s.prescribe(n, c);
@@ -1465,7 +1470,12 @@ namespace Talus
                           Talus::Structure::StaticSolver &solver) override
         {
           // Stage 2: release the heads (posts and ropes take over) and find
-          // the pre-stressed equilibrium of the whole barrier.
+          // the pre-stressed equilibrium of the whole barrier under its
+          // weight. Without the weight this state is degenerate: the net
+          // and the top cable pull the inner heads along the post axis,
+          // which the post alone carries, and their retaining ropes are
+          // left without force (and their rope-brake nodes without
+          // stiffness).
           const Vector<double> u = solver.displacement;
           for (const unsigned int n : builder.post_heads)
             for (unsigned int c = 0; c < 3; ++c)
@@ -1474,7 +1484,8 @@ namespace Talus
           solver.setup();
           solver.displacement = u;
           const auto status   = solver.solve(0.);
-          std::cout << "  stage 2 (post heads released, pre-stress): "
+          std::cout << "  stage 2 (post heads released, pre-stress and "
+                       "gravity): "
                     << (status.converged ? "converged" : "FAILED") << " in "
                     << status.iterations << " Newton iterations\n";
           if (!status.converged)
@@ -2696,16 +2707,21 @@ namespace Talus
           csv << std::setprecision(10);
           bool header = false;
 
-          const auto run_step = [&](const unsigned int step,
+          double     last_lambda = 0.;
+          const auto run_step    = [&](const unsigned int step,
                                     const double       lambda) {
-            const auto status = solver.solve(lambda);
+            const auto status = step == 0 ?
+                                     solver.solve(lambda) :
+                                     solver.solve_with_cuts(last_lambda, lambda);
+            last_lambda       = lambda;
             if (!status.converged)
               {
                 std::ostringstream msg;
                 msg << "the load step to load factor " << lambda
                     << " did not converge: " << status.failure
-                    << ". Use more 'load steps' or more 'maximum Newton "
-                       "iterations' in subsection Structure/Solver.";
+                    << ". Use more 'load steps', more 'maximum Newton "
+                          "iterations' or 'maximum step cuts' in subsection "
+                          "Structure/Solver.";
                 throw ExcSimulationFailed(msg.str());
               }
             auto values =

@@ -318,8 +318,8 @@ namespace Talus
                                                             top_right};
 
       // Lateral ropes of the outer post heads, pre-stressed so that their
-      // force along x balances the inward pull T (1 - cos phi) of the top
-      // cable on the outer heads in the initial geometry.
+      // force along x balances the inward pull on the outer heads in the
+      // initial geometry.
       {
         const double   T       = cable_A * cable_prestress;
         const Point<3> head0   = net_point(0., Hs);
@@ -332,8 +332,13 @@ namespace Talus
                         0.);
         const double cos_lateral =
           lateral_anchor_offset / head0.distance(lateral_left);
-        lateral_prestress = T * (1. - cos_phi) / (cos_lateral * lateral_A);
-        auto lateral      = std::make_shared<Cable>();
+        // Inward pull on the outer head: the top cable, T (1 - cos phi),
+        // and half of the net's pre-stress along x carried by the edge
+        // cable between base and head, n_x H_s / 2.
+        const double n_x = net.material.prestress[0] * net.material.thickness;
+        lateral_prestress =
+          (T * (1. - cos_phi) + 0.5 * n_x * Hs) / (cos_lateral * lateral_A);
+        auto lateral            = std::make_shared<Cable>();
         lateral->youngs_modulus = lateral_E;
         lateral->area           = lateral_A;
         lateral->prestress      = lateral_prestress;

@@ -34,6 +34,13 @@ namespace Talus
                         "30",
                         Integer(1),
                         "Newton iterations allowed per load step [-].");
+      prm.declare_entry("maximum step cuts",
+                        "0",
+                        Integer(0, 30),
+                        "A load step whose Newton iteration fails is "
+                        "restarted from the last converged state with half "
+                        "the increment, up to this many times in a row "
+                        "(0: fail at once) [-].");
       prm.declare_entry("tolerance",
                         "1e-10",
                         Double(0),
@@ -75,6 +82,7 @@ namespace Talus
       prm.enter_subsection("Solver");
       load_steps     = prm.get_integer("load steps");
       max_iterations = prm.get_integer("maximum Newton iterations");
+      max_step_cuts  = prm.get_integer("maximum step cuts");
       tolerance      = get_positive(prm, "Structure/Solver", "tolerance");
       line_search    = prm.get_bool("line search");
       max_increment  = prm.get_double("maximum increment");
@@ -89,6 +97,38 @@ namespace Talus
     {
       matrix.reinit(structure.get_sparsity_pattern());
       displacement.reinit(structure.n_dofs());
+    }
+
+
+    NewtonStatus
+    StaticSolver::solve_with_cuts(const double from, const double to)
+    {
+      dealii::Vector<double> converged = displacement;
+      double                 reached = 0., step = 1.; // fractions of to-from
+      unsigned int           cuts = 0, iterations = 0;
+      NewtonStatus           status;
+      while (reached < 1.)
+        {
+          const double target = std::min(1., reached + step);
+          status = solve(target == 1. ? to : from + target * (to - from));
+          iterations += status.iterations;
+          if (status.converged)
+            {
+              reached   = target;
+              converged = displacement;
+              cuts      = 0;
+              step      = std::min(1., 2. * step);
+            }
+          else
+            {
+              if (++cuts > max_step_cuts)
+                break;
+              step *= 0.5;
+              displacement = converged;
+            }
+        }
+      status.iterations = iterations;
+      return status;
     }
 
 

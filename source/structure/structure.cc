@@ -581,7 +581,8 @@ namespace Talus
         V -= external_forces[i] * u[i];
       for (const auto &node : nodes)
         for (unsigned int c = 0; c < 3; ++c)
-          V -= load_factor * mass[node.dofs[c]] * gravity[c] * u[node.dofs[c]];
+          V -= (scale_gravity ? load_factor : 1.) * mass[node.dofs[c]] *
+               gravity[c] * u[node.dofs[c]];
       for (const auto &[node, F] : point_loads)
         for (unsigned int c = 0; c < 3; ++c)
           V -= load_factor * F[c] * u[nodes[node].dofs[c]];
@@ -620,7 +621,8 @@ namespace Talus
         else
           constraints.distribute_local_to_global(re, indices, r);
       };
-      const dealii::Tensor<1, 3> g = load_factor * gravity;
+      const dealii::Tensor<1, 3> g =
+        (scale_gravity ? load_factor : 1.) * gravity;
 
       // Line meshes.
       std::vector<global_dof_index> indices(6);

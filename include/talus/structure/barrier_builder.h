@@ -32,7 +32,9 @@ namespace Talus
      * phi) (T its tension, phi the angle of its end segment below the
      * horizontal), which the retaining ropes cannot take without going
      * slack. The lateral rope takes it: its pre-stress is chosen so that
-     * its force along x balances T (1 - cos phi) in the initial geometry,
+     * its force along x balances T (1 - cos phi) + n_x H_s / 2 (n_x the
+     * net's pre-stress along x, half of which the edge cable carries to
+     * the head) in the initial geometry,
      * and its anchor lies downslope of the head so that it pulls the outer
      * posts downslope. The end anchors of the top cable lie at ground level
      * vertically below the line of the heads (y = y_head), so that the top

@@ -73,6 +73,17 @@ namespace Talus
             const bool        commit = true);
 
       /**
+       * Solve for @p to from the converged state at load factor @p from;
+       * if Newton fails, restart from that state with half the increment,
+       * up to max_step_cuts times in a row (adaptive load stepping; a
+       * converged sub-step doubles the increment again, not beyond the
+       * original). Returns the status of the last solve with the total
+       * number of Newton iterations.
+       */
+      NewtonStatus
+      solve_with_cuts(const double from, const double to);
+
+      /**
        * One step of the arc-length method (Crisfield's cylindrical
        * constraint |u - u_0|^2 = ds^2 over the unconstrained DoFs, bordering
        * with two solves per iteration) from the committed state
@@ -92,8 +103,10 @@ namespace Talus
 
       unsigned int load_steps     = 10;
       unsigned int max_iterations = 30;
-      double       tolerance      = 1e-10;
-      bool         line_search    = true;
+      /** Halvings of a failed load increment (solve_with_cuts) [-]. */
+      unsigned int max_step_cuts = 0;
+      double       tolerance     = 1e-10;
+      bool         line_search   = true;
       /** Largest displacement change of one Newton iteration [m]; 0: no
        * limit. Longer steps are scaled down (a trust region for structures
        * that start far from equilibrium). */

@@ -145,8 +145,14 @@ namespace Talus
       void
       add_point_load(const unsigned int node, const dealii::Tensor<1, 3> &F);
 
-      /** Gravity acceleration [m/s^2], scaled by the load factor. */
+      /** Gravity acceleration [m/s^2], scaled by the load factor if
+       * scale_gravity. */
       dealii::Tensor<1, 3> gravity;
+
+      /** Scale gravity by the load factor (false: the self weight acts in
+       * full from load factor 0 on, e.g. during the form finding of a
+       * barrier, and the load factor scales the other loads only). */
+      bool scale_gravity = true;
 
       /** External nodal forces [N] per global DoF, not scaled by the load
        * factor (set from outside each step, e.g. by the coupling). */
