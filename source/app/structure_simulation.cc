@@ -3,6 +3,7 @@
 #include <talus/base/input.h>
 #include <talus/structure/barrier_builder.h>
 #include <talus/structure/dynamic_solver.h>
+#include <talus/structure/plane_string.h>
 #include <talus/structure/static_solver.h>
 #include <talus/structure/structure.h>
 
@@ -582,7 +583,9 @@ namespace Talus
         std::string
         description() const override
         {
-          return "elastic catenary (Irvine), cable under self weight";
+          return plane() ? "elastic catenary (Irvine), cable under self "
+                           "weight, 2D string (Triangulation<1,2>)" :
+                           "elastic catenary (Irvine), cable under self weight";
         }
 
         void
@@ -614,6 +617,31 @@ namespace Talus
             return sum - p.unstretched_length;
           };
           const double f0 = bisect(length, 0., p.unstretched_length);
+          sag0            = f0;
+          s.gravity       = p.gravity;
+          if (plane())
+            {
+              // The 2D string: a Triangulation<1,2> in the (x, y) plane,
+              // sag along -y.
+              std::vector<Point<2>>    x2;
+              std::vector<CellData<1>> cells(n);
+              for (const auto &x : points(f0))
+                x2.emplace_back(x[0], x[2]);
+              for (unsigned int i = 0; i < n; ++i)
+                cells[i].vertices = {i, i + 1};
+              string.triangulation.create_triangulation(x2,
+                                                        cells,
+                                                        SubCellData());
+              string.add_to(s, "cable", line_element());
+              s.setup_dofs();
+              string.setup(s);
+              left  = string.node(0);
+              right = string.node(n);
+              mid   = string.node(n / 2);
+              string.fix(s, 0);
+              string.fix(s, n);
+              return;
+            }
           make_polyline(s.add_line_mesh("cable", line_element()).triangulation,
                         points(f0));
           s.setup_dofs();
@@ -627,8 +655,6 @@ namespace Talus
             }
           for (unsigned int k = 0; k < s.n_nodes(); ++k)
             s.prescribe(k, 1);
-          s.gravity = p.gravity;
-          sag0      = f0;
         }
 
         void
@@ -638,7 +664,7 @@ namespace Talus
           // (a stress-free chain has no lateral stiffness).
           for (unsigned int k = 0; k < s.n_nodes(); ++k)
             if (k != left && k != right)
-              u[s.node_dof(k, 2)] = 0.01 * s.node_position(k)[2];
+              u[s.node_dof(k, up())] = 0.01 * s.node_position(k)[up()];
         }
 
         bool
@@ -733,8 +759,16 @@ namespace Talus
           const auto   hooke = [&](const double T) { return 1. + T / EA; };
           const double quadrature_check =
             std::abs(span_and_sag(H_irvine, hooke).first - l) / l;
-          const Tensor<1, 3> R = s.reaction(left);
-          const double sag = -(s.node_position(mid)[2] + u[s.node_dof(mid, 2)]);
+          Tensor<1, 3> R   = s.reaction(left);
+          double       sag = -(s.node_position(mid)[2] + u[s.node_dof(mid, 2)]);
+          if (plane())
+            {
+              // Read through the 2D interface.
+              const unsigned int n  = string.triangulation.n_vertices() - 1;
+              const Tensor<1, 2> R2 = string.reaction(s, 0);
+              R                     = Tensor<1, 3>({R2[0], R2[1], 0.});
+              sag                   = -string.current_position(s, u, n / 2)[1];
+            }
           return {{"horizontal tension H [N]", std::abs(R[0]), H},
                   {"mid-span sag [m]", sag, f},
                   {"support tension T [N]", R.norm(), std::sqrt(H * H + V * V)},
@@ -747,8 +781,23 @@ namespace Talus
         }
 
       private:
-        unsigned int left = 0, right = 0, mid = 0;
-        double       sag0 = 0.;
+        unsigned int                  left = 0, right = 0, mid = 0;
+        double                        sag0 = 0.;
+        Talus::Structure::PlaneString string;
+
+        /** The 2D string (model 'plane catenary'). */
+        bool
+        plane() const
+        {
+          return p.model == "plane catenary";
+        }
+
+        /** The component along which the cable sags. */
+        unsigned int
+        up() const
+        {
+          return plane() ? 1 : 2;
+        }
       };
 
 
@@ -2109,7 +2158,7 @@ namespace Talus
           return std::make_unique<Barrier>(p);
         if (p.model == "von Mises truss")
           return std::make_unique<VonMisesTruss>(p);
-        if (p.model == "catenary")
+        if (p.model == "catenary" || p.model == "plane catenary")
           return std::make_unique<Catenary>(p);
         if (p.model == "circular membrane")
           return std::make_unique<CircularMembrane>(p);
@@ -2197,7 +2246,9 @@ namespace Talus
         p.mesh_file          = prm.get("mesh file");
         p.mesh_is_membrane   = prm.get("mesh file type") == "membrane";
         prm.leave_subsection();
-        if (p.model == "catenary" && !(p.unstretched_length > p.span))
+        const bool catenary =
+          p.model == "catenary" || p.model == "plane catenary";
+        if (catenary && !(p.unstretched_length > p.span))
           InputFile::reject(gs,
                             "unstretched length",
                             std::to_string(p.unstretched_length),
@@ -2210,14 +2261,24 @@ namespace Talus
 
         const std::string ls = S + "/Loads";
         prm.enter_subsection("Loads");
-        p.gravity                 = get_vector(prm, ls, "gravity");
-        p.point_load              = get_vector(prm, ls, "point load");
-        p.pressure                = prm.get_double("pressure");
+        p.gravity                         = get_vector(prm, ls, "gravity");
+        const std::string gravity_text    = prm.get("gravity");
+        p.point_load                      = get_vector(prm, ls, "point load");
+        const std::string point_load_text = prm.get("point load");
+        p.pressure                        = prm.get_double("pressure");
         p.prescribed_displacement = prm.get_double("prescribed displacement");
         p.load_path               = Utilities::string_to_double(
           Utilities::split_string_list(prm.get("load path")));
         prm.leave_subsection();
-        if (p.model == "catenary" && !(p.density > 0. && p.gravity.norm() > 0.))
+        if (p.model == "plane catenary" &&
+            !(p.gravity[0] == 0. && p.gravity[2] == 0. && p.gravity[1] < 0.))
+          InputFile::reject(ls,
+                            "gravity",
+                            gravity_text,
+                            "the plane catenary lies in the x-y plane of a "
+                            "2D problem and sags along -y: gravity must be "
+                            "0, -g, 0 with g > 0");
+        if (catenary && !(p.density > 0. && p.gravity.norm() > 0.))
           InputFile::reject(lm,
                             "density",
                             std::to_string(p.density),
@@ -2227,7 +2288,7 @@ namespace Talus
             !(p.point_load.norm() > 0.))
           InputFile::reject(ls,
                             "point load",
-                            prm.get("Loads/point load"),
+                            point_load_text,
                             "the sliding ring needs a non-zero load in the "
                             "x-z plane");
 
@@ -2283,13 +2344,16 @@ namespace Talus
       prm.declare_entry(
         "model",
         "von Mises truss",
-        Patterns::Selection("von Mises truss|catenary|circular membrane|"
+        Patterns::Selection("von Mises truss|catenary|plane catenary|"
+                            "circular membrane|"
                             "square membrane|sheared membrane|vibrating string|"
                             "sliding ring|capstan|brake|mesh file|barrier"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
-        "under self weight between two supports), 'circular membrane' "
+        "under self weight between two supports), 'plane catenary' (the "
+        "same as a 2D string: a Triangulation<1,2> in the x-y plane, "
+        "gravity 0, -g, 0), 'circular membrane' "
         "(Hencky: clamped disk under pressure), 'square membrane' "
         "(pre-stressed, clamped, small pressure), 'sheared membrane' "
         "(square in simple shear: tension field with wrinkling), "
