@@ -215,9 +215,18 @@ namespace Talus
         before_load_steps(Structure &, Talus::Structure::StaticSolver &)
         {}
 
-        /** Set by the time loop before monitor(): time [s] and total
-         * energy (kinetic + strain + load potential) [J]. */
-        double time = 0., total_energy = 0.;
+        /** Set by the time loop before monitor(): time [s], total
+         * energy (kinetic + strain + load potential) and kinetic energy
+         * [J]. */
+        double time = 0., total_energy = 0., kinetic_energy = 0.;
+
+        /** With 'dynamic = true': find the pre-stressed equilibrium
+         * (load factor 0 and before_load_steps()) before the motion. */
+        virtual bool
+        form_finding_before_dynamics() const
+        {
+          return false;
+        }
 
       protected:
         const Parameters &p;
@@ -1555,8 +1564,16 @@ namespace Talus
           return true;
         }
 
+        /** Damped motion ends with a static solve from the state reached
+         * (dynamic relaxation); undamped motion is checked for its energy. */
         bool
         relax_to_equilibrium() const override
+        {
+          return p.mass_damping > 0. || p.stiffness_damping > 0.;
+        }
+
+        bool
+        form_finding_before_dynamics() const override
         {
           return true;
         }
@@ -1566,7 +1583,14 @@ namespace Talus
                 const Vector<double> &,
                 const double) override
         {
-          return {{"time", time}, {"total_energy", total_energy}};
+          if (time == 0.)
+            initial_energy = total_energy;
+          max_kinetic = std::max(max_kinetic, kinetic_energy);
+          max_drift =
+            std::max(max_drift, std::abs(total_energy - initial_energy));
+          return {{"time", time},
+                  {"total_energy", total_energy},
+                  {"kinetic_energy", kinetic_energy}};
         }
 
         std::vector<Result>
@@ -1701,6 +1725,20 @@ namespace Talus
                          0.,
                          true,
                          true});
+          if (p.dynamic && !relax_to_equilibrium() && max_kinetic > 0.)
+            {
+              // Undamped motion: energy (kinetic + strain + load potential)
+              // against its initial value, relative to the largest kinetic
+              // energy.
+              r.push_back(
+                {"largest kinetic energy [J]", max_kinetic, 0., false});
+              r.push_back({"max |E(t) - E(0)| / max kinetic energy",
+                           max_drift / max_kinetic,
+                           0.,
+                           true,
+                           true});
+              r[0].checked = false; // not in equilibrium while moving
+            }
           // Post forces one by one.
           const auto &posts = s.line_meshes[b.post_meshes[0]]->force;
           for (unsigned int i = 0; i < posts.size(); ++i)
@@ -1713,6 +1751,7 @@ namespace Talus
 
       private:
         Talus::Structure::BarrierBuilder builder;
+        double initial_energy = 0., max_kinetic = 0., max_drift = 0.;
       };
 
 
@@ -2826,13 +2865,27 @@ namespace Talus
           prm.leave_subsection();
           if (dynamics.enabled)
             {
+              if (model->form_finding_before_dynamics())
+                {
+                  // Stage 1 (the pre-stress step) and the model's further
+                  // stages, then the motion under the full loads.
+                  const auto status = solver.solve(0.);
+                  if (!status.converged)
+                    throw ExcSimulationFailed(
+                      "the pre-stress equilibrium did not converge: " +
+                      status.failure);
+                  std::cout << "  pre-stress equilibrium (load factor 0): "
+                            << status.iterations << " Newton iterations\n";
+                  model->before_load_steps(structure, solver);
+                }
               dynamics.initialize();
               const auto energy = [&]() {
                 return dynamics.kinetic_energy() + structure.strain_energy() +
                        structure.load_potential(solver.displacement, 1.);
               };
-              model->time         = 0.;
-              model->total_energy = energy();
+              model->time           = 0.;
+              model->total_energy   = energy();
+              model->kinetic_energy = dynamics.kinetic_energy();
               model->monitor(structure, solver.displacement, 0.);
               unsigned int       step = 0, newton = 0;
               double             t       = 0.;
@@ -2856,8 +2909,9 @@ namespace Talus
                   // Energies at the committed state.
                   dealii::Vector<double> r;
                   structure.assemble(solver.displacement, 1., r, nullptr);
-                  model->time         = t;
-                  model->total_energy = energy();
+                  model->time           = t;
+                  model->total_energy   = energy();
+                  model->kinetic_energy = dynamics.kinetic_energy();
                   auto values =
                     model->monitor(structure, solver.displacement, t);
                   for (const auto &c : structure_columns(structure))

@@ -663,7 +663,11 @@ namespace Talus
                       (mesh->chain_X[k + 1] - mesh->chain_X[k]).norm();
                 }
               else
-                N = cable.compute(mesh->chain_X, x, f, Ke);
+                {
+                  double energy = 0.;
+                  N = cable.compute(mesh->chain_X, x, f, Ke, &energy);
+                  last_strain_energy += energy;
+                }
               const double rhoA =
                 mesh->sliding_cable->density * mesh->sliding_cable->area;
               for (unsigned int k = 0; k + 1 < n; ++k)

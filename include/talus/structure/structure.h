@@ -181,7 +181,9 @@ namespace Talus
 
       /** Elastic energy stored in all elements at the last assemble() [J]
        * (membranes: the SVK energy, also where wrinkling modifies the
-       * stress; brakes: the energy of their elastic spring). */
+       * stress; brakes: the energy of their elastic spring; sliding
+       * cables: that of their uniform strain, 0 with friction, which
+       * dissipates). */
       double
       strain_energy() const;
 
