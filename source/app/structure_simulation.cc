@@ -1579,18 +1579,45 @@ namespace Talus
         }
 
         std::vector<std::pair<std::string, double>>
-        monitor(const Structure &,
+        monitor(const Structure &s,
                 const Vector<double> &,
                 const double) override
         {
+          // CSV: the force on each group of supports (sum of the reactions,
+          // x, y, z) and the axial force of every post.
+          std::vector<std::pair<std::string, double>> columns;
+          const unsigned int n_posts = builder.n_fields + 1;
+          const std::vector<
+            std::pair<std::string, std::pair<unsigned, unsigned>>>
+            groups = {{"post_bases", {0, n_posts}},
+                      {"bottom_cable_anchors", {n_posts, n_posts + 2}},
+                      {"top_cable_anchors", {n_posts + 2, n_posts + 4}},
+                      {"lateral_anchors", {n_posts + 4, n_posts + 6}},
+                      {"retaining_anchors",
+                       {n_posts + 6,
+                        static_cast<unsigned>(builder.supports.size())}}};
+          for (const auto &[name, range] : groups)
+            {
+              Tensor<1, 3> R;
+              for (unsigned int k = range.first; k < range.second; ++k)
+                R += s.reaction(builder.supports[k]);
+              for (unsigned int c = 0; c < 3; ++c)
+                columns.emplace_back(name + "_R" + "xyz"[c], R[c]);
+            }
+          const auto &posts = s.line_meshes[builder.post_meshes[0]]->force;
+          for (unsigned int i = 0; i < posts.size(); ++i)
+            columns.emplace_back("post_" + std::to_string(i) + "_force",
+                                 posts[i]);
           if (time == 0.)
             initial_energy = total_energy;
           max_kinetic = std::max(max_kinetic, kinetic_energy);
           max_drift =
             std::max(max_drift, std::abs(total_energy - initial_energy));
-          return {{"time", time},
-                  {"total_energy", total_energy},
-                  {"kinetic_energy", kinetic_energy}};
+          columns.insert(columns.begin(),
+                         {{"time", time},
+                          {"total_energy", total_energy},
+                          {"kinetic_energy", kinetic_energy}});
+          return columns;
         }
 
         std::vector<Result>
