@@ -2263,6 +2263,13 @@ namespace Talus
         p.slack_ratio = get_positive(prm, lm, "slack stiffness ratio");
         p.friction    = get_non_negative(prm, lm, "friction coefficient");
         p.stick_slip  = prm.get("friction law") == "stick-slip";
+        if (p.stick_slip && !(p.friction > 0.))
+          InputFile::reject(lm,
+                            "friction law",
+                            "stick-slip",
+                            "the stick-slip law needs a 'friction coefficient' "
+                            "> 0 (without friction a sliding cable has no "
+                            "stick)");
         prm.leave_subsection();
 
         const std::string ms = S + "/Membrane";
