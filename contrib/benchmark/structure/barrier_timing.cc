@@ -1,7 +1,7 @@
 // Timing of the standard three-field barrier (BarrierBuilder) at a given net
 // mesh size: time per Newton iteration of the static solves (form finding
 // under gravity, then 20 kN on the middle field in 5 load steps with step
-// cutting) and per time step of the dynamics (Bossak-Newmark, lumped mass,
+// cutting and the secant predictor) and per time step of the dynamics (Bossak-Newmark, lumped mass,
 // the field load applied suddenly to the form-found state). Serial. Build: make
 // barrier-timing; run:
 //   barrier-timing H [N_STEPS] [DT] [STATIC_STEPS]
@@ -103,6 +103,7 @@ main(int argc, char **argv)
   // Static: the field load in 5 load steps, each cut in halves when
   // Newton fails (StaticSolver::solve_with_cuts).
   solver.max_step_cuts = 8;
+  solver.predictor     = "secant";
   unsigned int newton = 0, converged_steps = 0;
   timer.restart();
   for (unsigned int k = 1; k <= n_static; ++k)
