@@ -3,6 +3,7 @@
 #include <talus/base/input.h>
 #include <talus/structure/barrier_builder.h>
 #include <talus/structure/dynamic_solver.h>
+#include <talus/structure/plane_string.h>
 #include <talus/structure/static_solver.h>
 #include <talus/structure/structure.h>
 
@@ -19,6 +20,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <tuple>
@@ -105,11 +107,12 @@ namespace Talus
         double      tolerance = 0., reference_displacement = 0.;
         bool        dynamic = false;
         double bossak_alpha = 0., dynamic_time_step = 0., string_amplitude = 0.;
-        bool   mesh_is_membrane   = false;
-        double mass_damping       = 0.;
+        bool   mesh_is_membrane = false;
+        double mass_damping = 0., stiffness_damping = 0.;
         bool   arc_length_control = false;
         double shear_strain       = 0.;
         double friction = 0., wrap_angle = 180., drum_radius = 0.5;
+        bool   stick_slip = false;
         double spring_EA = 0., spring_length = 1.;
         Talus::Structure::BarrierBuilder barrier;
         double                           mode_amplitude = 0.;
@@ -127,6 +130,8 @@ namespace Talus
         bool        checked   = true; ///< counts for the tolerance
         /** The computed value is itself a relative error (reference 0). */
         bool is_error = false;
+        /** Tolerance of this result; 0: the file's 'tolerance'. */
+        double tolerance = 0.;
         double
         error() const
         {
@@ -210,9 +215,18 @@ namespace Talus
         before_load_steps(Structure &, Talus::Structure::StaticSolver &)
         {}
 
-        /** Set by the time loop before monitor(): time [s] and total
-         * energy (kinetic + strain + load potential) [J]. */
-        double time = 0., total_energy = 0.;
+        /** Set by the time loop before monitor(): time [s], total
+         * energy (kinetic + strain + load potential) and kinetic energy
+         * [J]. */
+        double time = 0., total_energy = 0., kinetic_energy = 0.;
+
+        /** With 'dynamic = true': find the pre-stressed equilibrium
+         * (load factor 0 and before_load_steps()) before the motion. */
+        virtual bool
+        form_finding_before_dynamics() const
+        {
+          return false;
+        }
 
       protected:
         const Parameters &p;
@@ -578,7 +592,9 @@ namespace Talus
         std::string
         description() const override
         {
-          return "elastic catenary (Irvine), cable under self weight";
+          return plane() ? "elastic catenary (Irvine), cable under self "
+                           "weight, 2D string (Triangulation<1,2>)" :
+                           "elastic catenary (Irvine), cable under self weight";
         }
 
         void
@@ -610,6 +626,31 @@ namespace Talus
             return sum - p.unstretched_length;
           };
           const double f0 = bisect(length, 0., p.unstretched_length);
+          sag0            = f0;
+          s.gravity       = p.gravity;
+          if (plane())
+            {
+              // The 2D string: a Triangulation<1,2> in the (x, y) plane,
+              // sag along -y.
+              std::vector<Point<2>>    x2;
+              std::vector<CellData<1>> cells(n);
+              for (const auto &x : points(f0))
+                x2.emplace_back(x[0], x[2]);
+              for (unsigned int i = 0; i < n; ++i)
+                cells[i].vertices = {i, i + 1};
+              string.triangulation.create_triangulation(x2,
+                                                        cells,
+                                                        SubCellData());
+              string.add_to(s, "cable", line_element());
+              s.setup_dofs();
+              string.setup(s);
+              left  = string.node(0);
+              right = string.node(n);
+              mid   = string.node(n / 2);
+              string.fix(s, 0);
+              string.fix(s, n);
+              return;
+            }
           make_polyline(s.add_line_mesh("cable", line_element()).triangulation,
                         points(f0));
           s.setup_dofs();
@@ -623,8 +664,6 @@ namespace Talus
             }
           for (unsigned int k = 0; k < s.n_nodes(); ++k)
             s.prescribe(k, 1);
-          s.gravity = p.gravity;
-          sag0      = f0;
         }
 
         void
@@ -634,7 +673,7 @@ namespace Talus
           // (a stress-free chain has no lateral stiffness).
           for (unsigned int k = 0; k < s.n_nodes(); ++k)
             if (k != left && k != right)
-              u[s.node_dof(k, 2)] = 0.01 * s.node_position(k)[2];
+              u[s.node_dof(k, up())] = 0.01 * s.node_position(k)[up()];
         }
 
         bool
@@ -729,8 +768,16 @@ namespace Talus
           const auto   hooke = [&](const double T) { return 1. + T / EA; };
           const double quadrature_check =
             std::abs(span_and_sag(H_irvine, hooke).first - l) / l;
-          const Tensor<1, 3> R = s.reaction(left);
-          const double sag = -(s.node_position(mid)[2] + u[s.node_dof(mid, 2)]);
+          Tensor<1, 3> R   = s.reaction(left);
+          double       sag = -(s.node_position(mid)[2] + u[s.node_dof(mid, 2)]);
+          if (plane())
+            {
+              // Read through the 2D interface.
+              const unsigned int n  = string.triangulation.n_vertices() - 1;
+              const Tensor<1, 2> R2 = string.reaction(s, 0);
+              R                     = Tensor<1, 3>({R2[0], R2[1], 0.});
+              sag                   = -string.current_position(s, u, n / 2)[1];
+            }
           return {{"horizontal tension H [N]", std::abs(R[0]), H},
                   {"mid-span sag [m]", sag, f},
                   {"support tension T [N]", R.norm(), std::sqrt(H * H + V * V)},
@@ -743,8 +790,23 @@ namespace Talus
         }
 
       private:
-        unsigned int left = 0, right = 0, mid = 0;
-        double       sag0 = 0.;
+        unsigned int                  left = 0, right = 0, mid = 0;
+        double                        sag0 = 0.;
+        Talus::Structure::PlaneString string;
+
+        /** The 2D string (model 'plane catenary'). */
+        bool
+        plane() const
+        {
+          return p.model == "plane catenary";
+        }
+
+        /** The component along which the cable sags. */
+        unsigned int
+        up() const
+        {
+          return plane() ? 1 : 2;
+        }
       };
 
 
@@ -1420,10 +1482,11 @@ namespace Talus
 
 
       /**
-       * The standard barrier (BarrierBuilder) under pre-stress and gravity.
-       * Reference: global equilibrium. The reactions at all supports must
-       * balance the total weight W = g (sum rho A L of posts, cables and
-       * ropes + rho t A of the net), computed from the geometry.
+       * The standard barrier (BarrierBuilder) under pre-stress, gravity and
+       * a field load F. Reference: global equilibrium. The reactions at all
+       * supports must balance the total weight W = g (sum rho A L of posts,
+       * cables and ropes + rho t A of the net), computed from the geometry,
+       * and F. Active brakes must carry F_a + H s.
        */
       class Barrier : public Model
       {
@@ -1433,7 +1496,8 @@ namespace Talus
         std::string
         description() const override
         {
-          return "standard three-field barrier under pre-stress and gravity";
+          return "standard three-field barrier under pre-stress, gravity "
+                 "and a field load";
         }
 
         void
@@ -1446,9 +1510,14 @@ namespace Talus
           builder.brake_H    = p.brake_H;
           builder.brake_smax = p.brake_smax;
           builder.build(s);
-          s.gravity = p.gravity;
+          // The self weight acts from the start (the barrier is erected
+          // under gravity): it is part of the form finding, and the load
+          // factor scales the field load only.
+          s.gravity       = p.gravity;
+          s.scale_gravity = false;
           // Stage 1 of the form finding: post heads held, so that the net
-          // and the support cables find their pre-stressed shape first.
+          // and the support cables find their pre-stressed shape under
+          // their weight first.
           for (const unsigned int n : builder.post_heads)
             for (unsigned int c = 0; c < 3; ++c)
               s.prescribe(n, c);
@@ -1459,7 +1528,12 @@ namespace Talus
                           Talus::Structure::StaticSolver &solver) override
         {
           // Stage 2: release the heads (posts and ropes take over) and find
-          // the pre-stressed equilibrium of the whole barrier.
+          // the pre-stressed equilibrium of the whole barrier under its
+          // weight. Without the weight this state is degenerate: the net
+          // and the top cable pull the inner heads along the post axis,
+          // which the post alone carries, and their retaining ropes are
+          // left without force (and their rope-brake nodes without
+          // stiffness).
           const Vector<double> u = solver.displacement;
           for (const unsigned int n : builder.post_heads)
             for (unsigned int c = 0; c < 3; ++c)
@@ -1468,7 +1542,8 @@ namespace Talus
           solver.setup();
           solver.displacement = u;
           const auto status   = solver.solve(0.);
-          std::cout << "  stage 2 (post heads released, pre-stress): "
+          std::cout << "  stage 2 (post heads released, pre-stress and "
+                       "gravity): "
                     << (status.converged ? "converged" : "FAILED") << " in "
                     << status.iterations << " Newton iterations\n";
           if (!status.converged)
@@ -1489,40 +1564,86 @@ namespace Talus
           return true;
         }
 
+        /** Damped motion ends with a static solve from the state reached
+         * (dynamic relaxation); undamped motion is checked for its energy. */
         bool
         relax_to_equilibrium() const override
+        {
+          return p.mass_damping > 0. || p.stiffness_damping > 0.;
+        }
+
+        bool
+        form_finding_before_dynamics() const override
         {
           return true;
         }
 
         std::vector<std::pair<std::string, double>>
-        monitor(const Structure &,
+        monitor(const Structure &s,
                 const Vector<double> &,
                 const double) override
         {
-          return {{"time", time}, {"total_energy", total_energy}};
+          // CSV: the force on each group of supports (sum of the reactions,
+          // x, y, z) and the axial force of every post.
+          std::vector<std::pair<std::string, double>> columns;
+          const unsigned int n_posts = builder.n_fields + 1;
+          const std::vector<
+            std::pair<std::string, std::pair<unsigned, unsigned>>>
+            groups = {{"post_bases", {0, n_posts}},
+                      {"bottom_cable_anchors", {n_posts, n_posts + 2}},
+                      {"top_cable_anchors", {n_posts + 2, n_posts + 4}},
+                      {"lateral_anchors", {n_posts + 4, n_posts + 6}},
+                      {"retaining_anchors",
+                       {n_posts + 6,
+                        static_cast<unsigned>(builder.supports.size())}}};
+          for (const auto &[name, range] : groups)
+            {
+              Tensor<1, 3> R;
+              for (unsigned int k = range.first; k < range.second; ++k)
+                R += s.reaction(builder.supports[k]);
+              for (unsigned int c = 0; c < 3; ++c)
+                columns.emplace_back(name + "_R" + "xyz"[c], R[c]);
+            }
+          const auto &posts = s.line_meshes[builder.post_meshes[0]]->force;
+          for (unsigned int i = 0; i < posts.size(); ++i)
+            columns.emplace_back("post_" + std::to_string(i) + "_force",
+                                 posts[i]);
+          if (time == 0.)
+            initial_energy = total_energy;
+          max_kinetic = std::max(max_kinetic, kinetic_energy);
+          max_drift =
+            std::max(max_drift, std::abs(total_energy - initial_energy));
+          columns.insert(columns.begin(),
+                         {{"time", time},
+                          {"total_energy", total_energy},
+                          {"kinetic_energy", kinetic_energy}});
+          return columns;
         }
 
         std::vector<Result>
         results(const Structure &s, const Vector<double> &u) override
         {
+          // Weight from the geometry of the parameters (not from the
+          // structure's lumped masses).
           const auto    &b     = builder;
-          const double   theta = b.inclination * numbers::PI / 180.;
-          const double   Hs    = b.height / std::cos(theta);
+          const double   Hs    = b.post_length();
           const double   L     = b.n_fields * b.field_width;
-          const Point<3> head0(0., -Hs * std::sin(theta), Hs * std::cos(theta));
-          const Point<3> anchor_left(-b.end_anchor_offset, 0, 0);
+          const Point<3> head0 = b.net_point(0., Hs);
+          const Point<3> top_left(-b.end_anchor_offset, head0[1], 0.);
+          const Point<3> lateral_left(-b.lateral_anchor_offset,
+                                      head0[1] - b.lateral_anchor_downslope,
+                                      0.);
           double mass = (b.n_fields + 1) * b.post_density * b.post_A * Hs;
           mass += b.cable_density * b.cable_A *
-                  (2. * anchor_left.distance(head0) + L + // top
-                   L + 2. * b.end_anchor_offset +         // bottom
-                   2. * Hs);                              // edges
+                  (2. * top_left.distance(head0) + L + // top
+                   L + 2. * b.end_anchor_offset +      // bottom
+                   2. * Hs);                           // edges
+          mass +=
+            b.lateral_density * b.lateral_A * 2. * lateral_left.distance(head0);
           for (unsigned int i = 0; i <= b.n_fields; ++i)
             for (const double side : {-1., 1.})
               {
-                const Point<3> head(i * b.field_width,
-                                    -Hs * std::sin(theta),
-                                    Hs * std::cos(theta));
+                const Point<3> head = b.net_point(i * b.field_width, Hs);
                 const Point<3> anchor(i * b.field_width +
                                         side * b.anchor_spread,
                                       b.anchor_distance,
@@ -1532,49 +1653,132 @@ namespace Talus
               }
           mass += p.membrane_density * p.thickness * L * Hs;
           const Tensor<1, 3> W = mass * p.gravity;
+          const Tensor<1, 3> F = b.field_load;
           Tensor<1, 3>       R;
           for (const unsigned int n : b.supports)
             R += s.reaction(n);
-          double umax = 0.;
+          // R: sum of reaction() = f_int - f_ext over the supports. The
+          // residual vanishes at the free nodes and the internal forces of
+          // every element sum to zero, so R = -(sum of all external forces)
+          // = -(W + F) in equilibrium.
+          const double scale = (W.norm() + F.norm());
+          double       umax  = 0.;
           for (unsigned int k = 0; k < s.n_nodes(); ++k)
             umax = std::max(umax, s.node_displacement(u, k).norm());
-          const auto max_force = [&](const unsigned int mesh) {
+          const auto max_force = [&](const std::vector<unsigned int> &meshes) {
             double f = 0.;
-            for (const double x : s.line_meshes[mesh]->force)
-              f = std::max(f, std::abs(x));
+            for (const unsigned int mesh : meshes)
+              for (const double x : s.line_meshes[mesh]->force)
+                f = std::max(f, std::abs(x));
+            return f;
+          };
+          const auto min_force = [&](const std::vector<unsigned int> &meshes) {
+            double f = std::numeric_limits<double>::max();
+            for (const unsigned int mesh : meshes)
+              for (const double x : s.line_meshes[mesh]->force)
+                f = std::min(f, x);
             return f;
           };
           double max_stroke = 0.;
           for (const auto &st : s.line_meshes[b.brake_meshes[0]]->state)
             max_stroke = std::max(max_stroke, st.plastic);
-          return {{"|sum of reactions + weight| / |weight|",
-                   (R + W).norm() / W.norm(),
-                   0.,
-                   true,
-                   true},
-                  {"total weight [N]", W.norm(), 0., false},
-                  {"largest displacement [m]", umax, 0., false},
-                  {"top cable tension [N]",
-                   max_force(b.support_cable_meshes[0]),
-                   0.,
-                   false},
-                  {"bottom cable tension [N]",
-                   max_force(b.support_cable_meshes[1]),
-                   0.,
-                   false},
-                  {"largest retaining rope force [N]",
-                   max_force(b.rope_meshes[0]),
-                   0.,
-                   false},
-                  {"largest post force (compression) [N]",
-                   max_force(b.post_meshes[0]),
-                   0.,
-                   false},
-                  {"largest brake stroke [m]", max_stroke, 0., false}};
+          // Active brakes (stroke > 0, not blocked) carry F_a + H s.
+          double       brake_law_error = 0.;
+          unsigned int n_active        = 0;
+          {
+            const auto &m = *s.line_meshes[b.brake_meshes[0]];
+            for (unsigned int c = 0; c < m.state.size(); ++c)
+              if (m.state[c].plastic > 0. &&
+                  (b.brake_smax == 0. || m.state[c].plastic < b.brake_smax))
+                {
+                  ++n_active;
+                  brake_law_error =
+                    std::max(brake_law_error,
+                             std::abs(
+                               m.force[c] -
+                               (b.brake_Fa + b.brake_H * m.state[c].plastic)) /
+                               b.brake_Fa);
+                }
+          }
+          unsigned int n_slack_ropes = 0;
+          for (const double x : s.line_meshes[b.rope_meshes[0]]->force)
+            n_slack_ropes += (x <= 0.);
+          std::vector<Result> r = {
+            {"|R + W + F| / (|W| + |F|)",
+             (R + W + F).norm() / scale,
+             0.,
+             true,
+             true},
+            {"total weight [N]", W.norm(), 0., false},
+            {"field load [N]", F.norm(), 0., false},
+            {"sum of reactions y [N]", R[1], 0., false},
+            {"sum of reactions z [N]", R[2], 0., false},
+            {"largest displacement [m]", umax, 0., false},
+            {"top cable tension [N]",
+             max_force({b.support_cable_meshes[0]}),
+             0.,
+             false},
+            {"bottom cable tension [N]",
+             max_force({b.support_cable_meshes[1]}),
+             0.,
+             false},
+            {"edge cable tension [N]",
+             max_force({b.support_cable_meshes[2], b.support_cable_meshes[3]}),
+             0.,
+             false},
+            {"lateral rope force [N]",
+             max_force(b.lateral_rope_meshes),
+             0.,
+             false},
+            {"largest retaining rope force [N]",
+             max_force(b.rope_meshes),
+             0.,
+             false},
+            {"smallest retaining rope force [N]",
+             min_force(b.rope_meshes),
+             0.,
+             false},
+            {"slack retaining ropes", double(n_slack_ropes), 0., false},
+            {"largest brake force [N]", max_force(b.brake_meshes), 0., false},
+            {"largest post compression [N]",
+             -min_force(b.post_meshes),
+             0.,
+             false},
+            {"largest brake stroke [m]", max_stroke, 0., false},
+            {"active brakes", double(n_active), 0., false}};
+          if (n_active > 0)
+            r.push_back({"active brakes: max |N - (F_a + H s)| / F_a",
+                         brake_law_error,
+                         0.,
+                         true,
+                         true});
+          if (p.dynamic && !relax_to_equilibrium() && max_kinetic > 0.)
+            {
+              // Undamped motion: energy (kinetic + strain + load potential)
+              // against its initial value, relative to the largest kinetic
+              // energy.
+              r.push_back(
+                {"largest kinetic energy [J]", max_kinetic, 0., false});
+              r.push_back({"max |E(t) - E(0)| / max kinetic energy",
+                           max_drift / max_kinetic,
+                           0.,
+                           true,
+                           true});
+              r[0].checked = false; // not in equilibrium while moving
+            }
+          // Post forces one by one.
+          const auto &posts = s.line_meshes[b.post_meshes[0]]->force;
+          for (unsigned int i = 0; i < posts.size(); ++i)
+            r.push_back({"post " + std::to_string(i) + " axial force [N]",
+                         posts[i],
+                         0.,
+                         false});
+          return r;
         }
 
       private:
         Talus::Structure::BarrierBuilder builder;
+        double initial_energy = 0., max_kinetic = 0., max_drift = 0.;
       };
 
 
@@ -1618,6 +1822,14 @@ namespace Talus
        * cable by F = |point load|. The cable slides towards B: T_B = F and
        * T_A = F exp(-mu theta), whatever the number of drum nodes (the
        * deviation angles add up to theta).
+       *
+       * Stick-slip law, load path up to F_max and then down (one reversal):
+       * the segments between the fixed drum nodes keep their length, so
+       * T_A changes only when slip reaches the first node. Loading: T_A = F
+       * exp(-mu theta). Unloading: the nodes stick, then slip backwards
+       * from B, node by node; the first node slips when F = T_A exp(-mu
+       * theta), so T_A = F_max exp(-mu theta) while F >= F_max exp(-2 mu
+       * theta), and T_A = F exp(mu theta) below.
        */
       class Capstan : public Model
       {
@@ -1635,6 +1847,7 @@ namespace Talus
         {
           auto cable                  = sliding_cable();
           cable->friction_coefficient = p.friction;
+          cable->stick_slip           = p.stick_slip;
           const double          R     = p.drum_radius;
           const double          theta = p.wrap_angle * numbers::PI / 180.;
           const unsigned int    n     = p.elements;
@@ -1671,24 +1884,63 @@ namespace Talus
           return false;
         }
 
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure &s,
+                const Vector<double> &,
+                const double lambda) override
+        {
+          const auto  &mesh  = *s.line_meshes[0];
+          const double T_A   = mesh.force[mesh.chain_cells.front()];
+          const double T_B   = mesh.force[mesh.chain_cells.back()];
+          const double F     = lambda * p.point_load.norm();
+          const double theta = p.wrap_angle * numbers::PI / 180.;
+          const double e     = std::exp(p.friction * theta);
+          F_last             = F;
+          double T_A_ref     = F / e;
+          if (p.stick_slip)
+            {
+              F_max = std::max(F_max, F);
+              T_A_ref =
+                F >= F_max ? F / e : (F >= F_max / (e * e) ? F_max / e : F * e);
+              path_error = std::max({path_error,
+                                     std::abs(T_A - T_A_ref) / F_max,
+                                     std::abs(T_B - F) / F_max});
+            }
+          return {{"force_F", F},
+                  {"T_A", T_A},
+                  {"T_A_reference", T_A_ref},
+                  {"T_B", T_B}};
+        }
+
         std::vector<Result>
         results(const Structure &s, const Vector<double> &) override
         {
           const auto  &mesh  = *s.line_meshes[0];
           const double T_A   = mesh.force[mesh.chain_cells.front()];
           const double T_B   = mesh.force[mesh.chain_cells.back()];
-          const double F     = p.point_load.norm();
+          const double F     = F_last;
           const double theta = p.wrap_angle * numbers::PI / 180.;
-          return {{"tension at the pulled end T_B [N]", T_B, F},
-                  {"tension at the fixed end T_A [N]",
-                   T_A,
-                   F * std::exp(-p.friction * theta)},
-                  {"T_B / T_A", T_B / T_A, std::exp(p.friction * theta)}};
+          const double e     = std::exp(p.friction * theta);
+          if (!p.stick_slip)
+            return {{"tension at the pulled end T_B [N]", T_B, F},
+                    {"tension at the fixed end T_A [N]", T_A, F / e},
+                    {"T_B / T_A", T_B / T_A, e}};
+          return {{"largest F [N]", F_max, 0., false},
+                  {"final F [N]", F, 0., false},
+                  {"final T_A [N]", T_A, 0., false},
+                  {"final T_B / T_A", T_B / T_A, 0., false},
+                  {"exp(mu theta)", e, 0., false},
+                  {"max over the path |T_A - T_A,ref|, |T_B - F| / F_max",
+                   path_error,
+                   0.,
+                   true,
+                   true}};
         }
 
       private:
         unsigned int end = 0;
         Tensor<1, 3> direction;
+        double       F_max = 0., F_last = 0., path_error = 0.;
       };
 
 
@@ -1863,17 +2115,34 @@ namespace Talus
                            gamma = 0.5 - al;
               const double ubar =
                 ref_u + dt * ref_v + dt * dt * (0.5 - beta) * ref_a;
-              const double c  = (1. - al) / (beta * dt * dt);
-              const double u1 = (c * ubar - al * ref_a) / (c + omega * omega);
-              const double a1 = (u1 - ubar) / (beta * dt * dt);
-              ref_v += dt * ((1. - gamma) * ref_a + gamma * a1);
-              ref_u = u1;
-              ref_a = a1;
+              // (1 - al) a1 + al a + c v1 + omega^2 u1 = 0 with the
+              // Rayleigh damping per unit mass c = a_M + a_K omega^2.
+              const double c =
+                p.mass_damping + p.stiffness_damping * omega * omega;
+              const double vbar = ref_v + dt * (1. - gamma) * ref_a;
+              const double a1 =
+                -(al * ref_a + c * vbar + omega * omega * ubar) /
+                ((1. - al) + c * gamma * dt + omega * omega * beta * dt * dt);
+              const double u1 = ubar + beta * dt * dt * a1;
+              ref_v           = vbar + gamma * dt * a1;
+              ref_u           = u1;
+              ref_a           = a1;
             }
           max_difference = std::max(max_difference, std::abs(w - ref_u));
           if (!samples.empty() && (w > 0.) != (samples.back() > 0.))
             crossings.push_back(time - (time - times.back()) * w /
                                          (w - samples.back()));
+          // Positive maxima (parabola through the three samples).
+          if (samples.size() >= 2)
+            {
+              const double w0 = samples[samples.size() - 2],
+                           w1 = samples.back();
+              if (w1 > 0. && w1 >= w0 && w1 > w)
+                {
+                  const double curvature = w0 - 2. * w1 + w;
+                  peaks.push_back(w1 - 0.125 * (w - w0) * (w - w0) / curvature);
+                }
+            }
           samples.push_back(w);
           times.push_back(time);
           return {{"time", time},
@@ -1900,11 +2169,35 @@ namespace Talus
                 2. * (crossings.back() - crossings[0]) / (crossings.size() - 1);
               const double wdt = omega * p.dynamic_time_step;
               // Average acceleration: period elongation (omega dt)^2/12.
+              const double c =
+                p.mass_damping + p.stiffness_damping * omega * omega;
               r.push_back({"period [s]",
                            period,
                            2. * numbers::PI / omega *
                              (p.bossak_alpha == 0. ? 1. + wdt * wdt / 12. : 1.),
-                           p.bossak_alpha == 0.});
+                           p.bossak_alpha == 0. && c == 0.});
+            }
+          if (peaks.size() >= 2 &&
+              (p.stiffness_damping > 0. || p.mass_damping > 0.))
+            {
+              // Logarithmic decrement over the positive maxima:
+              // zeta = delta / sqrt(4 pi^2 + delta^2); exact zeta = c/(2
+              // omega) = a_K omega/2 + a_M/(2 omega). The scheme's own
+              // error is of order (omega dt)^2.
+              const double delta =
+                std::log(peaks.front() / peaks.back()) / (peaks.size() - 1);
+              const double zeta =
+                delta /
+                std::sqrt(4. * numbers::PI * numbers::PI + delta * delta);
+              const double wdt = omega * p.dynamic_time_step;
+              Result       z{"damping ratio from the decay",
+                       zeta,
+                       0.5 * p.stiffness_damping * omega +
+                         0.5 * p.mass_damping / omega};
+              z.tolerance = wdt * wdt;
+              r.push_back(
+                {"number of maxima", double(peaks.size()), 0., false});
+              r.push_back(z);
             }
           return r;
         }
@@ -1914,7 +2207,7 @@ namespace Talus
         double              omega = 0.;
         double              ref_u = 0., ref_v = 0., ref_a = 0.;
         double              max_difference = 0.;
-        std::vector<double> samples, times, crossings;
+        std::vector<double> samples, times, crossings, peaks;
       };
 
 
@@ -1931,7 +2224,7 @@ namespace Talus
           return std::make_unique<Barrier>(p);
         if (p.model == "von Mises truss")
           return std::make_unique<VonMisesTruss>(p);
-        if (p.model == "catenary")
+        if (p.model == "catenary" || p.model == "plane catenary")
           return std::make_unique<Catenary>(p);
         if (p.model == "circular membrane")
           return std::make_unique<CircularMembrane>(p);
@@ -1969,6 +2262,14 @@ namespace Talus
                             "a member needs at least one element (two nodes)");
         p.slack_ratio = get_positive(prm, lm, "slack stiffness ratio");
         p.friction    = get_non_negative(prm, lm, "friction coefficient");
+        p.stick_slip  = prm.get("friction law") == "stick-slip";
+        if (p.stick_slip && !(p.friction > 0.))
+          InputFile::reject(lm,
+                            "friction law",
+                            "stick-slip",
+                            "the stick-slip law needs a 'friction coefficient' "
+                            "> 0 (without friction a sliding cable has no "
+                            "stick)");
         prm.leave_subsection();
 
         const std::string ms = S + "/Membrane";
@@ -2018,7 +2319,9 @@ namespace Talus
         p.mesh_file          = prm.get("mesh file");
         p.mesh_is_membrane   = prm.get("mesh file type") == "membrane";
         prm.leave_subsection();
-        if (p.model == "catenary" && !(p.unstretched_length > p.span))
+        const bool catenary =
+          p.model == "catenary" || p.model == "plane catenary";
+        if (catenary && !(p.unstretched_length > p.span))
           InputFile::reject(gs,
                             "unstretched length",
                             std::to_string(p.unstretched_length),
@@ -2031,14 +2334,24 @@ namespace Talus
 
         const std::string ls = S + "/Loads";
         prm.enter_subsection("Loads");
-        p.gravity                 = get_vector(prm, ls, "gravity");
-        p.point_load              = get_vector(prm, ls, "point load");
-        p.pressure                = prm.get_double("pressure");
+        p.gravity                         = get_vector(prm, ls, "gravity");
+        const std::string gravity_text    = prm.get("gravity");
+        p.point_load                      = get_vector(prm, ls, "point load");
+        const std::string point_load_text = prm.get("point load");
+        p.pressure                        = prm.get_double("pressure");
         p.prescribed_displacement = prm.get_double("prescribed displacement");
         p.load_path               = Utilities::string_to_double(
           Utilities::split_string_list(prm.get("load path")));
         prm.leave_subsection();
-        if (p.model == "catenary" && !(p.density > 0. && p.gravity.norm() > 0.))
+        if (p.model == "plane catenary" &&
+            !(p.gravity[0] == 0. && p.gravity[2] == 0. && p.gravity[1] < 0.))
+          InputFile::reject(ls,
+                            "gravity",
+                            gravity_text,
+                            "the plane catenary lies in the x-y plane of a "
+                            "2D problem and sags along -y: gravity must be "
+                            "0, -g, 0 with g > 0");
+        if (catenary && !(p.density > 0. && p.gravity.norm() > 0.))
           InputFile::reject(lm,
                             "density",
                             std::to_string(p.density),
@@ -2048,7 +2361,7 @@ namespace Talus
             !(p.point_load.norm() > 0.))
           InputFile::reject(ls,
                             "point load",
-                            prm.get("Loads/point load"),
+                            point_load_text,
                             "the sliding ring needs a non-zero load in the "
                             "x-z plane");
 
@@ -2060,6 +2373,7 @@ namespace Talus
         prm.enter_subsection("Dynamics");
         p.dynamic           = prm.get_bool("dynamic");
         p.mass_damping      = prm.get_double("mass damping");
+        p.stiffness_damping = prm.get_double("stiffness damping");
         p.bossak_alpha      = prm.get_double("Bossak alpha");
         p.dynamic_time_step = prm.get_double("time step");
         prm.leave_subsection();
@@ -2103,13 +2417,16 @@ namespace Talus
       prm.declare_entry(
         "model",
         "von Mises truss",
-        Patterns::Selection("von Mises truss|catenary|circular membrane|"
+        Patterns::Selection("von Mises truss|catenary|plane catenary|"
+                            "circular membrane|"
                             "square membrane|sheared membrane|vibrating string|"
                             "sliding ring|capstan|brake|mesh file|barrier"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
-        "under self weight between two supports), 'circular membrane' "
+        "under self weight between two supports), 'plane catenary' (the "
+        "same as a 2D string: a Triangulation<1,2> in the x-y plane, "
+        "gravity 0, -g, 0), 'circular membrane' "
         "(Hencky: clamped disk under pressure), 'square membrane' "
         "(pre-stressed, clamped, small pressure), 'sheared membrane' "
         "(square in simple shear: tension field with wrinkling), "
@@ -2122,9 +2439,10 @@ namespace Talus
         "series with a cable, end pulled by 'prescribed displacement'), "
         "'mesh file' (a line or membrane mesh read from 'mesh file', "
         "ends or boundary fixed, gravity and pressure), 'barrier' (the standard barrier of subsection Barrier "
-        "with net, posts, support cables, retaining ropes and brakes, "
-        "pre-stressed, under gravity; experimental: it does not reach "
-        "equilibrium yet, doc/verification.md). Each model with a closed "
+        "with net, posts, support cables, retaining and lateral ropes and "
+        "brakes: staged form finding of the pre-stressed state, then "
+        "gravity and the field load; checks the global force balance). "
+        "Each model with a closed "
         "form reports and checks it.");
 
       prm.enter_subsection("Line members");
@@ -2169,7 +2487,16 @@ namespace Talus
                         Patterns::Double(),
                         "Capstan friction coefficient mu of sliding cables "
                         "at their interior nodes (model 'capstan') [-], >= "
-                        "0; the cable slides towards its last node.");
+                        "0.");
+      prm.declare_entry("friction law",
+                        "slide",
+                        Patterns::Selection("slide|stick-slip"),
+                        "Capstan friction of sliding cables: 'slide' (the "
+                        "cable slides towards its last node at every node, "
+                        "no history) or 'stick-slip' (a node sticks while "
+                        "exp(-mu theta) <= N_k/N_{k-1} <= exp(mu theta) and "
+                        "slips at the limit otherwise; history: the material "
+                        "length of every segment).");
       prm.declare_entry("slack stiffness ratio",
                         "1e-8",
                         Patterns::Double(),
@@ -2517,16 +2844,21 @@ namespace Talus
           csv << std::setprecision(10);
           bool header = false;
 
-          const auto run_step = [&](const unsigned int step,
+          double     last_lambda = 0.;
+          const auto run_step    = [&](const unsigned int step,
                                     const double       lambda) {
-            const auto status = solver.solve(lambda);
+            const auto status = step == 0 ?
+                                     solver.solve(lambda) :
+                                     solver.solve_with_cuts(last_lambda, lambda);
+            last_lambda       = lambda;
             if (!status.converged)
               {
                 std::ostringstream msg;
                 msg << "the load step to load factor " << lambda
                     << " did not converge: " << status.failure
-                    << ". Use more 'load steps' or more 'maximum Newton "
-                       "iterations' in subsection Structure/Solver.";
+                    << ". Use more 'load steps', more 'maximum Newton "
+                          "iterations' or 'maximum step cuts' in subsection "
+                          "Structure/Solver.";
                 throw ExcSimulationFailed(msg.str());
               }
             auto values =
@@ -2567,13 +2899,27 @@ namespace Talus
           prm.leave_subsection();
           if (dynamics.enabled)
             {
+              if (model->form_finding_before_dynamics())
+                {
+                  // Stage 1 (the pre-stress step) and the model's further
+                  // stages, then the motion under the full loads.
+                  const auto status = solver.solve(0.);
+                  if (!status.converged)
+                    throw ExcSimulationFailed(
+                      "the pre-stress equilibrium did not converge: " +
+                      status.failure);
+                  std::cout << "  pre-stress equilibrium (load factor 0): "
+                            << status.iterations << " Newton iterations\n";
+                  model->before_load_steps(structure, solver);
+                }
               dynamics.initialize();
               const auto energy = [&]() {
                 return dynamics.kinetic_energy() + structure.strain_energy() +
                        structure.load_potential(solver.displacement, 1.);
               };
-              model->time         = 0.;
-              model->total_energy = energy();
+              model->time           = 0.;
+              model->total_energy   = energy();
+              model->kinetic_energy = dynamics.kinetic_energy();
               model->monitor(structure, solver.displacement, 0.);
               unsigned int       step = 0, newton = 0;
               double             t       = 0.;
@@ -2597,8 +2943,9 @@ namespace Talus
                   // Energies at the committed state.
                   dealii::Vector<double> r;
                   structure.assemble(solver.displacement, 1., r, nullptr);
-                  model->time         = t;
-                  model->total_energy = energy();
+                  model->time           = t;
+                  model->total_energy   = energy();
+                  model->kinetic_energy = dynamics.kinetic_energy();
                   auto values =
                     model->monitor(structure, solver.displacement, t);
                   for (const auto &c : structure_columns(structure))
@@ -2756,10 +3103,12 @@ namespace Talus
         for (const auto &r : level_results.back())
           if (r.checked)
             {
-              const bool ok = r.error() <= p.tolerance;
+              const double tolerance =
+                r.tolerance > 0. ? r.tolerance : p.tolerance;
+              const bool ok = r.error() <= tolerance;
               std::cout << "  check " << r.name << ": "
-                        << (ok ? "ok" : "FAILED") << " (tolerance "
-                        << p.tolerance << ")\n";
+                        << (ok ? "ok" : "FAILED") << " (tolerance " << tolerance
+                        << ")\n";
               passed = passed && ok;
             }
       if (p.n_levels > 1 && p.minimum_rate > 0.)

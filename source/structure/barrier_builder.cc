@@ -1,6 +1,8 @@
 #include <talus/base/input.h>
 #include <talus/structure/barrier_builder.h>
 
+#include <deal.II/base/utilities.h>
+
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
@@ -49,7 +51,33 @@ namespace Talus
                         "4",
                         Patterns::Double(),
                         "Ground anchors of the top and bottom support "
-                        "cables: this far beyond the outer posts [m], > 0.");
+                        "cables: this far beyond the outer posts [m], > 0 "
+                        "(bottom cable: in line with the bases; top cable: "
+                        "vertically below the line of the post heads).");
+      prm.declare_entry("field load",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "Total force on the net of the loaded field (x, y, "
+                        "z; the flow pushes towards -y), shared equally by "
+                        "the net nodes of that field and scaled by the load "
+                        "factor [N].");
+      prm.declare_entry("loaded field",
+                        "1",
+                        Patterns::Integer(0),
+                        "Index of the field that carries the field load, "
+                        "0 to number of fields - 1 (1: the middle field of "
+                        "three) [-].");
+      prm.declare_entry("lateral anchor offset",
+                        "4",
+                        Patterns::Double(),
+                        "Ground anchors of the lateral ropes of the outer "
+                        "post heads: this far beyond the outer posts [m], "
+                        "> 0.");
+      prm.declare_entry("lateral anchor downslope",
+                        "2",
+                        Patterns::Double(0),
+                        "Ground anchors of the lateral ropes: this far "
+                        "downslope of the post heads [m], >= 0.");
       prm.declare_entry("net cells per field",
                         "4",
                         Patterns::Integer(1, 256),
@@ -89,7 +117,8 @@ namespace Talus
       };
       member("Posts", "2.1e11", "3e-3", "");
       member("Support cables", "1.2e11", "2e-4", "1e8");
-      member("Retaining ropes", "1.2e11", "2e-4", "2e7");
+      member("Retaining ropes", "1.2e11", "2e-4", "1e7");
+      member("Lateral ropes", "1.2e11", "2e-4", "");
       prm.leave_subsection();
     }
 
@@ -99,14 +128,29 @@ namespace Talus
                                      const std::string &path)
     {
       prm.enter_subsection("Barrier");
-      n_fields          = prm.get_integer("number of fields");
-      field_width       = get_positive(prm, path, "field width");
-      height            = get_positive(prm, path, "height");
-      inclination       = prm.get_double("post inclination");
-      anchor_distance   = get_positive(prm, path, "anchor distance");
-      anchor_spread     = prm.get_double("anchor spread");
-      end_anchor_offset = get_positive(prm, path, "end anchor offset");
-      cells_per_field   = prm.get_integer("net cells per field");
+      n_fields              = prm.get_integer("number of fields");
+      field_width           = get_positive(prm, path, "field width");
+      height                = get_positive(prm, path, "height");
+      inclination           = prm.get_double("post inclination");
+      anchor_distance       = get_positive(prm, path, "anchor distance");
+      anchor_spread         = prm.get_double("anchor spread");
+      end_anchor_offset     = get_positive(prm, path, "end anchor offset");
+      lateral_anchor_offset = get_positive(prm, path, "lateral anchor offset");
+      lateral_anchor_downslope =
+        get_non_negative(prm, path, "lateral anchor downslope");
+      cells_per_field = prm.get_integer("net cells per field");
+      {
+        const auto v = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("field load")));
+        field_load   = Tensor<1, 3>({v[0], v[1], v[2]});
+        loaded_field = prm.get_integer("loaded field");
+        if (loaded_field >= n_fields)
+          InputFile::reject(path,
+                            "loaded field",
+                            prm.get("loaded field"),
+                            "it must be smaller than the number of fields (" +
+                              std::to_string(n_fields) + ")");
+      }
       cells_over_height = prm.get_integer("net cells over height");
       brake_length      = get_positive(prm, path, "brake length");
       const auto member = [&](const std::string &name,
@@ -126,6 +170,7 @@ namespace Talus
       member(
         "Support cables", cable_E, cable_A, cable_density, &cable_prestress);
       member("Retaining ropes", rope_E, rope_A, rope_density, &rope_prestress);
+      member("Lateral ropes", lateral_E, lateral_A, lateral_density, nullptr);
       prm.leave_subsection();
     }
 
@@ -159,18 +204,52 @@ namespace Talus
     } // namespace
 
 
+    Point<3>
+    BarrierBuilder::net_point(const double x, const double s) const
+    {
+      const double theta = inclination * numbers::PI / 180.;
+      return Point<3>(x, -s * std::sin(theta), s * std::cos(theta));
+    }
+
+
+    double
+    BarrierBuilder::post_length() const
+    {
+      return height / std::cos(inclination * numbers::PI / 180.);
+    }
+
+
+    std::vector<unsigned int>
+    BarrierBuilder::field_nodes(const Structure   &s,
+                                const unsigned int field) const
+    {
+      const double              Hs  = post_length();
+      const double              tol = 1e-8 * (n_fields * field_width + Hs);
+      std::vector<unsigned int> nodes;
+      for (unsigned int k = 0; k <= cells_per_field; ++k)
+        for (unsigned int j = 0; j <= cells_over_height; ++j)
+          {
+            const unsigned int n =
+              s.find_node(net_point((field + double(k) / cells_per_field) *
+                                      field_width,
+                                    j * Hs / cells_over_height),
+                          tol);
+            AssertThrow(n != numbers::invalid_unsigned_int,
+                        ExcMessage("internal: net node not found"));
+            nodes.push_back(n);
+          }
+      return nodes;
+    }
+
+
     void
     BarrierBuilder::build(Structure &s)
     {
-      const double theta = inclination * numbers::PI / 180.;
-      const double L     = n_fields * field_width;
-      const double Hs    = height / std::cos(theta); // post length
-      // Point of the net plane at (x, distance s along the post).
-      const auto net_point = [&](const double x, const double s_) {
-        return Point<3>(x, -s_ * std::sin(theta), s_ * std::cos(theta));
-      };
-      const unsigned int nx = n_fields * cells_per_field;
-      const unsigned int nz = cells_over_height;
+      const double       theta = inclination * numbers::PI / 180.;
+      const double       L     = n_fields * field_width;
+      const double       Hs    = post_length();
+      const unsigned int nx    = n_fields * cells_per_field;
+      const unsigned int nz    = cells_over_height;
 
       // Posts: one Truss each, base to head.
       auto post            = std::make_shared<Truss>();
@@ -190,15 +269,18 @@ namespace Talus
       cable->area           = cable_A;
       cable->prestress      = cable_prestress;
       cable->density        = cable_density;
+      const double   y_head = -Hs * std::sin(theta);
       const Point<3> anchor_left(-end_anchor_offset, 0, 0),
-        anchor_right(L + end_anchor_offset, 0, 0);
-      std::vector<Point<3>> top = {anchor_left}, bottom = {anchor_left};
+        anchor_right(L + end_anchor_offset, 0, 0),
+        top_left(-end_anchor_offset, y_head, 0),
+        top_right(L + end_anchor_offset, y_head, 0);
+      std::vector<Point<3>> top = {top_left}, bottom = {anchor_left};
       for (unsigned int k = 0; k <= nx; ++k)
         {
           top.push_back(net_point(k * L / nx, Hs));
           bottom.push_back(net_point(k * L / nx, 0.));
         }
-      top.push_back(anchor_right);
+      top.push_back(top_right);
       bottom.push_back(anchor_right);
       std::vector<Point<3>> edge_left, edge_right;
       for (unsigned int j = 0; j <= nz; ++j)
@@ -230,7 +312,43 @@ namespace Talus
       brake->hardening        = brake_H;
       brake->stroke_limit     = brake_smax;
       std::vector<std::pair<Point<3>, Point<3>>> ropes, brakes;
-      std::vector<Point<3>> anchors = {anchor_left, anchor_right};
+      std::vector<Point<3>>                      anchors = {anchor_left,
+                                                            anchor_right,
+                                                            top_left,
+                                                            top_right};
+
+      // Lateral ropes of the outer post heads, pre-stressed so that their
+      // force along x balances the inward pull on the outer heads in the
+      // initial geometry.
+      {
+        const double   T       = cable_A * cable_prestress;
+        const Point<3> head0   = net_point(0., Hs);
+        const double   cos_phi = end_anchor_offset / head0.distance(top_left);
+        const Point<3> lateral_left(-lateral_anchor_offset,
+                                    y_head - lateral_anchor_downslope,
+                                    0.),
+          lateral_right(L + lateral_anchor_offset,
+                        y_head - lateral_anchor_downslope,
+                        0.);
+        const double cos_lateral =
+          lateral_anchor_offset / head0.distance(lateral_left);
+        // Inward pull on the outer head: the top cable, T (1 - cos phi),
+        // and half of the net's pre-stress along x carried by the edge
+        // cable between base and head, n_x H_s / 2.
+        const double n_x = net.material.prestress[0] * net.material.thickness;
+        lateral_prestress =
+          (T * (1. - cos_phi) + 0.5 * n_x * Hs) / (cos_lateral * lateral_A);
+        auto lateral            = std::make_shared<Cable>();
+        lateral->youngs_modulus = lateral_E;
+        lateral->area           = lateral_A;
+        lateral->prestress      = lateral_prestress;
+        lateral->density        = lateral_density;
+        lateral_rope_meshes = {static_cast<unsigned int>(s.line_meshes.size())};
+        segments(s.add_line_mesh("lateral_ropes", lateral).triangulation,
+                 {{lateral_left, head0}, {lateral_right, net_point(L, Hs)}});
+        anchors.push_back(lateral_left);
+        anchors.push_back(lateral_right);
+      }
       for (unsigned int i = 0; i <= n_fields; ++i)
         for (const double side : {-1., 1.})
           {
@@ -273,6 +391,7 @@ namespace Talus
           post_heads.push_back(
             s.find_node(net_point(i * field_width, Hs), tol));
         }
+      anchor_points = anchors;
       for (const auto &a : anchors)
         supports.push_back(s.find_node(a, tol));
       for (const unsigned int n : supports)
@@ -281,6 +400,12 @@ namespace Talus
                       ExcMessage("internal: barrier support not found"));
           for (unsigned int c = 0; c < 3; ++c)
             s.prescribe(n, c);
+        }
+      if (field_load.norm() > 0.)
+        {
+          const auto nodes = field_nodes(s, loaded_field);
+          for (const unsigned int n : nodes)
+            s.add_point_load(n, field_load / double(nodes.size()));
         }
     }
   } // namespace Structure

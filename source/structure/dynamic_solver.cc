@@ -28,8 +28,10 @@ namespace Talus
                         "Solve the equations of motion in time (Bossak-"
                         "Newmark, lumped mass) instead of static load "
                         "steps. Supported by models 'square membrane' (free "
-                        "vibration) and 'barrier' (dynamic relaxation, then "
-                        "a static solve).");
+                        "vibration), 'vibrating string' and 'barrier' (form "
+                        "finding, then the loads act suddenly; with damping "
+                        "a static solve follows the motion: dynamic "
+                        "relaxation; without, the energy is checked).");
       prm.declare_entry("end time",
                         "1",
                         Patterns::Double(),

@@ -206,5 +206,197 @@ namespace Talus
         }
       return N0;
     }
+    double
+    SlidingCable::stretch(const double N) const
+    {
+      const double EA = youngs_modulus * area, As0 = area * prestress;
+      // EA (lambda^3 - lambda)/2 + A s0 lambda = N, Newton from above.
+      double lambda = std::max(1. + N / EA, 1.);
+      for (unsigned int k = 0; k < 60; ++k)
+        {
+          const double g =
+            0.5 * EA * (lambda * lambda - 1.) * lambda + As0 * lambda - N;
+          const double dg   = 0.5 * EA * (3. * lambda * lambda - 1.) + As0;
+          const double step = g / dg;
+          lambda -= step;
+          if (std::abs(step) < 1e-15 * lambda)
+            break;
+        }
+      return lambda;
+    }
+
+
+    double
+    SlidingCable::compute(const std::vector<dealii::Tensor<1, 3>> &X,
+                          const std::vector<dealii::Tensor<1, 3>> &x,
+                          const std::vector<double>               &old_lengths,
+                          dealii::Vector<double>                  &f,
+                          dealii::FullMatrix<double>              &K,
+                          std::vector<double> &new_lengths) const
+    {
+      const unsigned int n_nodes = X.size();
+      if (n_nodes < 2 || x.size() != n_nodes ||
+          old_lengths.size() != n_nodes - 1)
+        throw std::runtime_error("A sliding cable needs at least 2 nodes.");
+      const double N0 = stick_slip_forces(x, old_lengths, f, new_lengths);
+      const std::vector<double> saved = segment_forces;
+      K.reinit(3 * n_nodes, 3 * n_nodes);
+      double l_mean = 0.;
+      for (unsigned int i = 0; i + 1 < n_nodes; ++i)
+        l_mean += (x[i + 1] - x[i]).norm() / (n_nodes - 1);
+      const double           h = 1e-7 * l_mean;
+      dealii::Vector<double> fp, fm;
+      std::vector<double>    dummy;
+      for (unsigned int j = 0; j < 3 * n_nodes; ++j)
+        {
+          auto xp = x, xm = x;
+          xp[j / 3][j % 3] += h;
+          xm[j / 3][j % 3] -= h;
+          stick_slip_forces(xp, old_lengths, fp, dummy);
+          stick_slip_forces(xm, old_lengths, fm, dummy);
+          for (unsigned int i = 0; i < 3 * n_nodes; ++i)
+            K(i, j) = (fp[i] - fm[i]) / (2. * h);
+        }
+      segment_forces = saved;
+      // Slack segments: regularising stiffness only.
+      for (unsigned int i = 0; i + 1 < n_nodes; ++i)
+        if (saved[i] == 0.)
+          {
+            const double k =
+              slack_stiffness_ratio * youngs_modulus * area / old_lengths[i];
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                K(3 * i + d, 3 * i + d) += k;
+                K(3 * (i + 1) + d, 3 * (i + 1) + d) += k;
+                K(3 * i + d, 3 * (i + 1) + d) -= k;
+                K(3 * (i + 1) + d, 3 * i + d) -= k;
+              }
+          }
+      return N0;
+    }
+
+
+    double
+    SlidingCable::stick_slip_forces(const std::vector<dealii::Tensor<1, 3>> &x,
+                                    const std::vector<double> &old_lengths,
+                                    dealii::Vector<double>    &f,
+                                    std::vector<double>       &L) const
+    {
+      const unsigned int n_seg = x.size() - 1;
+      f.reinit(3 * (n_seg + 1));
+      std::vector<double>               l(n_seg), mu_theta(n_seg, 0.);
+      std::vector<dealii::Tensor<1, 3>> e(n_seg);
+      for (unsigned int i = 0; i < n_seg; ++i)
+        {
+          l[i] = (x[i + 1] - x[i]).norm();
+          if (!(l[i] > 0.))
+            throw std::runtime_error(
+              "A sliding cable has two coincident consecutive nodes.");
+          e[i] = (x[i + 1] - x[i]) / l[i];
+        }
+      // mu theta_k at interior node k (between segments k-1 and k).
+      for (unsigned int k = 1; k < n_seg; ++k)
+        mu_theta[k] = friction_coefficient *
+                      std::acos(std::max(-1., std::min(1., e[k - 1] * e[k])));
+      const auto tension = [&](const double lambda) {
+        return std::max(0.,
+                        area *
+                          (0.5 * youngs_modulus * (lambda * lambda - 1.) +
+                           prestress) *
+                          lambda);
+      };
+      // Node states: 0 stick, +1 slip with N_k = N_{k-1} exp(mu theta_k)
+      // (material moves into segment k), -1 the reverse.
+      std::vector<int>    state(n_seg, 0);
+      std::vector<double> N(n_seg);
+      double              M_total = 0.;
+      for (const double Li : old_lengths)
+        M_total += Li;
+      L = old_lengths;
+      for (unsigned int iteration = 0; iteration < 4 * n_seg + 10; ++iteration)
+        {
+          // Runs of segments [a, b) joined by slipping nodes.
+          L = old_lengths;
+          for (unsigned int a = 0; a < n_seg;)
+            {
+              unsigned int b = a + 1;
+              while (b < n_seg && state[b] != 0)
+                ++b;
+              if (b > a + 1)
+                {
+                  std::vector<double> c(b - a, 1.);
+                  double              M = 0.;
+                  for (unsigned int i = a; i < b; ++i)
+                    {
+                      if (i > a)
+                        c[i - a] =
+                          c[i - a - 1] * std::exp(state[i] * mu_theta[i]);
+                      M += old_lengths[i];
+                    }
+                  const auto excess = [&](const double Na) {
+                    double m = 0.;
+                    for (unsigned int i = a; i < b; ++i)
+                      m += l[i] / stretch(Na * c[i - a]);
+                    return m - M;
+                  };
+                  if (excess(0.) > 0.)
+                    {
+                      double hi = youngs_modulus * area * 1e-6 +
+                                  std::abs(area * prestress);
+                      while (excess(hi) > 0.)
+                        hi *= 2.;
+                      double lo = 0.;
+                      for (unsigned int k = 0; k < 200 && hi - lo > 1e-15 * hi;
+                           ++k)
+                        {
+                          const double mid             = 0.5 * (lo + hi);
+                          (excess(mid) > 0. ? lo : hi) = mid;
+                        }
+                      const double Na = 0.5 * (lo + hi);
+                      for (unsigned int i = a; i < b; ++i)
+                        L[i] = l[i] / stretch(Na * c[i - a]);
+                      // Round-off of the bisection: keep the run's material.
+                      double m = 0.;
+                      for (unsigned int i = a; i < b; ++i)
+                        m += L[i];
+                      for (unsigned int i = a; i < b; ++i)
+                        L[i] *= M / m;
+                    }
+                }
+              a = b;
+            }
+          for (unsigned int i = 0; i < n_seg; ++i)
+            N[i] = tension(l[i] / L[i]);
+          // Update the active set.
+          bool         changed = false;
+          double       moved   = 0.; // s_k - s_k^old
+          const double tol     = 1e-12 * M_total;
+          for (unsigned int k = 1; k < n_seg; ++k)
+            {
+              moved += L[k - 1] - old_lengths[k - 1];
+              const double limit = std::exp(mu_theta[k]) * (1. + 1e-12);
+              if (state[k] == 0)
+                {
+                  if (N[k] > N[k - 1] * limit)
+                    state[k] = +1, changed = true;
+                  else if (N[k - 1] > N[k] * limit)
+                    state[k] = -1, changed = true;
+                }
+              else if ((state[k] == +1 && moved > tol) ||
+                       (state[k] == -1 && moved < -tol))
+                state[k] = 0, changed = true;
+            }
+          if (!changed)
+            break;
+        }
+      segment_forces = N;
+      for (unsigned int i = 0; i < n_seg; ++i)
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            f[3 * i + d] -= N[i] * e[i][d];
+            f[3 * (i + 1) + d] += N[i] * e[i][d];
+          }
+      return N[0];
+    }
   } // namespace Structure
 } // namespace Talus

@@ -34,6 +34,21 @@ namespace Talus
                         "30",
                         Integer(1),
                         "Newton iterations allowed per load step [-].");
+      prm.declare_entry("maximum step cuts",
+                        "0",
+                        Integer(0, 30),
+                        "A load step whose Newton iteration fails is "
+                        "restarted from the last converged state with half "
+                        "the increment, up to this many times in a row "
+                        "(0: fail at once) [-].");
+      prm.declare_entry("predictor",
+                        "constant",
+                        dealii::Patterns::Selection("constant|secant"),
+                        "Start of each load step: 'constant' (the last "
+                        "converged displacement) or 'secant' (extrapolated "
+                        "linearly in the load factor from the last two "
+                        "converged states; a step that fails restarts from "
+                        "the last converged state).");
       prm.declare_entry("tolerance",
                         "1e-10",
                         Double(0),
@@ -75,6 +90,8 @@ namespace Talus
       prm.enter_subsection("Solver");
       load_steps     = prm.get_integer("load steps");
       max_iterations = prm.get_integer("maximum Newton iterations");
+      max_step_cuts  = prm.get_integer("maximum step cuts");
+      predictor      = prm.get("predictor");
       tolerance      = get_positive(prm, "Structure/Solver", "tolerance");
       line_search    = prm.get_bool("line search");
       max_increment  = prm.get_double("maximum increment");
@@ -89,6 +106,59 @@ namespace Talus
     {
       matrix.reinit(structure.get_sparsity_pattern());
       displacement.reinit(structure.n_dofs());
+      previous_valid = false;
+    }
+
+
+    NewtonStatus
+    StaticSolver::solve_with_cuts(const double from, const double to)
+    {
+      dealii::Vector<double> converged = displacement;
+      double                 reached = 0., step = 1.; // fractions of to-from
+      unsigned int           cuts = 0, iterations = 0;
+      NewtonStatus           status;
+      bool                   retry = false;
+      while (reached < 1.)
+        {
+          const double target      = std::min(1., reached + step);
+          const double lambda_from = from + reached * (to - from);
+          const double lambda = target == 1. ? to : from + target * (to - from);
+          if (predictor == "secant" && !retry && previous_valid &&
+              previous_load_factor != lambda_from)
+            {
+              // u = u_from + (lambda - lambda_from)/(lambda_from -
+              // lambda_prev) (u_from - u_prev).
+              const double factor =
+                (lambda - lambda_from) / (lambda_from - previous_load_factor);
+              dealii::Vector<double> d = converged;
+              d -= previous_displacement;
+              displacement = converged;
+              displacement.add(factor, d);
+            }
+          status = solve(lambda);
+          iterations += status.iterations;
+          if (status.converged)
+            {
+              previous_displacement = converged;
+              previous_load_factor  = lambda_from;
+              previous_valid        = true;
+              reached               = target;
+              converged             = displacement;
+              cuts                  = 0;
+              retry                 = false;
+              step                  = std::min(1., 2. * step);
+            }
+          else
+            {
+              if (++cuts > max_step_cuts)
+                break;
+              step *= 0.5;
+              displacement = converged;
+              retry        = true;
+            }
+        }
+      status.iterations = iterations;
+      return status;
     }
 
 

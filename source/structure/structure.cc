@@ -581,7 +581,8 @@ namespace Talus
         V -= external_forces[i] * u[i];
       for (const auto &node : nodes)
         for (unsigned int c = 0; c < 3; ++c)
-          V -= load_factor * mass[node.dofs[c]] * gravity[c] * u[node.dofs[c]];
+          V -= (scale_gravity ? load_factor : 1.) * mass[node.dofs[c]] *
+               gravity[c] * u[node.dofs[c]];
       for (const auto &[node, F] : point_loads)
         for (unsigned int c = 0; c < 3; ++c)
           V -= load_factor * F[c] * u[nodes[node].dofs[c]];
@@ -620,7 +621,8 @@ namespace Talus
         else
           constraints.distribute_local_to_global(re, indices, r);
       };
-      const dealii::Tensor<1, 3> g = load_factor * gravity;
+      const dealii::Tensor<1, 3> g =
+        (scale_gravity ? load_factor : 1.) * gravity;
 
       // Line meshes.
       std::vector<global_dof_index> indices(6);
@@ -642,8 +644,30 @@ namespace Talus
                 }
               dealii::Vector<double>     f;
               dealii::FullMatrix<double> Ke;
-              const double               N =
-                mesh->sliding_cable->compute(mesh->chain_X, x, f, Ke);
+              double                     N     = 0.;
+              const auto                &cable = *mesh->sliding_cable;
+              if (cable.stick_slip && cable.friction_coefficient > 0.)
+                {
+                  // History: material length of each segment, stored as
+                  // its change from the reference length (LineState::plastic).
+                  std::vector<double> old_lengths(n - 1), new_lengths;
+                  for (unsigned int k = 0; k + 1 < n; ++k)
+                    old_lengths[k] =
+                      (mesh->chain_X[k + 1] - mesh->chain_X[k]).norm() +
+                      mesh->state[mesh->chain_cells[k]].plastic;
+                  N = cable.compute(
+                    mesh->chain_X, x, old_lengths, f, Ke, new_lengths);
+                  for (unsigned int k = 0; k + 1 < n; ++k)
+                    mesh->trial_state[mesh->chain_cells[k]].plastic =
+                      new_lengths[k] -
+                      (mesh->chain_X[k + 1] - mesh->chain_X[k]).norm();
+                }
+              else
+                {
+                  double energy = 0.;
+                  N = cable.compute(mesh->chain_X, x, f, Ke, &energy);
+                  last_strain_energy += energy;
+                }
               const double rhoA =
                 mesh->sliding_cable->density * mesh->sliding_cable->area;
               for (unsigned int k = 0; k + 1 < n; ++k)
@@ -799,6 +823,81 @@ namespace Talus
       for (unsigned int c = 0; c < 3; ++c)
         d[c] = u[nodes[node].dofs[c]];
       return d;
+    }
+
+
+    dealii::Point<3>
+    Structure::node_current_position(const dealii::Vector<double> &u,
+                                     const unsigned int            node) const
+    {
+      return nodes[node].X + node_displacement(u, node);
+    }
+
+
+    namespace
+    {
+      template <int dim>
+      std::vector<unsigned int>
+      vertex_nodes(const dealii::DoFHandler<dim, 3> &dof_handler,
+                   const global_dof_index            offset,
+                   const std::vector<unsigned int>  &dof_to_node)
+      {
+        std::vector<unsigned int> result(
+          dof_handler.get_triangulation().n_vertices(),
+          dealii::numbers::invalid_unsigned_int);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          for (const unsigned int v : cell->vertex_indices())
+            result[cell->vertex_index(v)] =
+              dof_to_node[offset + cell->vertex_dof_index(v, 0)];
+        return result;
+      }
+    } // namespace
+
+
+    std::vector<unsigned int>
+    Structure::membrane_vertex_nodes(const unsigned int mesh) const
+    {
+      AssertIndexRange(mesh, membrane_meshes.size());
+      return vertex_nodes(membrane_meshes[mesh]->dof_handler,
+                          membrane_meshes[mesh]->offset,
+                          dof_to_node);
+    }
+
+
+    std::vector<unsigned int>
+    Structure::line_vertex_nodes(const unsigned int mesh) const
+    {
+      AssertIndexRange(mesh, line_meshes.size());
+      return vertex_nodes(line_meshes[mesh]->dof_handler,
+                          line_meshes[mesh]->offset,
+                          dof_to_node);
+    }
+
+
+    void
+    Structure::set_external_force(const unsigned int          node,
+                                  const dealii::Tensor<1, 3> &F)
+    {
+      AssertIndexRange(node, nodes.size());
+      for (unsigned int c = 0; c < 3; ++c)
+        external_forces[nodes[node].dofs[c]] = F[c];
+    }
+
+
+    dealii::Tensor<1, 3>
+    Structure::external_force(const unsigned int node) const
+    {
+      dealii::Tensor<1, 3> F;
+      for (unsigned int c = 0; c < 3; ++c)
+        F[c] = external_forces[nodes[node].dofs[c]];
+      return F;
+    }
+
+
+    void
+    Structure::clear_external_forces()
+    {
+      external_forces = 0.;
     }
 
 

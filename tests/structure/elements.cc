@@ -7,7 +7,9 @@
 //    compressed cable carries nothing
 //  - Brake: plateau at F_a + H s, unloading along k_e, slack, stroke limit,
 //    dissipated energy F_a s + H s^2/2, tangent
-//  - SlidingCable: uniform tension at every node, tangent
+//  - SlidingCable: uniform tension at every node, tangent; stick-slip law
+//    (capstan friction with history): a node sticks below the capstan
+//    ratio and slips at it, material conserved
 //  - Membrane: rigid rotation, uniaxial strain with lateral constraint
 //    (edge force t W lambda S11), tangent with pre-stress and follower
 //    pressure, wrinkled state (no compressive principal stress; tangent)
@@ -294,6 +296,58 @@ main()
     report("tangent vs central differences",
            relative_difference(K, K_fd),
            1e-6);
+  }
+
+  // ---------------------------------------- Sliding cable, stick-slip law
+  {
+    out << "Sliding cable with stick-slip friction (mu = 0.2; 3 segments of "
+           "1 m, 90 degree bend at node 1, straight at node 2, N_0 = A "
+           "sigma_0 = 1000 N)\n";
+    SlidingCable cable;
+    cable.youngs_modulus                        = 1e11;
+    cable.area                                  = 1e-4;
+    cable.prestress                             = 1e7;
+    cable.friction_coefficient                  = 0.2;
+    cable.stick_slip                            = true;
+    const std::vector<Tensor<1, 3>> X           = {Tensor<1, 3>({0, 0, 0}),
+                                                   Tensor<1, 3>({1, 0, 0}),
+                                                   Tensor<1, 3>({1, 1, 0}),
+                                                   Tensor<1, 3>({1, 2, 0})};
+    const std::vector<double>       old_lengths = {1., 1., 1.};
+    const double                    ratio = std::exp(0.2 * numbers::PI / 2.);
+    for (const double delta : {1e-5, 1e-3})
+      {
+        auto x = X;
+        x[3][1] += delta; // pull the end along the cable
+        Vector<double>      f;
+        FullMatrix<double>  K;
+        std::vector<double> L;
+        cable.compute(X, x, old_lengths, f, K, L);
+        const auto  &N     = cable.segment_forces;
+        const double total = L[0] + L[1] + L[2];
+        out << "  end pulled by " << delta << " m: N = " << std::setprecision(8)
+            << N[0] << ", " << N[1] << ", " << N[2]
+            << " N; N_1/N_0 = " << N[1] / N[0] << " (limit " << ratio << ")\n";
+        report("  material conserved: |sum L_i - 3| / 3",
+               std::abs(total - 3.) / 3.,
+               1e-14);
+        report("  node 2 (no bend) slips: |N_2 - N_1| / N_1",
+               std::abs(N[2] - N[1]) / N[1],
+               1e-12);
+        if (delta < 1e-4) // N_1/N_0 = 1.05 < exp(mu theta)
+          {
+            // Stick at node 1: segment 0 keeps its material and tension.
+            report("  node 1 sticks: |L_0 - 1|", std::abs(L[0] - 1.), 1e-15);
+            report("  node 1 sticks: |N_0 - A sigma_0| / (A sigma_0)",
+                   std::abs(N[0] - 1000.) / 1000.,
+                   1e-12);
+          }
+        else
+          report("  node 1 slips at the capstan limit: |N_1/N_0 - "
+                 "exp(mu theta)|",
+                 std::abs(N[1] / N[0] - ratio),
+                 1e-11); // round-off of L_i times EA/N ~ 3e3
+      }
   }
 
   // -------------------------------------------------------------- Membrane

@@ -9,11 +9,19 @@
 //    coupling iteration), gives the same displacement; commit_step()
 //    advances
 //  - the load potential and the lumped mass (total mass = sum rho A L)
+//  - the coupling interface on a net (membrane mesh with a tied edge
+//    cable): membrane_vertex_nodes(), node_current_position(),
+//    set_external_force() each time step of a DynamicSolver loop; the
+//    forces read back sum to what was set, the positions are X + u, and a
+//    static solve with the same forces is balanced by the reactions
 
 #include <talus/structure/dynamic_solver.h>
 #include <talus/structure/static_solver.h>
 #include <talus/structure/structure.h>
 
+#include <deal.II/grid/grid_generator.h>
+
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -148,5 +156,123 @@ main()
   dynamics.commit_step();
   out << "after commit_step: kinetic energy > 0: "
       << (dynamics.kinetic_energy() > 0. ? "yes" : "no") << '\n';
+
+  // The coupling interface on a net: a 1 m x 1 m membrane (4 x 4 cells,
+  // pre-stressed 1000 N/m) with a cable along its edge y = 0 tied to it;
+  // boundary fixed.
+  {
+    Structure net;
+    auto      cable       = std::make_shared<Cable>();
+    cable->youngs_modulus = 1e11;
+    cable->area           = 1e-4;
+    cable->prestress      = 1e8;
+    cable->density        = 8000;
+    line(net.add_line_mesh("edge_cable", cable).triangulation,
+         Point<3>(0, 0, 0),
+         Point<3>(1, 0, 0),
+         4);
+    auto membrane                = std::make_shared<Membrane>();
+    membrane->material.thickness = 1e-3;
+    membrane->material.set_isotropic(1e9, 0.3);
+    membrane->material.prestress = Tensor<1, 3>({1e6, 1e6, 0.});
+    membrane->density            = 1000.;
+    {
+      Triangulation<2> flat;
+      GridGenerator::subdivided_hyper_cube(flat, 4);
+      GridGenerator::flatten_triangulation(
+        flat, net.add_membrane("net", membrane).triangulation);
+    }
+    net.setup_dofs();
+    std::vector<unsigned int> boundary;
+    for (unsigned int n = 0; n < net.n_nodes(); ++n)
+      {
+        const Point<3> &X = net.node_position(n);
+        if (X[0] < 1e-12 || X[0] > 1 - 1e-12 || X[1] < 1e-12 ||
+            X[1] > 1 - 1e-12)
+          {
+            boundary.push_back(n);
+            for (unsigned int c = 0; c < 3; ++c)
+              net.prescribe(n, c);
+          }
+      }
+    net.setup_system();
+
+    const auto   vertex_nodes = net.membrane_vertex_nodes(0);
+    const auto  &tria         = net.membrane_meshes[0]->triangulation;
+    double       map_error    = 0.;
+    unsigned int n_valid      = 0;
+    for (unsigned int v = 0; v < vertex_nodes.size(); ++v)
+      if (vertex_nodes[v] != numbers::invalid_unsigned_int)
+        {
+          ++n_valid;
+          map_error = std::max(map_error,
+                               tria.get_vertices()[v].distance(
+                                 net.node_position(vertex_nodes[v])));
+        }
+    const auto   cable_nodes = net.line_vertex_nodes(0);
+    unsigned int shared      = 0;
+    for (const unsigned int n : cable_nodes)
+      shared += std::count(vertex_nodes.begin(), vertex_nodes.end(), n);
+    out << "net: " << n_valid << " vertices -> nodes (of " << net.n_nodes()
+        << " nodes), largest |X_vertex - X_node| = " << map_error
+        << "; edge cable nodes that are net nodes: " << shared << " of "
+        << cable_nodes.size() << '\n';
+
+    StaticSolver net_solver(net);
+    net_solver.setup();
+    DynamicSolver coupled(net, net_solver);
+    coupled.enabled = true;
+    coupled.initialize();
+    // The coupling loop: forces from outside (here a pressure-like load
+    // growing in time, 1/16 m^2 per interior node), one step, positions
+    // read back.
+    double       position_error = 0., force_error = 0.;
+    unsigned int converged = 0;
+    const double dt        = 1e-3;
+    for (unsigned int k = 1; k <= 5; ++k)
+      {
+        net.clear_external_forces();
+        Tensor<1, 3> total;
+        for (const unsigned int n : vertex_nodes)
+          if (std::find(boundary.begin(), boundary.end(), n) == boundary.end())
+            {
+              const Tensor<1, 3> F({0., 0., -20. * k / 16.});
+              net.set_external_force(n, F);
+              total += F;
+            }
+        Tensor<1, 3> read_back;
+        for (unsigned int n = 0; n < net.n_nodes(); ++n)
+          read_back += net.external_force(n);
+        force_error = std::max(force_error, (read_back - total).norm());
+        converged += coupled.solve_step(dt).converged;
+        coupled.commit_step();
+        for (const unsigned int n : vertex_nodes)
+          position_error =
+            std::max(position_error,
+                     (net.node_current_position(net_solver.displacement, n) -
+                      (net.node_position(n) +
+                       net.node_displacement(net_solver.displacement, n)))
+                       .norm());
+      }
+    const unsigned int centre = net.find_node(Point<3>(0.5, 0.5, 0), 1e-12);
+    out << "coupling loop: " << converged << " of 5 steps converged; forces "
+        << "read back - set: " << force_error
+        << " N; |position - (X + u)|: " << position_error
+        << " m; centre moved down: "
+        << (net.node_current_position(net_solver.displacement, centre)[2] < 0. ?
+              "yes" :
+              "no")
+        << '\n';
+    // Static equilibrium with the last forces: the reactions balance them.
+    const auto   st = net_solver.solve(0.);
+    Tensor<1, 3> R, F;
+    for (const unsigned int n : boundary)
+      R += net.reaction(n);
+    for (unsigned int n = 0; n < net.n_nodes(); ++n)
+      F += net.external_force(n);
+    out << "static solve with the coupling forces: converged " << st.converged
+        << ", |sum of reactions + forces| / |forces| "
+        << ((R + F).norm() < 1e-9 * F.norm() ? "< 1e-9" : "NOT SMALL") << '\n';
+  }
   return 0;
 }

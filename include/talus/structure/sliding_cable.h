@@ -43,9 +43,28 @@ namespace Talus
        * cable material, sum_i l_i / lambda(N_i) = L, with lambda(N) the
        * stretch of the law N = A (E (lambda^2 - 1)/2 + sigma_0) lambda
        * (per segment). The tangent is computed by central differences.
-       * Stick is not modelled.
+       * With stick_slip, the law with stick below (history dependent).
        */
       double friction_coefficient = 0.;
+
+      /**
+       * Stick-slip law of the capstan friction (with friction_coefficient
+       * > 0): the history is the material (unstretched) length L_i of each
+       * segment. An interior node k between segments k-1 and k sticks (no
+       * material passes it) while the capstan inequality holds,
+       *   exp(-mu theta_k) <= N_k / N_{k-1} <= exp(mu theta_k),
+       * and slips at the limit otherwise, material moving towards the
+       * higher tension, N_i = A (E (lambda_i^2 - 1)/2 + sigma_0)
+       * lambda_i, lambda_i = l_i / L_i (tension only). Return map: active
+       * set over the nodes; a run of segments joined by slipping nodes
+       * shares its material, N_i = N_a prod exp(+-mu theta), N_a from
+       * sum l_i / lambda(N_i) = sum L_i^old (bisection); a slipping node
+       * whose material moved against its slip direction sticks again.
+       * Tangent by central differences from the same committed history.
+       * false: the cable slides towards its last node at every node (no
+       * history).
+       */
+      bool stick_slip = false;
 
       /** Segment tensions of the last compute() with friction [N]. */
       mutable std::vector<double> segment_forces;
@@ -62,6 +81,19 @@ namespace Talus
               dealii::FullMatrix<double>              &K,
               double                                  *energy = nullptr) const;
 
+      /**
+       * As compute() with the stick-slip law (stick_slip, friction > 0):
+       * @p old_lengths are the committed material lengths L_i of the
+       * segments [m], @p new_lengths receives those of this state.
+       */
+      double
+      compute(const std::vector<dealii::Tensor<1, 3>> &X,
+              const std::vector<dealii::Tensor<1, 3>> &x,
+              const std::vector<double>               &old_lengths,
+              dealii::Vector<double>                  &f,
+              dealii::FullMatrix<double>              &K,
+              std::vector<double>                     &new_lengths) const;
+
     private:
       /** Internal forces with friction (see friction_coefficient); returns
        * N_0 and fills segment_forces. */
@@ -69,6 +101,18 @@ namespace Talus
       friction_forces(const std::vector<dealii::Tensor<1, 3>> &X,
                       const std::vector<dealii::Tensor<1, 3>> &x,
                       dealii::Vector<double>                  &f) const;
+
+      /** Internal forces of the stick-slip law (see stick_slip); returns
+       * N_0, fills segment_forces and @p new_lengths. */
+      double
+      stick_slip_forces(const std::vector<dealii::Tensor<1, 3>> &x,
+                        const std::vector<double>               &old_lengths,
+                        dealii::Vector<double>                  &f,
+                        std::vector<double> &new_lengths) const;
+
+      /** Stretch lambda of a segment under tension N >= 0 [-]. */
+      double
+      stretch(const double N) const;
     };
   } // namespace Structure
 } // namespace Talus

@@ -73,6 +73,19 @@ namespace Talus
             const bool        commit = true);
 
       /**
+       * Solve for @p to from the converged state at load factor @p from;
+       * if Newton fails, restart from that state with half the increment,
+       * up to max_step_cuts times in a row (adaptive load stepping; a
+       * converged sub-step doubles the increment again, not beyond the
+       * original). With the secant predictor each increment starts from
+       * the extrapolation of the last two converged states (a retry after
+       * a failure from the last converged state). Returns the status of
+       * the last solve with the total number of Newton iterations.
+       */
+      NewtonStatus
+      solve_with_cuts(const double from, const double to);
+
+      /**
        * One step of the arc-length method (Crisfield's cylindrical
        * constraint |u - u_0|^2 = ds^2 over the unconstrained DoFs, bordering
        * with two solves per iteration) from the committed state
@@ -92,8 +105,14 @@ namespace Talus
 
       unsigned int load_steps     = 10;
       unsigned int max_iterations = 30;
-      double       tolerance      = 1e-10;
-      bool         line_search    = true;
+      /** Halvings of a failed load increment (solve_with_cuts) [-]. */
+      unsigned int max_step_cuts = 0;
+      /** Start of each increment of solve_with_cuts(): "constant" (the
+       * last converged displacement) or "secant" (extrapolated linearly in
+       * the load factor from the last two converged states). */
+      std::string predictor   = "constant";
+      double      tolerance   = 1e-10;
+      bool        line_search = true;
       /** Largest displacement change of one Newton iteration [m]; 0: no
        * limit. Longer steps are scaled down (a trust region for structures
        * that start far from equilibrium). */
@@ -107,6 +126,11 @@ namespace Talus
       dealii::SparseMatrix<double> matrix;
       /** Largest nodal force norm seen, the scale of the tolerance [N]. */
       double force_scale = 0.;
+      /** The converged state before the last one of solve_with_cuts()
+       * (secant predictor); valid if previous_valid. */
+      dealii::Vector<double> previous_displacement;
+      double                 previous_load_factor = 0.;
+      bool                   previous_valid       = false;
     };
   } // namespace Structure
 } // namespace Talus

@@ -145,8 +145,14 @@ namespace Talus
       void
       add_point_load(const unsigned int node, const dealii::Tensor<1, 3> &F);
 
-      /** Gravity acceleration [m/s^2], scaled by the load factor. */
+      /** Gravity acceleration [m/s^2], scaled by the load factor if
+       * scale_gravity. */
       dealii::Tensor<1, 3> gravity;
+
+      /** Scale gravity by the load factor (false: the self weight acts in
+       * full from load factor 0 on, e.g. during the form finding of a
+       * barrier, and the load factor scales the other loads only). */
+      bool scale_gravity = true;
 
       /** External nodal forces [N] per global DoF, not scaled by the load
        * factor (set from outside each step, e.g. by the coupling). */
@@ -175,7 +181,9 @@ namespace Talus
 
       /** Elastic energy stored in all elements at the last assemble() [J]
        * (membranes: the SVK energy, also where wrinkling modifies the
-       * stress; brakes: the energy of their elastic spring). */
+       * stress; brakes: the energy of their elastic spring; sliding
+       * cables: that of their uniform strain, 0 with friction, which
+       * dissipates). */
       double
       strain_energy() const;
 
@@ -218,6 +226,45 @@ namespace Talus
       dealii::Tensor<1, 3>
       node_displacement(const dealii::Vector<double> &u,
                         const unsigned int            node) const;
+
+      /** @name Coupling interface
+       * What a partitioned coupling (e.g. the MPM) uses each time step:
+       * the nodes of a mesh (the net), their current positions, and the
+       * external nodal forces it sets before DynamicSolver::solve_step().
+       * @{ */
+
+      /** Current position X + u of @p node [m]. */
+      dealii::Point<3>
+      node_current_position(const dealii::Vector<double> &u,
+                            const unsigned int            node) const;
+
+      /**
+       * Node of every vertex of membrane mesh @p mesh (index into
+       * membrane_meshes), indexed by the vertex index of its
+       * triangulation (numbers::invalid_unsigned_int for unused vertices).
+       * Valid after setup_dofs().
+       */
+      std::vector<unsigned int>
+      membrane_vertex_nodes(const unsigned int mesh) const;
+
+      /** As membrane_vertex_nodes() for line mesh @p mesh. */
+      std::vector<unsigned int>
+      line_vertex_nodes(const unsigned int mesh) const;
+
+      /** Set the external force on @p node to @p F [N] (replacing the
+       * previous one; not scaled by the load factor). */
+      void
+      set_external_force(const unsigned int          node,
+                         const dealii::Tensor<1, 3> &F);
+
+      /** External force on @p node [N]. */
+      dealii::Tensor<1, 3>
+      external_force(const unsigned int node) const;
+
+      /** Set all external nodal forces to zero. */
+      void
+      clear_external_forces();
+      /** @} */
 
       /** Write one VTU file per mesh (and a .pvd record over @p times). */
       void
