@@ -154,7 +154,13 @@ namespace Talus
                             Anything(),
                             "Surface mesh of a 'mesh' boundary (Gmsh .msh, "
                             "VTK .vtk or UCD .inp, read by deal.II's GridIn "
-                            "as Triangulation<dim-1, dim>) [-].");
+                            "as Triangulation<dim-1, dim>). GridIn orders "
+                            "the cells consistently, so all normals follow "
+                            "the orientation of the first cell (in 2D: to "
+                            "the left of its direction from the first to the "
+                            "second vertex; in 3D: right-handed in its "
+                            "vertex order); they must point into the "
+                            "material, otherwise set 'flip normals' [-].");
           prm.declare_entry(
             "condition",
             "fixed",
