@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Error of the rotated incline against the penalty factor and the cell size.
+
+Runs the block on the 30 degree incline rotated by rho against the grid
+(contrib/boundaries/make_rotated_incline.py) for penalty factors
+(beta = factor * M / h) and background cell sizes h, and prints a Markdown
+table of the RMS displacement error at t = 1 s against s = a t^2 / 2, the
+largest penetration and the Newton iterations per step (doc/verification.md,
+"Boundary particles", penalty study). Every run takes about a second.
+
+    usage: penalty_study.py <talus executable> [rho] [mu]
+"""
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import make_rotated_incline as incline  # noqa: E402
+
+FACTORS = (1., 10., 100., 1000., 1e4)
+CELL_SIZES = (0.1, 0.05, 0.025)
+
+
+def run(talus, rho, mu, factor, h, workdir):
+    incline.H = h
+    condition = "friction" if mu > 0. else "contact"
+    path = os.path.join(workdir, "incline.prm")
+    incline.write(path, rho, mu, condition,
+                  method_lines="    set penalty factor = %g\n" % factor)
+    text = open(path).read()
+    # no pass/fail here: the table shows the numbers
+    text = re.sub(r"set displacement error tolerance = .*",
+                  "set displacement error tolerance = 1e9", text)
+    text = re.sub(r"set maximum penetration = .*",
+                  "set maximum penetration = 1e9", text)
+    text = text.replace("set test mode = true", "set test mode = false")
+    open(path, "w").write(text)
+    out = subprocess.run([talus, path], cwd=workdir, capture_output=True,
+                         text=True)
+    log = out.stdout + out.stderr
+    error = re.findall(r"error at t = 1: displacement (\S+)", log)
+    pen = re.findall(r"check penetration: (\S+)", log)
+    newton = re.findall(r"([\d.]+) Newton iterations per step", log)
+    rejected = re.findall(r"\((\d+) rejected\)", log)
+    if out.returncode != 0 or not error:
+        return None
+    return (float(error[0]), float(pen[0]) if pen else float("nan"),
+            float(newton[0]) if newton else float("nan"),
+            int(rejected[0]) if rejected else 0)
+
+
+def main():
+    talus = os.path.abspath(sys.argv[1])
+    rho = float(sys.argv[2]) if len(sys.argv) > 2 else 30.
+    mu = float(sys.argv[3]) if len(sys.argv) > 3 else 0.1
+    g, theta = incline.G, incline.THETA
+    import math
+    a = g * (math.sin(theta) - mu * math.cos(theta))
+    print("Rotated incline rho = %g deg, mu = %g: s(1 s) = %.4f m" %
+          (rho, mu, a / 2))
+    print()
+    print("| factor | h [m] | error at 1 s [m] | error / s | "
+          "penetration [m] | penetration / h | Newton its/step | rejected |")
+    print("|---|---|---|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as workdir:
+        for factor in FACTORS:
+            for h in CELL_SIZES:
+                r = run(talus, rho, mu, factor, h, workdir)
+                if r is None:
+                    print("| %g | %g | failed | | | | | |" % (factor, h))
+                    continue
+                e, p, n, rej = r
+                print("| %g | %g | %.2e | %.1e | %.2e | %.1e | %.1f | %d |" %
+                      (factor, h, e, e / (a / 2), p, p / h, n, rej))
+                sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()
