@@ -212,8 +212,10 @@ namespace Talus
             Integer(1, 10),
             "Boundary particles per background cell length: the surface "
             "mesh is refined to the smallest background cell size and this "
-            "many Gauss points are placed per surface cell and direction "
-            "[-].");
+            "many Gauss points are placed per surface cell and direction. "
+            "On curved walls use 1: two particles with different normals "
+            "in one cell lock rotations of the material along the wall "
+            "(doc/verification.md) [-].");
           prm.enter_subsection("Displacement");
           dealii::Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
           prm.set("Function expression", dim == 2 ? "0; 0" : "0; 0; 0");
