@@ -648,10 +648,27 @@ namespace Talus
       dealii::Tensor<1, dim> u;
       if (!boundaries[b].moving)
         return u;
+      if (boundaries[b].external_displacement)
+        return boundaries[b].external_displacement(X, t);
       boundaries[b].displacement->set_time(t);
       for (unsigned int d = 0; d < dim; ++d)
         u[d] = boundaries[b].displacement->value(X, d);
       return u;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::set_displacement(
+      const unsigned int                                         b,
+      const std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &,
+                                                 const double)> &u)
+    {
+      AssertThrow(b < boundaries.size() && u,
+                  dealii::ExcMessage("set_displacement() needs an existing "
+                                     "boundary and a callable function"));
+      boundaries[b].external_displacement = u;
+      boundaries[b].moving                = true;
     }
 
 

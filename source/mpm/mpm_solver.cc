@@ -2146,7 +2146,8 @@ namespace Talus
       const double tau2 = 1e4 * max_mass / min_stiffness;
 
       const dealii::TrilinosWrappers::MPI::Vector r0 = residual;
-      const double r0_norm = std::max(r0.l2_norm(), 1e-300);
+      const double r0_norm   = std::max(r0.l2_norm(), 1e-300);
+      double       reference = r0_norm;
       dealii::TrilinosWrappers::MPI::Vector a_ghosted(
         grid.locally_owned_dofs,
         grid.locally_relevant_dofs,
@@ -2227,10 +2228,14 @@ namespace Talus
           }
           matrix.compress(dealii::VectorOperation::add);
           const double r = residual.l2_norm();
+          // relative to the loads, or to the first residual when there
+          // are none (a moving boundary accelerating a body at rest)
+          if (it == 0)
+            reference = std::max(r0_norm, r);
           if (std::getenv("TALUS_DEBUG_NEWTON"))
-            std::cerr << "  initial acceleration " << it << ": " << r / r0_norm
-                      << std::endl;
-          if (r <= 1e-10 * r0_norm)
+            std::cerr << "  initial acceleration " << it << ": "
+                      << r / reference << std::endl;
+          if (r <= 1e-10 * reference)
             {
               converged = true;
               break;

@@ -12,6 +12,7 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -88,7 +89,14 @@ namespace Talus
       bool                            flip_normals    = false;
       std::string                     mesh_file;
       std::unique_ptr<dealii::Functions::ParsedFunction<dim>> displacement;
-      bool                                                    moving = false;
+      /**
+       * Displacement set from outside (the coupling), u(X, t) [m]; when
+       * set it replaces the parsed function.
+       */
+      std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &,
+                                           const double)>
+           external_displacement;
+      bool moving = false;
       /** Penalty parameter used (automatic or given) [Pa/m]. */
       double beta = 0.;
     };
@@ -180,6 +188,24 @@ namespace Talus
       prescribed_displacement(const unsigned int        b,
                               const dealii::Point<dim> &X,
                               const double              t) const;
+
+      /**
+       * Let boundary @p b move with the displacement @p u(X, t) [m] given
+       * from outside, e.g. by a partitioned coupling that sets the
+       * structure's displacement before every coupling iteration of a
+       * step. It replaces the parsed 'Displacement' function. The MPM
+       * solver reads it in MPMSolver::prepare_step() (at the start and the
+       * end time of the step), so a coupling iteration is: set the
+       * function, prepare_step(), solve_step(); the converged iteration is
+       * committed with commit_step(), which moves the particles to
+       * X + u(X, t_{n+1}). u must be continuous in time and give the
+       * committed position at the start of the step.
+       */
+      void
+      set_displacement(
+        const unsigned int                                         b,
+        const std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &,
+                                                   const double)> &u);
 
       /**
        * Move the particles of moving boundaries to X + u_bar(X, t) and sort
