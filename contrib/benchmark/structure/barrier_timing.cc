@@ -1,9 +1,9 @@
 // Timing of the standard three-field barrier (BarrierBuilder) at a given net
 // mesh size: time per Newton iteration of the static solves (form finding
 // under gravity, then 20 kN on the middle field in 5 load steps with step
-// cutting and the secant predictor) and per time step of the dynamics (Bossak-Newmark, lumped mass,
-// the field load applied suddenly to the form-found state). Serial. Build: make
-// barrier-timing; run:
+// cutting and the secant predictor) and per time step of the dynamics
+// (Bossak-Newmark, lumped mass, the field load applied suddenly to the
+// form-found state). Serial. Build: make barrier-timing; run:
 //   barrier-timing H [N_STEPS] [DT] [STATIC_STEPS]
 // H: net cell size [m] (cells per 5 m field: round(5/H); over the 3.55 m
 // post length: round(3.55/H)); N_STEPS time steps of DT [s] (10, 5e-3);
