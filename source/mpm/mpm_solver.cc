@@ -1836,7 +1836,9 @@ namespace Talus
       if (quasi_static)
         return;
       // Project with a zero step: only mass and forces are used.
+      initializing = true;
       prepare_step(t, 1.);
+      initializing = false;
       std::string failure;
       displacement = 0.;
       if (!assemble(displacement, false, false, failure))
@@ -2321,29 +2323,30 @@ namespace Talus
                   bp.gap_old[d] = props[BP::gap + d];
                   X[d]          = props[BP::reference_position + d];
                 }
-              bp.du_bar =
-                boundary_particles->prescribed_displacement(bp.boundary,
-                                                            X,
-                                                            time) -
-                boundary_particles->prescribed_displacement(bp.boundary,
-                                                            X,
-                                                            time - dt);
+              // no increment at the initial state (the residual of
+              // initialize_acceleration() is taken at rest)
+              bp.du_bar = 0.;
+              if (!initializing && desc.moving)
+                bp.du_bar =
+                  boundary_particles->prescribed_displacement(bp.boundary,
+                                                              X,
+                                                              time) -
+                  boundary_particles->prescribed_displacement(bp.boundary,
+                                                              X,
+                                                              time - dt);
               bp.a_bar = 0.;
-              if (desc.moving)
+              if (initializing && desc.moving)
                 {
-                  // second central difference at the start of the step
-                  const double eps = 1e-2 * dt;
-                  const double t0  = time - dt;
-                  bp.a_bar =
-                    (boundary_particles->prescribed_displacement(bp.boundary,
-                                                                 X,
-                                                                 t0 + eps) -
-                     2. * boundary_particles->prescribed_displacement(
-                            bp.boundary, X, t0) +
-                     boundary_particles->prescribed_displacement(bp.boundary,
-                                                                 X,
-                                                                 t0 - eps)) /
-                    (eps * eps);
+                  // one-sided second difference at the initial time (a
+                  // coupling need not define u before it)
+                  const double eps = 1e-4; // [s]
+                  bp.a_bar = (boundary_particles->prescribed_displacement(
+                                bp.boundary, X, time) -
+                              2. * boundary_particles->prescribed_displacement(
+                                     bp.boundary, X, time + eps) +
+                              boundary_particles->prescribed_displacement(
+                                bp.boundary, X, time + 2. * eps)) /
+                             (eps * eps);
                 }
               reference_points.push_back(p->get_reference_location());
               boundary_points.push_back(std::move(bp));

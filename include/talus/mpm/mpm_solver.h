@@ -192,9 +192,9 @@ namespace Talus
         /** Prescribed displacement increment of the step [m]. */
         dealii::Tensor<1, dim> du_bar;
         /**
-         * Prescribed acceleration at the start of the step [m/s^2]
-         * (second difference of u_bar in time; zero for a boundary at
-         * rest), used by the initial acceleration.
+         * Prescribed acceleration [m/s^2] at the initial time, set only
+         * while initialize_acceleration() prepares its step (zero
+         * otherwise and for a boundary at rest).
          */
         dealii::Tensor<1, dim> a_bar;
         /** Gap at the start of the step [m]. */
@@ -445,7 +445,9 @@ namespace Talus
 
       dealii::types::global_dof_index n_active;
       bool                            prepared;
-      bool                            solved;
+      /** Set while initialize_acceleration() prepares its step. */
+      bool initializing = false;
+      bool solved;
     };
   } // namespace MPM
 } // namespace Talus
