@@ -457,6 +457,7 @@ namespace Talus
     double              last_momentum   = initial.momentum[0];
     std::vector<double> crossings;
     double              total_lost_mass = 0.;
+    unsigned int        total_lost_boundary_particles = 0;
     unsigned long       total_newton    = 0;
     unsigned int        total_rejected  = 0;
     while (!time_control.finished())
@@ -515,6 +516,23 @@ namespace Talus
                             "Enlarge the background grid.");
             pcout << "  Warning: " << msg.str() << '\n';
           }
+        {
+          const auto lost_boundary = boundaries.take_lost_per_boundary();
+          for (unsigned int b = 0; b < lost_boundary.size(); ++b)
+            if (lost_boundary[b] > 0)
+              {
+                total_lost_boundary_particles += lost_boundary[b];
+                pcout << "  Warning: " << lost_boundary[b]
+                      << " boundary particle(s) of boundary '"
+                      << boundaries.name(b)
+                      << "' left the background grid at t = "
+                      << time_control.time
+                      << " s and were removed: that part of the boundary no "
+                         "longer acts, also if it comes back (lost so far: "
+                      << total_lost_boundary_particles
+                      << "). Enlarge the background grid.\n";
+              }
+        }
 
         const auto diagnostics = solver.compute_diagnostics();
         {
@@ -642,6 +660,9 @@ namespace Talus
           }
         pcout << "\n  max speed: " << round(v_max)
               << "\n  lost mass: " << round(total_lost_mass) << " kg\n";
+        if (total_lost_boundary_particles > 0)
+          pcout << "  lost boundary particles: "
+                << total_lost_boundary_particles << '\n';
       }
     else
       pcout << "Done: " << time_control.step << " steps (" << total_rejected
@@ -649,7 +670,12 @@ namespace Talus
             << static_cast<double>(total_newton) /
                  std::max(1u, time_control.step)
             << " Newton iterations per step, "
-            << "lost mass " << total_lost_mass << " kg, wall time "
+            << "lost mass " << total_lost_mass << " kg, "
+            << (total_lost_boundary_particles > 0 ?
+                  std::to_string(total_lost_boundary_particles) +
+                    " boundary particles lost, " :
+                  std::string())
+            << "wall time "
             << format_seconds(wall_seconds()) << "\n"
             << "Output in " << output.directory() << "/\n";
     if (compare)

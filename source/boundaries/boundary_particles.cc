@@ -502,10 +502,15 @@ namespace Talus
                          Properties::n_properties);
       handler.signals.particle_lost.connect(
         [this](
-          const typename dealii::Particles::ParticleIterator<dim> &,
+          const typename dealii::Particles::ParticleIterator<dim> &particle,
           const typename dealii::Triangulation<dim>::active_cell_iterator &) {
           ++lost;
+          const unsigned int b = static_cast<unsigned int>(
+            particle->get_properties()[Properties::boundary]);
+          if (b < lost_per_boundary.size())
+            ++lost_per_boundary[b];
         });
+      lost_per_boundary.assign(boundaries.size(), 0);
       if (boundaries.empty())
         return;
 
@@ -698,6 +703,19 @@ namespace Talus
           p.set_location(off_faces(X + prescribed_displacement(b, X, t), n));
         }
       handler.sort_particles_into_subdomains_and_cells();
+    }
+
+
+    template <int dim>
+    std::vector<unsigned int>
+    BoundaryParticles<dim>::take_lost_per_boundary()
+    {
+      std::vector<unsigned int> n(lost_per_boundary.size(), 0);
+      for (unsigned int b = 0; b < n.size(); ++b)
+        n[b] = dealii::Utilities::MPI::sum(lost_per_boundary[b],
+                                           grid.mpi_communicator);
+      std::fill(lost_per_boundary.begin(), lost_per_boundary.end(), 0u);
+      return n;
     }
 
 

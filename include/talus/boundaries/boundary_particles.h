@@ -230,11 +230,27 @@ namespace Talus
       std::vector<BoundaryResultant<dim>>
       resultants() const;
 
-      /** Boundary particles that left the grid so far. */
+      /** Boundary particles that left the grid so far (this rank). */
       unsigned int
       n_lost() const
       {
         return lost;
+      }
+
+      /**
+       * The number of boundary particles of every boundary that left the
+       * background grid since the last call, summed over all ranks
+       * (collective). A moving boundary that carries its particles out of the
+       * grid loses them for good: that part of the boundary no longer acts.
+       */
+      std::vector<unsigned int>
+      take_lost_per_boundary();
+
+      /** The name of boundary @p b (as in the parameter file). */
+      const std::string &
+      name(const unsigned int b) const
+      {
+        return boundaries[b].name;
       }
 
     private:
@@ -259,6 +275,8 @@ namespace Talus
       dealii::Particles::ParticleHandler<dim> handler;
       std::vector<BoundaryDescription<dim>>   boundaries;
       unsigned int                            lost = 0;
+      /** Lost since the last take_lost_per_boundary(), per boundary. */
+      std::vector<unsigned int> lost_per_boundary;
     };
   } // namespace Boundaries
 } // namespace Talus
