@@ -354,7 +354,13 @@ namespace Talus
                             o << mu;
                             return o.str();
                           }(desc.friction_coefficient))
-                  << ", " << desc.method << " beta = " << std::setprecision(4)
+                  << (desc.augmented ? ", augmented Lagrangian, penalty" :
+                      desc.nitsche   ? ", Nitsche (theta = " +
+                                       std::to_string(desc.nitsche_theta)
+                                         .substr(0, 4) +
+                                       "), stabilisation" :
+                                       ", penalty")
+                  << " beta = " << std::setprecision(4)
                   << desc.beta << " Pa/m" << std::defaultfloat << '\n';
           }
       }
@@ -459,6 +465,8 @@ namespace Talus
     double              total_lost_mass = 0.;
     unsigned int        total_lost_boundary_particles = 0;
     unsigned long       total_newton    = 0;
+    unsigned long       total_multiplier_updates = 0;
+    double              max_constraint_gap       = 0.;
     unsigned int        total_rejected  = 0;
     while (!time_control.finished())
       {
@@ -499,6 +507,8 @@ namespace Talus
         solver.commit_step();
         time_control.accept(dt_taken);
         total_newton += result.iterations;
+        total_multiplier_updates += result.multiplier_updates;
+        max_constraint_gap = std::max(max_constraint_gap, result.constraint_gap);
 
         const unsigned int n_lost    = points.take_lost_count();
         const double       lost_mass = points.take_lost_mass();
@@ -660,6 +670,13 @@ namespace Talus
           }
         pcout << "\n  max speed: " << round(v_max)
               << "\n  lost mass: " << round(total_lost_mass) << " kg\n";
+        if (boundaries.any_augmented())
+          pcout << "  multiplier updates: " << total_multiplier_updates
+                << " in " << time_control.step
+                << " steps, largest gap left " << std::setprecision(2)
+                << std::scientific << max_constraint_gap << std::defaultfloat
+                << std::setprecision(6) << " m (tolerance "
+                << boundaries.multiplier_tolerance() << " m)\n";
         if (total_lost_boundary_particles > 0)
           pcout << "  lost boundary particles: "
                 << total_lost_boundary_particles << '\n';
@@ -670,6 +687,11 @@ namespace Talus
             << static_cast<double>(total_newton) /
                  std::max(1u, time_control.step)
             << " Newton iterations per step, "
+            << (boundaries.any_augmented() ?
+                  std::to_string(total_multiplier_updates) +
+                    " multiplier updates in " +
+                    std::to_string(time_control.step) + " steps, " :
+                  std::string())
             << "lost mass " << total_lost_mass << " kg, "
             << (total_lost_boundary_particles > 0 ?
                   std::to_string(total_lost_boundary_particles) +

@@ -87,6 +87,22 @@ namespace Talus
       using dealii::Patterns::Integer;
       using dealii::Patterns::Selection;
       prm.enter_subsection("Boundary particles");
+      prm.declare_entry(
+        "multiplier tolerance",
+        "1e-5",
+        Double(0.),
+        "Augmented Lagrangian boundaries: the multiplier (Uzawa) updates "
+        "of a step stop when no active boundary particle has a gap larger "
+        "than this times the smallest background cell size (normal gap for "
+        "contact and slip, the whole relative displacement of the step for "
+        "fixed and sticking particles) [-].");
+      prm.declare_entry(
+        "maximum multiplier updates",
+        "20",
+        Integer(1, 1000),
+        "Augmented Lagrangian boundaries: the most multiplier updates in "
+        "one step; a step that needs more fails like a non-converged Newton "
+        "solve (and is retried with a smaller step if allowed) [-].");
       for (unsigned int k = 0; k < max_boundaries; ++k)
         {
           prm.enter_subsection(slot_name(k));
@@ -177,11 +193,30 @@ namespace Talus
           prm.declare_entry(
             "method",
             "penalty",
-            Selection("penalty"),
+            Selection("penalty|augmented Lagrangian|Nitsche"),
             "How the condition is imposed: 'penalty' (Chandra et al. 2021: "
             "a spring of stiffness beta per unit surface on the "
-            "accumulated gap) [-]. Nitsche and Lagrange multipliers are not "
-            "implemented yet.");
+            "accumulated gap; the gap scales with 1/beta), or 'augmented "
+            "Lagrangian' (a Lagrange multiplier per boundary particle, or "
+            "per cell with constraint = per cell, added to the same spring "
+            "and updated by Uzawa iterations after each converged Newton "
+            "solve until the gap is below 'multiplier tolerance': the "
+            "constraint holds independently of beta, at the cost of more "
+            "Newton solves per step), or 'Nitsche' (the traction of the "
+            "material at the boundary particle, -S n from the mean nominal "
+            "stress of the material points of its cell, plus the penalty "
+            "beta (the stabilisation, beta = factor M / h) on the gap and "
+            "'Nitsche symmetry' times the adjoint term; for contact and "
+            "friction the active set and the Coulomb return act on the "
+            "trial force -w S n - beta w g, Chouly and Hild 2013; "
+            "consistent, so the gap does not scale with 1/beta; a cell "
+            "without material points falls back to penalty) [-].");
+          prm.declare_entry(
+            "Nitsche symmetry",
+            "1",
+            Double(-1., 1.),
+            "theta of Nitsche's method: 1 symmetric, 0 incomplete, -1 "
+            "skew-symmetric (the adjoint term's weight) [-].");
           prm.declare_entry(
             "penalty factor",
             "100",
@@ -232,6 +267,13 @@ namespace Talus
     {
       boundaries.clear();
       prm.enter_subsection("Boundary particles");
+      relative_gap_tolerance = prm.get_double("multiplier tolerance");
+      if (!(relative_gap_tolerance > 0.))
+        InputFile::reject("Boundary particles",
+                          "multiplier tolerance",
+                          prm.get("multiplier tolerance"),
+                          "a positive number");
+      max_updates = prm.get_integer("maximum multiplier updates");
       for (unsigned int k = 0; k < max_boundaries; ++k)
         {
           const std::string sub = "Boundary particles/" + slot_name(k);
@@ -271,6 +313,9 @@ namespace Talus
                               "a positive number for condition = friction "
                               "(use 'contact' for frictionless contact)");
           b.method            = prm.get("method");
+          b.augmented         = b.method == "augmented Lagrangian";
+          b.nitsche           = b.method == "Nitsche";
+          b.nitsche_theta     = prm.get_double("Nitsche symmetry");
           b.penalty_factor    = prm.get_double("penalty factor");
           b.penalty_parameter = prm.get_double("penalty parameter");
           if (!(b.penalty_factor > 0.))
@@ -520,6 +565,7 @@ namespace Talus
                      grid.is_cartesian ? grid.cell_extent[d] :
                                          grid.minimal_cell_diameter);
 
+      gap_tolerance = relative_gap_tolerance * h;
       const bool root =
         dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) == 0;
       std::vector<dealii::Point<dim>>  points;

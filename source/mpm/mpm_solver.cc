@@ -415,6 +415,26 @@ namespace Talus
     {
       dealii::TimerOutput::Scope scope(timer, "setup");
       const auto                &dof_handler = grid.dof_handler;
+      {
+        // tangent of the undeformed, virgin material (Nitsche's method)
+        const unsigned int   n_history = points.n_history();
+        std::vector<double>  h_old(n_history, 0.), h_new(n_history, 0.);
+        dealii::Tensor<2, 3> P;
+        dealii::Tensor<4, 3> A;
+        const auto           I = dealii::unit_symmetric_tensor<3>();
+        model.compute_stress(I,
+                             I,
+                             dealii::ArrayView<const double>(h_old.data(),
+                                                             n_history),
+                             dealii::ArrayView<double>(h_new.data(), n_history),
+                             P,
+                             &A);
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int l = 0; l < dim; ++l)
+                elastic_tangent[i][j][k][l] = A[i][j][k][l];
+      }
 
       dealii::DynamicSparsityPattern dsp(grid.locally_relevant_dofs);
       dealii::DoFTools::make_sparsity_pattern(dof_handler, dsp);
@@ -955,6 +975,7 @@ namespace Talus
 
       // Boundary particles in cells with at least one node that carries
       // mass: penalty forces on the material.
+      std::vector<dealii::Tensor<1, dim>> dT(dofs_per_cell), df(dofs_per_cell);
       for (const auto &c : boundary_cells)
         {
           if (!ok)
@@ -969,6 +990,15 @@ namespace Talus
               dealii::Tensor<1, dim> du_b;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 du_b[comp[i]] += bp.N[node[i]] * du_local[i];
+              // traction -S n on the material and its derivatives (a
+              // cell without material points falls back to penalty)
+              const bool nitsche = bp.nitsche && bp.with_stress;
+              if (nitsche)
+                {
+                  dealii::Tensor<1, dim> T;
+                  boundary_traction(bp, du_local, T, dT);
+                  bp.lambda = bp.weight * T;
+                }
               BoundaryForce bf = boundary_force(bp, du_b);
               // A slip direction that reverses from one iterate to the
               // next means the solution lies in the (narrow, width
@@ -978,8 +1008,9 @@ namespace Talus
               // stiffness it would cycle).
               if (with_matrix && bp.frozen < 0 && bf.state == 2)
                 {
+                  // (the direction opposite to the tangential force)
                   dealii::Tensor<1, dim> slip =
-                    bf.gap - (bf.gap * bp.normal) * bp.normal;
+                    (bf.force * bp.normal) * bp.normal - bf.force;
                   if (slip.norm() > 0.)
                     slip /= slip.norm();
                   if (bp.last_state == 2 && slip * bp.last_slip < 0.)
@@ -1002,6 +1033,36 @@ namespace Talus
                     for (unsigned int j = 0; j < dofs_per_cell; ++j)
                       k_local(i, j) -=
                         Ni * bp.N[node[j]] * bf.dforce_du[comp[i]][comp[j]];
+                }
+              if (nitsche)
+                {
+                  // f = D(w T - k g): D = df/dF = -dforce_du / k; the
+                  // force also changes with the stress, df_j += w D dT_j.
+                  // Symmetry term (theta): r_i -= theta/beta (f - w T) .
+                  // dT_i, its tangent without second derivatives of S.
+                  const double                 k = bp.beta * bp.weight;
+                  const dealii::Tensor<2, dim> D = -bf.dforce_du / k;
+                  const dealii::Tensor<1, dim> q = bf.force - bp.lambda;
+                  const double                 c_theta = bp.theta / bp.beta;
+                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                    {
+                      df[j] = bp.weight * (D * dT[j]);
+                      for (unsigned int d = 0; d < dim; ++d)
+                        df[j][d] += bp.N[node[j]] * bf.dforce_du[d][comp[j]];
+                    }
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    {
+                      const double Ni = bp.N[node[i]];
+                      r_local[i] -= c_theta * (q * dT[i]);
+                      if (!with_matrix)
+                        continue;
+                      for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                        {
+                          k_local(i, j) -= Ni * bp.weight * (D * dT[j])[comp[i]];
+                          k_local(i, j) +=
+                            c_theta * ((df[j] - bp.weight * dT[j]) * dT[i]);
+                        }
+                    }
                 }
             }
           if (with_matrix)
@@ -1705,16 +1766,67 @@ namespace Talus
 
       dealii::TrilinosWrappers::MPI::Vector du(grid.locally_owned_dofs,
                                                grid.mpi_communicator);
+      displacement            = du;
+      const double f_ext_norm = external_force.l2_norm();
+      double       reference  = 0.;
+      // Augmented Lagrangian boundaries: after each converged Newton solve
+      // the multipliers take the boundary forces (Uzawa) and Newton runs
+      // again from the solution, until the gaps are below the tolerance.
+      const bool augmented =
+        boundary_particles != nullptr && boundary_particles->any_augmented();
+      const unsigned int max_updates =
+        augmented ? boundary_particles->max_multiplier_updates() : 0;
+      for (unsigned int update = 0;; ++update)
+        {
+          const unsigned int iterations_before = result.iterations;
+          newton_solve(du, f_ext_norm, reference, result);
+          result.iterations += iterations_before;
+          if (!result.converged || !augmented)
+            return result;
+          result.constraint_gap = update_multipliers();
+          if (result.constraint_gap <=
+              boundary_particles->multiplier_tolerance())
+            return result;
+          if (update == max_updates)
+            {
+              std::ostringstream msg;
+              msg << "the augmented Lagrangian boundary gaps did not converge "
+                     "in "
+                  << max_updates << " multiplier updates (largest gap "
+                  << result.constraint_gap << " m, tolerance "
+                  << boundary_particles->multiplier_tolerance()
+                  << " m); raise the penalty factor or 'maximum "
+                     "multiplier updates'";
+              result.converged = false;
+              result.failure   = msg.str();
+              solved           = false;
+              return result;
+            }
+          ++result.multiplier_updates;
+          result.converged = false;
+          solved           = false;
+        }
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::newton_solve(dealii::TrilinosWrappers::MPI::Vector &du,
+                                 const double  f_ext_norm,
+                                 double       &reference,
+                                 NewtonResult &result)
+    {
       for (auto &bp : boundary_points)
         bp.last_state = -1;
-      displacement                = du;
-      const double f_ext_norm     = external_force.l2_norm();
-      double       reference      = 0.;
-      double       last_increment = 0.;
+      displacement          = du;
+      double last_increment = 0.;
       // contact states are updated only from a solution of the current
       // linear system
       bool         solved_since_update = false;
       unsigned int contact_rounds      = 0;
+      // the reference residual is that of the first Newton solve of the
+      // step (later solves after multiplier updates start near it)
+      const bool first_solve = reference == 0.;
 
       for (unsigned int it = 0; it <= max_newton_iterations; ++it)
         {
@@ -1727,13 +1839,13 @@ namespace Talus
           if (!ok)
             {
               result.failure = failure;
-              return result;
+              return;
             }
           const double r = residual.l2_norm();
           if (!std::isfinite(r))
             {
               result.failure = "the residual is not finite";
-              return result;
+              return;
             }
           // Contact states (after the first correction): a change
           // re-assembles with the new constraints.
@@ -1748,7 +1860,7 @@ namespace Talus
                 --it;
               continue;
             }
-          if (it == 0)
+          if (it == 0 && first_solve)
             reference = std::max(r, f_ext_norm);
           result.residual = reference > 0. ? r / reference : r;
           if (std::getenv("TALUS_DEBUG_NEWTON"))
@@ -1777,7 +1889,7 @@ namespace Talus
             {
               result.converged = true;
               solved           = true;
-              return result;
+              return;
             }
           if (it == max_newton_iterations)
             break;
@@ -1791,7 +1903,7 @@ namespace Talus
             {
               result.failure =
                 std::string("the linear solver failed: ") + e.what();
-              return result;
+              return;
             }
           result.linear_iterations += n_linear;
           du += increment;
@@ -1825,7 +1937,7 @@ namespace Talus
         msg << "; contact states on friction boundaries may still be "
                "changing";
       result.failure = msg.str();
-      return result;
+      return;
     }
 
 
@@ -2057,23 +2169,40 @@ namespace Talus
               auto props = p.get_properties();
               for (unsigned int d = 0; d < dim; ++d)
                 {
-                  props[BP::gap + d]      = 0.;
-                  props[BP::reaction + d] = 0.;
+                  props[BP::gap + d]        = 0.;
+                  props[BP::reaction + d]   = 0.;
+                  props[BP::multiplier + d] = 0.;
                 }
               props[BP::state] = 0.;
             }
-          double work = 0.;
+          double                              work = 0.;
+          std::vector<dealii::Tensor<1, dim>> dT(dofs_per_cell);
+          std::vector<double>                 du_local(dofs_per_cell);
           for (const auto &c : boundary_cells)
+            {
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              du_local[i] = displacement(c.dofs[i]);
             for (unsigned int b = 0; b < c.n_boundary; ++b)
               {
-                const BoundaryPoint &bp = boundary_points[c.first_boundary + b];
+                BoundaryPoint &bp = boundary_points[c.first_boundary + b];
                 dealii::Tensor<1, dim> du_b;
                 for (unsigned int i = 0; i < dofs_per_cell; ++i)
                   {
                     const auto ci = fe.system_to_component_index(i);
-                    du_b[ci.first] += bp.N[ci.second] * displacement(c.dofs[i]);
+                    du_b[ci.first] += bp.N[ci.second] * du_local[i];
+                  }
+                if (bp.nitsche && bp.with_stress)
+                  {
+                    dealii::Tensor<1, dim> T;
+                    boundary_traction(bp, du_local, T, dT);
+                    bp.lambda = bp.weight * T;
                   }
                 const BoundaryForce bf = boundary_force(bp, du_b);
+                if (std::getenv("TALUS_DEBUG_NITSCHE") && bf.state != 0)
+                  std::cerr << "  bp " << bp.particle->get_location()
+                            << " lambda.n " << bp.lambda * bp.normal
+                            << " f.n " << bf.force * bp.normal << " g.n "
+                            << bf.gap * bp.normal << std::endl;
                 // The part of the force on nodes without mass (constrained)
                 // does not act on the material: report the rest.
                 double active_share = 0.;
@@ -2085,11 +2214,17 @@ namespace Talus
                 work -= bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
                 // a merged (cell-wise) point shares its gap, state and,
                 // by weight, its reaction among its particles
+                // the multiplier the next step starts from reproduces this
+                // force at zero increment: lambda - k g = f
+                const dealii::Tensor<1, dim> lambda =
+                  bp.augmented ? bf.force + bp.beta * bp.weight * bf.gap :
+                                 dealii::Tensor<1, dim>();
                 const auto write = [&](auto particle, const double share) {
                   auto props = particle->get_properties();
                   for (unsigned int d = 0; d < dim; ++d)
                     {
-                      props[BP::gap + d] = bf.gap[d];
+                      props[BP::gap + d]        = bf.gap[d];
+                      props[BP::multiplier + d] = share * lambda[d];
                       props[BP::reaction + d] =
                         -share * active_share * bf.force[d];
                     }
@@ -2101,6 +2236,7 @@ namespace Talus
                   for (unsigned int m = 0; m < bp.members.size(); ++m)
                     write(bp.members[m], bp.member_weights[m] / bp.weight);
               }
+            }
           friction_dissipation +=
             dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
           boundary_points.clear();
@@ -2280,6 +2416,12 @@ namespace Talus
       const auto        &base    = grid.fe.base_element(0);
       const unsigned int n_nodes = base.dofs_per_cell;
       boundary_cells.clear();
+      with_nitsche = false;
+      for (unsigned int b = 0; b < boundary_particles->n_boundaries(); ++b)
+        with_nitsche =
+          with_nitsche || boundary_particles->boundary(b).nitsche;
+      if (with_nitsche)
+        project_stress_to_grid();
       for (const auto &cell : grid.dof_handler.active_cell_iterators())
         {
           if (!cell->is_locally_owned())
@@ -2316,11 +2458,16 @@ namespace Talus
               bp.beta          = desc.beta;
               bp.mu            = desc.friction_coefficient;
               bp.condition     = desc.condition;
+              bp.augmented     = desc.augmented;
+              bp.nitsche       = desc.nitsche;
+              bp.theta         = desc.nitsche_theta;
+              c.nitsche        = c.nitsche || desc.nitsche;
               dealii::Point<dim> X;
               for (unsigned int d = 0; d < dim; ++d)
                 {
                   bp.normal[d]  = props[BP::normal + d];
                   bp.gap_old[d] = props[BP::gap + d];
+                  bp.lambda[d]  = props[BP::multiplier + d];
                   X[d]          = props[BP::reference_position + d];
                 }
               // no increment at the initial state (the residual of
@@ -2354,10 +2501,20 @@ namespace Talus
           if (grid.is_cartesian)
             for (unsigned int q = 0; q < n; ++q)
               {
-                auto &N = boundary_points[c.first_boundary + q].N;
-                N.resize(n_nodes);
+                auto &bp = boundary_points[c.first_boundary + q];
+                bp.N.resize(n_nodes);
                 for (unsigned int k = 0; k < n_nodes; ++k)
-                  N[k] = base.shape_value(k, reference_points[q]);
+                  bp.N[k] = base.shape_value(k, reference_points[q]);
+                if (bp.nitsche)
+                  {
+                    bp.dN.resize(n_nodes);
+                    for (unsigned int k = 0; k < n_nodes; ++k)
+                      {
+                        bp.dN[k] = base.shape_grad(k, reference_points[q]);
+                        for (unsigned int d = 0; d < dim; ++d)
+                          bp.dN[k][d] /= grid.cell_extent[d];
+                      }
+                  }
               }
           else
             {
@@ -2365,14 +2522,21 @@ namespace Talus
               dealii::FEValues<dim>         fe_values(grid.mapping,
                                               base,
                                               quadrature,
-                                              dealii::update_values);
+                                              dealii::update_values |
+                                                dealii::update_gradients);
               fe_values.reinit(tria_cell);
               for (unsigned int q = 0; q < n; ++q)
                 {
-                  auto &N = boundary_points[c.first_boundary + q].N;
-                  N.resize(n_nodes);
+                  auto &bp = boundary_points[c.first_boundary + q];
+                  bp.N.resize(n_nodes);
                   for (unsigned int k = 0; k < n_nodes; ++k)
-                    N[k] = fe_values.shape_value(k, q);
+                    bp.N[k] = fe_values.shape_value(k, q);
+                  if (bp.nitsche)
+                    {
+                      bp.dN.resize(n_nodes);
+                      for (unsigned int k = 0; k < n_nodes; ++k)
+                        bp.dN[k] = fe_values.shape_grad(k, q);
+                    }
                 }
             }
           // Nodes without mass are constrained to zero increments: in the
@@ -2396,6 +2560,26 @@ namespace Talus
                     S += bp.N[k];
                 bp.du_bar *= S;
                 bp.a_bar *= S;
+                // Nitsche: the stress at the start of the step, interpolated
+                // from the nodes with mass
+                if (bp.nitsche && S > 0.)
+                  {
+                    bp.sigma_n = 0.;
+                    for (unsigned int k = 0; k < n_nodes; ++k)
+                      if (massive[k])
+                        for (unsigned int i = 0; i < dim; ++i)
+                          for (unsigned int j = 0; j < dim; ++j)
+                            bp.sigma_n[i][j] +=
+                              bp.N[k] *
+                              nodal_stress[j](
+                                c.dofs[grid.fe.component_to_system_index(i,
+                                                                         k)]);
+                    bp.sigma_n /= S;
+                    bp.with_stress = true;
+                    bp.full_cell   = std::find(massive.begin(),
+                                             massive.end(),
+                                             false) == massive.end();
+                  }
               }
           }
           // Cell-wise constraints: merge the particles of each such
@@ -2429,7 +2613,11 @@ namespace Talus
                       m.du_bar *= bp.weight;
                       m.a_bar *= bp.weight;
                       m.gap_old *= bp.weight;
+                      m.sigma_n *= bp.weight;
+                      m.full_cell = bp.full_cell;
                       for (auto &v : m.N)
+                        v *= bp.weight;
+                      for (auto &v : m.dN)
                         v *= bp.weight;
                       merged.emplace(bp.boundary, std::move(m));
                       continue;
@@ -2442,6 +2630,12 @@ namespace Talus
                   m.du_bar += bp.weight * bp.du_bar;
                   m.a_bar += bp.weight * bp.a_bar;
                   m.gap_old += bp.weight * bp.gap_old;
+                  m.lambda += bp.lambda; // forces add up
+                  m.sigma_n += bp.weight * bp.sigma_n;
+                  m.with_stress = m.with_stress && bp.with_stress;
+                  m.full_cell   = m.full_cell && bp.full_cell;
+                  for (unsigned int k = 0; k < m.dN.size(); ++k)
+                    m.dN[k] += bp.weight * bp.dN[k];
                   for (unsigned int k = 0; k < m.N.size(); ++k)
                     m.N[k] += bp.weight * bp.N[k];
                 }
@@ -2454,7 +2648,10 @@ namespace Talus
                       m.du_bar /= m.weight;
                       m.a_bar /= m.weight;
                       m.gap_old /= m.weight;
+                      m.sigma_n /= m.weight;
                       for (auto &v : m.N)
+                        v /= m.weight;
+                      for (auto &v : m.dN)
                         v /= m.weight;
                       kept.push_back(std::move(m));
                     }
@@ -2470,48 +2667,193 @@ namespace Talus
 
 
     template <int dim>
+    void
+    MPMSolver<dim>::project_stress_to_grid()
+    {
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      std::vector<dealii::TrilinosWrappers::MPI::Vector> sum(
+        dim,
+        dealii::TrilinosWrappers::MPI::Vector(grid.locally_owned_dofs,
+                                              grid.mpi_communicator));
+      std::vector<dealii::Vector<double>> local(
+        dim, dealii::Vector<double>(dofs_per_cell));
+      // Voigt order of the stored stress: xx yy zz xy yz xz
+      const unsigned int voigt[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
+      for (const auto &c : cells)
+        {
+          for (auto &l : local)
+            l = 0.;
+          for (unsigned int q = 0; q < c.n; ++q)
+            {
+              const unsigned int k     = c.first + q;
+              const auto         props = particles[k]->get_properties();
+              const double       m     = props[Properties::mass];
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const auto   ci = fe.system_to_component_index(i);
+                  const double N  = shape_values[k * n_nodes + ci.second];
+                  for (unsigned int j = 0; j < dim; ++j)
+                    local[j][i] +=
+                      N * m *
+                      props[Properties::stress + voigt[ci.first][j]];
+                }
+            }
+          for (unsigned int j = 0; j < dim; ++j)
+            sum[j].add(c.dofs, local[j]);
+        }
+      nodal_stress.resize(dim);
+      for (unsigned int j = 0; j < dim; ++j)
+        {
+          sum[j].compress(dealii::VectorOperation::add);
+          for (const auto i : grid.locally_owned_dofs)
+            if (nodal_mass(i) > 0.)
+              sum[j](i) /= nodal_mass(i);
+          sum[j].compress(dealii::VectorOperation::insert);
+          nodal_stress[j].reinit(grid.locally_owned_dofs,
+                                 grid.locally_relevant_dofs,
+                                 grid.mpi_communicator);
+          nodal_stress[j] = sum[j];
+        }
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::boundary_traction(
+      const BoundaryPoint                 &b,
+      const std::vector<double>           &du_local,
+      dealii::Tensor<1, dim>              &T,
+      std::vector<dealii::Tensor<1, dim>> &dT) const
+    {
+      const auto        &fe            = grid.fe;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      const auto        &n             = b.normal;
+      if (!b.full_cell)
+        {
+          // the stress at the start of the step only
+          T = -(b.sigma_n * n);
+          for (auto &d : dT)
+            d = 0.;
+          return;
+        }
+      // grad du at the particle
+      dealii::Tensor<2, dim> H;
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          const auto ci = fe.system_to_component_index(i);
+          H[ci.first] += du_local[i] * b.dN[ci.second];
+        }
+      dealii::Tensor<2, dim> sigma = b.sigma_n;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          for (unsigned int c = 0; c < dim; ++c)
+            for (unsigned int m = 0; m < dim; ++m)
+              sigma[i][j] += elastic_tangent[i][j][c][m] * H[c][m];
+      T = -(sigma * n);
+      for (unsigned int l = 0; l < dofs_per_cell; ++l)
+        {
+          const auto ci = fe.system_to_component_index(l);
+          dT[l]         = 0.;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              for (unsigned int m = 0; m < dim; ++m)
+                dT[l][i] -= elastic_tangent[i][j][ci.first][m] *
+                            b.dN[ci.second][m] * n[j];
+        }
+    }
+
+
+    template <int dim>
+    double
+    MPMSolver<dim>::update_multipliers()
+    {
+      const auto        &fe            = grid.fe;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      double             largest_gap   = 0.;
+      for (const auto &c : boundary_cells)
+        for (unsigned int b = 0; b < c.n_boundary; ++b)
+          {
+            BoundaryPoint &bp = boundary_points[c.first_boundary + b];
+            if (!bp.augmented)
+              continue;
+            dealii::Tensor<1, dim> du_b;
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              {
+                const auto ci = fe.system_to_component_index(i);
+                du_b[ci.first] += bp.N[ci.second] * displacement(c.dofs[i]);
+              }
+            const BoundaryForce bf = boundary_force(bp, du_b);
+            if (bf.state == 0)
+              {
+                bp.lambda = 0.;
+                continue;
+              }
+            // the constraint violated: the whole gap when bonded or
+            // sticking, its normal part when sliding or frictionless
+            const dealii::Tensor<1, dim> g = bp.gap_old + du_b - bp.du_bar;
+            const bool whole = bp.condition == Boundaries::Condition::fixed ||
+                               (bp.condition ==
+                                  Boundaries::Condition::friction &&
+                                bf.state == 1);
+            largest_gap =
+              std::max(largest_gap,
+                       whole ? g.norm() : std::abs(g * bp.normal));
+            bp.lambda = bf.force;
+          }
+      return dealii::Utilities::MPI::max(largest_gap, grid.mpi_communicator);
+    }
+
+
+    template <int dim>
     typename MPMSolver<dim>::BoundaryForce
     MPMSolver<dim>::boundary_force(const BoundaryPoint          &b,
                                    const dealii::Tensor<1, dim> &du) const
     {
       using Boundaries::Condition;
+      // Trial force F = lambda - k g on the material (lambda = 0 for
+      // penalty); its normal part F_n = F . n decides contact (F_n > 0:
+      // pressed together; for penalty the same as g . n < 0).
       BoundaryForce                 r;
       const double                  k  = b.beta * b.weight;
       const dealii::Tensor<1, dim>  g  = b.gap_old + du - b.du_bar;
       const dealii::Tensor<1, dim> &n  = b.normal;
       const double                  gn = g * n;
+      const dealii::Tensor<1, dim>  F  = b.lambda - k * g;
+      const double                  Fn = F * n;
       const dealii::Tensor<2, dim>  I  = dealii::unit_symmetric_tensor<dim>();
       const dealii::Tensor<2, dim>  nn = dealii::outer_product(n, n);
       switch (b.condition)
         {
           case Condition::fixed:
-            r.force     = -k * g;
+            r.force     = F;
             r.dforce_du = -k * I;
             r.gap       = g;
             r.state     = 1;
             break;
           case Condition::slip:
-            r.force     = -k * gn * n;
+            r.force     = Fn * n;
             r.dforce_du = -k * nn;
             r.gap       = gn * n;
             r.state     = 1;
             break;
           case Condition::contact:
-            if (b.frozen < 0 ? gn < 0. : b.frozen != 0)
+            if (b.frozen < 0 ? Fn > 0. : b.frozen != 0)
               {
-                r.force     = -k * gn * n;
+                r.force     = Fn * n;
                 r.dforce_du = -k * nn;
                 r.gap       = gn * n;
                 r.state     = 1;
               }
             break;
           case Condition::friction:
-            if (b.frozen < 0 ? gn < 0. :
-                               (b.frozen == 1 || (b.frozen == 2 && gn < 0.)))
+            if (b.frozen < 0 ? Fn > 0. :
+                               (b.frozen == 1 || (b.frozen == 2 && Fn > 0.)))
               {
-                const double                 fn      = -k * gn; // > 0
-                const dealii::Tensor<1, dim> g_t     = g - gn * n;
-                const dealii::Tensor<1, dim> f_trial = -k * g_t;
+                const double                 fn      = Fn; // > 0
+                const dealii::Tensor<1, dim> f_trial = F - Fn * n;
                 const double                 norm    = f_trial.norm();
                 const double                 limit   = b.mu * fn;
                 if (b.frozen < 0 ? norm <= limit :
@@ -2530,7 +2872,13 @@ namespace Talus
                       -k * nn - k * b.mu * dealii::outer_product(s, n) -
                       (limit * k / norm) *
                         ((I - dealii::outer_product(s, s)) * (I - nn));
-                    r.gap   = gn * n - (limit / k) * s;
+                    // penalty: the elastic part of the tangential gap
+                    // carries the force into the next step; augmented
+                    // Lagrangian: the multiplier does, the gap keeps only
+                    // its normal part
+                    r.gap   = b.augmented || b.nitsche ?
+                                gn * n :
+                                gn * n - (limit / k) * s;
                     r.state = 2;
                   }
               }

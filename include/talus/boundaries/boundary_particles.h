@@ -59,8 +59,14 @@ namespace Talus
       static constexpr unsigned int reaction = gap + dim;
       /** 0 inactive (no material in the cell or separated), 1 stick or
        * bonded, 2 slip. */
-      static constexpr unsigned int state        = reaction + dim;
-      static constexpr unsigned int n_properties = state + 1;
+      static constexpr unsigned int state = reaction + dim;
+      /**
+       * Lagrange multiplier of an 'augmented Lagrangian' boundary: the
+       * force of the boundary on the material at this particle at the end
+       * of the last step [N] (zero for 'penalty').
+       */
+      static constexpr unsigned int multiplier   = state + 1;
+      static constexpr unsigned int n_properties = multiplier + dim;
     };
 
     /** Data of one boundary as read from the parameter file. */
@@ -71,6 +77,20 @@ namespace Talus
       std::string  geometry;
       Condition    condition            = Condition::fixed;
       std::string  method               = "penalty";
+      /**
+       * Impose the condition with Lagrange multipliers iterated by Uzawa
+       * updates on top of the penalty spring (method = augmented
+       * Lagrangian): the constraint then holds to a tolerance that does
+       * not depend on the penalty value.
+       */
+      bool         augmented            = false;
+      /**
+       * Impose the condition by Nitsche's method (method = Nitsche): the
+       * penalty spring plus the material's traction at the boundary and,
+       * with weight nitsche_theta, the symmetry term.
+       */
+      bool   nitsche       = false;
+      double nitsche_theta = 1.;
       double       friction_coefficient = 0.;
       double       penalty_factor       = 100.;
       double       penalty_parameter    = 0.; ///< [Pa/m], 0: automatic
@@ -138,7 +158,12 @@ namespace Talus
      * f = -beta w g of a spring on the accumulated gap g (the relative
      * displacement of the material against the boundary since the
      * particle came into contact), restricted to the normal for slip and
-     * contact, with a Coulomb return for friction.
+     * contact, with a Coulomb return for friction. With method =
+     * augmented Lagrangian a multiplier lambda (a force per particle) is
+     * added, f = lambda - beta w g, and updated after each converged Newton
+     * solve, lambda <- f (Uzawa), until the gap is below a tolerance
+     * (Simo and Laursen 1992, Comput. Struct. 42; the same active-set and
+     * Coulomb logic acts on the trial force).
      */
     template <int dim>
     class BoundaryParticles
@@ -181,6 +206,33 @@ namespace Talus
       boundary(const unsigned int b) const
       {
         return boundaries[b];
+      }
+
+      /** Whether any boundary uses the augmented Lagrangian method. */
+      bool
+      any_augmented() const
+      {
+        for (const auto &b : boundaries)
+          if (b.augmented)
+            return true;
+        return false;
+      }
+
+      /**
+       * Largest gap an augmented Lagrangian boundary may keep at the end of
+       * a step [m] ('multiplier tolerance' times the smallest cell size).
+       */
+      double
+      multiplier_tolerance() const
+      {
+        return gap_tolerance;
+      }
+
+      /** Most multiplier (Uzawa) updates in one step. */
+      unsigned int
+      max_multiplier_updates() const
+      {
+        return max_updates;
       }
 
       /** Prescribed displacement of boundary @p b at @p X and time @p t. */
@@ -275,6 +327,9 @@ namespace Talus
       dealii::Particles::ParticleHandler<dim> handler;
       std::vector<BoundaryDescription<dim>>   boundaries;
       unsigned int                            lost = 0;
+      double                                  relative_gap_tolerance = 1e-5;
+      double                                  gap_tolerance          = 0.;
+      unsigned int                            max_updates            = 20;
       /** Lost since the last take_lost_per_boundary(), per boundary. */
       std::vector<unsigned int> lost_per_boundary;
     };

@@ -37,7 +37,11 @@ namespace Talus
       unsigned int iterations        = 0;
       unsigned int linear_iterations = 0;
       double       residual          = 0.; ///< last relative residual
-      std::string  failure;                ///< why it did not converge
+      /** Multiplier (Uzawa) updates of augmented Lagrangian boundaries. */
+      unsigned int multiplier_updates = 0;
+      /** Largest gap left on augmented Lagrangian boundaries [m]. */
+      double      constraint_gap = 0.;
+      std::string failure; ///< why it did not converge
     };
 
     /** Global integrals over the material points. */
@@ -177,6 +181,8 @@ namespace Talus
         /** Boundary particles of the cell in boundary_points. */
         unsigned int first_boundary = 0;
         unsigned int n_boundary     = 0;
+        /** Whether one of its boundary particles uses Nitsche's method. */
+        bool nitsche = false;
       };
 
       /** A boundary particle in a cell with material, for one step. */
@@ -199,6 +205,36 @@ namespace Talus
         dealii::Tensor<1, dim> a_bar;
         /** Gap at the start of the step [m]. */
         dealii::Tensor<1, dim> gap_old;
+        /**
+         * Augmented Lagrangian: the multiplier, a force on the material
+         * [N] (the converged force of the last step, then of the last
+         * Uzawa update); zero for penalty.
+         */
+        dealii::Tensor<1, dim> lambda;
+        bool                   augmented = false;
+        /**
+         * Nitsche's method: lambda is w times the traction of the material
+         * at the particle, lambda = -w S(u) n, recomputed at each iterate;
+         * theta is the symmetry parameter (1 symmetric, 0 incomplete, -1
+         * skew).
+         */
+        bool   nitsche = false;
+        double theta   = 1.;
+        /**
+         * Nitsche: Cauchy stress at the particle at the start of the step
+         * (from the nodal projection of the points' stresses) and the
+         * gradients of the cell's shape functions at the particle.
+         */
+        dealii::Tensor<2, dim>              sigma_n;
+        std::vector<dealii::Tensor<1, dim>> dN;
+        /** Whether sigma_n is known (a node of the cell has mass). */
+        bool with_stress = false;
+        /**
+         * Whether every node of the cell has mass: only then does the
+         * stress follow the increment within the step (the massless nodes
+         * are held at zero and would read as a strain).
+         */
+        bool full_cell = false;
         /** Shape values of the cell's nodes at the particle. */
         std::vector<double> N;
         /**
@@ -216,7 +252,7 @@ namespace Talus
         int frozen = -1;
         /** State at the last Newton iterate (-1: none yet). */
         int last_state = -1;
-        /** Slip direction (of the elastic gap) at the last iterate. */
+        /** Slip direction (against the tangential force) at the last iterate. */
         dealii::Tensor<1, dim> last_slip;
       };
 
@@ -240,6 +276,44 @@ namespace Talus
       BoundaryForce
       boundary_force(const BoundaryPoint          &b,
                      const dealii::Tensor<1, dim> &du) const;
+
+      /**
+       * Nitsche's method: the traction T = -sigma n the material exerts
+       * on itself across the boundary at particle @p b for the cell's
+       * increments @p du_local, with sigma = sigma_n + C : grad du (the
+       * stress at the start of the step, projected to the nodes and
+       * interpolated, plus the elastic increment with the tangent C of the
+       * undeformed material), and its derivatives @p dT with respect to
+       * the cell's degrees of freedom.
+       */
+      void
+      boundary_traction(const BoundaryPoint                 &b,
+                        const std::vector<double>           &du_local,
+                        dealii::Tensor<1, dim>              &T,
+                        std::vector<dealii::Tensor<1, dim>> &dT) const;
+
+      /** Project the points' Cauchy stresses to the nodes (Nitsche). */
+      void
+      project_stress_to_grid();
+
+      /**
+       * Uzawa update of the augmented Lagrangian boundary particles at the
+       * current increment: lambda <- f (the force they exert). Returns the
+       * largest gap they had (all ranks) [m].
+       */
+      double
+      update_multipliers();
+
+      /**
+       * Newton-Raphson on the current contact data from the increment
+       * @p du; @p reference is the residual that relative tolerances refer
+       * to (set by the first solve of the step when zero).
+       */
+      void
+      newton_solve(dealii::TrilinosWrappers::MPI::Vector &du,
+                   const double                           f_ext_norm,
+                   double                                &reference,
+                   NewtonResult                          &result);
 
       /**
        * Initial accelerations @p a (owned) that obey the conditions of the
@@ -361,6 +435,14 @@ namespace Talus
 
       std::vector<CellCache>                                         cells;
       std::vector<typename dealii::Particles::ParticleIterator<dim>> particles;
+      /**
+       * Nitsche: the nodal Cauchy stress, column j in nodal_stress[j]
+       * (entry of node I, component i: sigma_ij), ghosted; and the
+       * elastic tangent dP/dF of the undeformed material.
+       */
+      std::vector<dealii::TrilinosWrappers::MPI::Vector> nodal_stress;
+      dealii::Tensor<4, dim>                             elastic_tangent;
+      bool                                               with_nitsche = false;
       std::vector<double>                 shape_values;
       std::vector<dealii::Tensor<1, dim>> shape_gradients;
       std::vector<dealii::Tensor<1, dim>> particle_forces; ///< m_p b_p [N]
