@@ -18,7 +18,7 @@ H = 0.05  # background cell size [m]
 
 
 def write(path, rho_deg, mu, condition, method_lines="", end_time=1.0,
-          mpi_note=""):
+          mpi_note="", max_penetration=None):
     rho = math.radians(rho_deg)
     t = (math.cos(rho), math.sin(rho))
     n = (-math.sin(rho), math.cos(rho))
@@ -96,7 +96,7 @@ subsection Verification
   # 1 % of s(0.5 s) for sliding; 1 % of h for the stick case (the elastic
   # settlement of the block under its weight is about 1.5e-4 m)
   set displacement error tolerance = {0.01 * 0.125 * a if sliding else 0.01 * H:.6g}
-  set maximum penetration = {1e-3 * H:.6g}
+  set maximum penetration = {max_penetration or 1e-3 * H:.6g}
 {"  set maximum final speed = 1e-4" + chr(10) if not sliding else ""}end
 """)
 
@@ -112,3 +112,25 @@ if __name__ == "__main__":
           method_lines="    set constraint = per cell\n")
     write(f"{out}/incline_rotated_30_stick_per_cell.prm", 30, 0.7, "friction",
           method_lines="    set constraint = per cell\n")
+    # augmented Lagrangian with cell-wise constant multipliers: with penalty
+    # factor 1 the penalty alone lets the block sink by 4.6e-4 h; the
+    # multipliers hold the gap below 1e-5 h (per particle, the constraints
+    # of a rotated line over-determine the bilinear field and Uzawa stalls)
+    al = ("    set method = augmented Lagrangian\n"
+          "    set constraint = per cell\n")
+    write(f"{out}/incline_rotated_30_stick_augmented_factor1.prm", 30, 0.7,
+          "friction", method_lines=al + "    set penalty factor = 1\n",
+          max_penetration=1e-5 * H)
+    write(f"{out}/incline_rotated_30_mu01_augmented_factor10.prm", 30, 0.1,
+          "friction", method_lines=al + "    set penalty factor = 10\n",
+          max_penetration=1e-5 * H)
+    write(f"{out}/incline_rotated_45_mu0_augmented.prm", 45, 0.0, "contact",
+          method_lines=al)
+    # Nitsche's method (symmetric, default stabilisation factor 100)
+    ni = "    set method = Nitsche\n"
+    write(f"{out}/incline_rotated_45_mu0_nitsche.prm", 45, 0.0, "contact",
+          method_lines=ni)
+    write(f"{out}/incline_rotated_30_mu01_nitsche.prm", 30, 0.1, "friction",
+          method_lines=ni)
+    write(f"{out}/incline_rotated_30_stick_nitsche.prm", 30, 0.7, "friction",
+          method_lines=ni)

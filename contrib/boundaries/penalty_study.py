@@ -55,7 +55,8 @@ def run(talus, rho, mu, factor, h, method, workdir):
     pen = re.findall(r"check penetration: (\S+)", log)
     newton = re.findall(r"([\d.]+) Newton iterations per step", log)
     rejected = re.findall(r"\((\d+) rejected\)", log)
-    updates = re.findall(r"multiplier updates: (\d+) in (\d+) steps", log)
+    updates = (re.findall(r"multiplier updates: (\d+) in (\d+) steps", log)
+               or re.findall(r"(\d+) multiplier updates in (\d+) steps", log))
     if out.returncode != 0 or not error:
         return None
     return (float(error[0]), float(pen[0]) if pen else float("nan"),

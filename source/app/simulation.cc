@@ -356,8 +356,11 @@ namespace Talus
                           }(desc.friction_coefficient))
                   << (desc.augmented ? ", augmented Lagrangian, penalty" :
                       desc.nitsche   ? ", Nitsche (theta = " +
-                                       std::to_string(desc.nitsche_theta)
-                                         .substr(0, 4) +
+                                       [](const double theta) {
+                                         std::ostringstream o;
+                                         o << theta;
+                                         return o.str();
+                                       }(desc.nitsche_theta) +
                                        "), stabilisation" :
                                        ", penalty")
                   << " beta = " << std::setprecision(4)

@@ -213,10 +213,14 @@ namespace Talus
             "without material points falls back to penalty) [-].");
           prm.declare_entry(
             "Nitsche symmetry",
-            "1",
+            "-1",
             Double(-1., 1.),
-            "theta of Nitsche's method: 1 symmetric, 0 incomplete, -1 "
-            "skew-symmetric (the adjoint term's weight) [-].");
+            "theta of Nitsche's method, the weight of the adjoint term: -1 "
+            "skew-symmetric (stable for any stabilisation factor; the "
+            "default, robust in all the rotated-incline tests), 0 "
+            "incomplete, 1 symmetric (needs penalty factor >= 100 and "
+            "failed in Newton on the 45 degree incline, see "
+            "doc/verification.md) [-].");
           prm.declare_entry(
             "penalty factor",
             "100",

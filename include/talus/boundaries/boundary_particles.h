@@ -90,7 +90,7 @@ namespace Talus
        * with weight nitsche_theta, the symmetry term.
        */
       bool   nitsche       = false;
-      double nitsche_theta = 1.;
+      double nitsche_theta = -1.;
       double       friction_coefficient = 0.;
       double       penalty_factor       = 100.;
       double       penalty_parameter    = 0.; ///< [Pa/m], 0: automatic
