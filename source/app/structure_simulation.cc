@@ -2221,6 +2221,46 @@ namespace Talus
 
       // ------------------------------------------------------------------
       /**
+       * Mean of displacement component @p c of solid mesh @p mesh over its
+       * faces with boundary id @p id, int u_c dA0 / A0 (the work-conjugate
+       * of a uniform traction along c) [m].
+       */
+      double
+      face_mean(const Structure      &s,
+                const Vector<double> &u,
+                const unsigned int    mesh_index,
+                const unsigned int    id,
+                const unsigned int    c)
+      {
+        const auto                      &mesh = *s.solid_meshes[mesh_index];
+        const QGauss<2>                  quadrature(mesh.fe->degree + 1);
+        FEFaceValues<3>                  fe_face_values(*mesh.fe,
+                                       quadrature,
+                                       update_values | update_JxW_values);
+        const FEValuesExtractors::Scalar uc(c);
+        Vector<double>                   local(mesh.dof_handler.n_dofs());
+        for (unsigned int i = 0; i < local.size(); ++i)
+          local[i] = u[mesh.offset + i];
+        std::vector<double> values(quadrature.size());
+        double              integral = 0., area = 0.;
+        for (const auto &cell : mesh.dof_handler.active_cell_iterators())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->at_boundary(f) && cell->face(f)->boundary_id() == id)
+              {
+                fe_face_values.reinit(cell, f);
+                fe_face_values[uc].get_function_values(local, values);
+                for (unsigned int q = 0; q < quadrature.size(); ++q)
+                  {
+                    integral += values[q] * fe_face_values.JxW(q);
+                    area += fe_face_values.JxW(q);
+                  }
+              }
+        return integral / area;
+      }
+
+
+      // ------------------------------------------------------------------
+      /**
        * A continuum solid alone (subsection Solid): generated box or Gmsh
        * file of hexahedra, the supports and the traction of that
        * subsection, gravity. Reports the largest displacement, compared
@@ -2364,29 +2404,6 @@ namespace Talus
         std::vector<Result>
         results(const Structure &s, const Vector<double> &u) override
         {
-          const auto                      &mesh = *s.solid_meshes[0];
-          const QGauss<2>                  quadrature(mesh.fe->degree + 1);
-          FEFaceValues<3>                  fe_face_values(*mesh.fe,
-                                         quadrature,
-                                         update_values | update_JxW_values);
-          const FEValuesExtractors::Scalar uz(2);
-          Vector<double>                   local(mesh.dof_handler.n_dofs());
-          for (unsigned int i = 0; i < local.size(); ++i)
-            local[i] = u[mesh.offset + i];
-          std::vector<double> values(quadrature.size());
-          double              integral = 0., area = 0.;
-          for (const auto &cell : mesh.dof_handler.active_cell_iterators())
-            for (const unsigned int f : cell->face_indices())
-              if (cell->at_boundary(f) && cell->face(f)->boundary_id() == 1)
-                {
-                  fe_face_values.reinit(cell, f);
-                  fe_face_values[uz].get_function_values(local, values);
-                  for (unsigned int q = 0; q < quadrature.size(); ++q)
-                    {
-                      integral += values[q] * fe_face_values.JxW(q);
-                      area += fe_face_values.JxW(q);
-                    }
-                }
           const auto  &g               = p.solid_geometry;
           const double L               = g.upper_corner[0] - g.lower_corner[0];
           const double b               = g.upper_corner[1] - g.lower_corner[1];
@@ -2400,9 +2417,138 @@ namespace Talus
           const double euler_bernoulli = P * L * L * L / (3. * E * I);
           const double timoshenko = euler_bernoulli + P * L / (kap * G * b * h);
           return {
-            {"tip deflection [m]", integral / area, timoshenko},
-            {"Euler-Bernoulli deflection [m]", euler_bernoulli, 0., false},
-            {"end face area [m^2]", area, b * h, false}};
+            {"tip deflection [m]", face_mean(s, u, 0, 1, 2), timoshenko},
+            {"Euler-Bernoulli deflection [m]", euler_bernoulli, 0., false}};
+        }
+      };
+
+
+      /**
+       * Axial bar: the generated box of subsection Solid (length L along x,
+       * section A0 = b h), held by its three symmetry planes (u_x = 0 on
+       * x = x_min, u_y = 0 on y = y_min, u_z = 0 on z = z_min: a
+       * homogeneous uniaxial stress state is admissible) and pulled on
+       * x = x_max (id 1) by the dead traction t = F/A0, F the x component
+       * of 'point load'. Static, exact for any mesh (the field is linear):
+       * S11 = E E11 with P11 = lambda S11 = t, i.e. E lambda (lambda^2 -
+       * 1)/2 = t, end displacement (lambda - 1) L. Dynamic (the load
+       * applied suddenly at t = 0 to the bar at rest): for nu = 0 the bar
+       * is a one-dimensional rod whose end oscillates about the static
+       * value with the period of the first axial mode, T1 = 4 L/c, c =
+       * sqrt(E/rho) (all modes of the rod, omega_k = (2k - 1) omega_1,
+       * cross the static value at T1/4 + n T1/2; the dispersion of the
+       * higher modes of the finite elements moves the crossings slightly).
+       * The period is measured from the crossings of the mean end
+       * displacement (linear interpolation); the largest end displacement,
+       * 2 (lambda - 1) L for the exact rod, is printed.
+       */
+      class AxialBar : public SolidModel
+      {
+      public:
+        using SolidModel::SolidModel;
+
+        std::string
+        description() const override
+        {
+          return "axial bar (continuum solid, FE_Q(" +
+                 std::to_string(p.solid.degree) +
+                 ")) on its symmetry planes, end traction" +
+                 (p.dynamic ? " applied suddenly: first axial period" :
+                              ": uniaxial stress");
+        }
+
+        std::array<std::string, 3>
+        support_parameter() const override
+        {
+          return {{S, "model", p.model}};
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          const auto &g    = p.solid_geometry;
+          auto       &mesh = s.add_solid("bar", solid_component());
+          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
+          const double A0 = (g.upper_corner[1] - g.lower_corner[1]) *
+                            (g.upper_corner[2] - g.lower_corner[2]);
+          mesh.tractions.emplace_back(
+            1, Tensor<1, 3>({p.point_load[0] / A0, 0., 0.}));
+          s.setup_dofs();
+          s.prescribe_solid_boundary(0, 0, {true, false, false});
+          s.prescribe_solid_boundary(0, 2, {false, true, false});
+          s.prescribe_solid_boundary(0, 4, {false, false, true});
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure      &s,
+                const Vector<double> &u,
+                const double          t) override
+        {
+          const double tip = face_mean(s, u, 0, 1, 0);
+          if (p.dynamic)
+            {
+              const double u_static = static_end_displacement();
+              if (!times.empty() &&
+                  (samples.back() - u_static) * (tip - u_static) < 0.)
+                crossings.push_back(times.back() +
+                                    (t - times.back()) *
+                                      (u_static - samples.back()) /
+                                      (tip - samples.back()));
+              times.push_back(t);
+              samples.push_back(tip);
+              largest = std::max(largest, std::abs(tip));
+            }
+          return {{"end_displacement", tip}};
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          const double u_static = static_end_displacement();
+          if (!p.dynamic)
+            return {
+              {"end displacement [m]", face_mean(s, u, 0, 1, 0), u_static}};
+          const auto  &g = p.solid_geometry;
+          const double L = g.upper_corner[0] - g.lower_corner[0];
+          const double T1 =
+            4. * L / std::sqrt(p.solid.youngs_modulus / p.solid.density);
+          std::vector<Result> r = {{"largest |end displacement| / static",
+                                    largest / std::abs(u_static),
+                                    2.,
+                                    false},
+                                   {"crossings of the static value",
+                                    double(crossings.size()),
+                                    0.,
+                                    false}};
+          r.push_back(
+            {"first axial period [s]",
+             crossings.size() >= 2 ?
+               2. * (crossings.back() - crossings[0]) / (crossings.size() - 1) :
+               0.,
+             T1});
+          return r;
+        }
+
+      private:
+        std::vector<double> times, samples, crossings;
+        double              largest = 0.;
+
+        /** (lambda - 1) L with E lambda (lambda^2 - 1)/2 = t. */
+        double
+        static_end_displacement() const
+        {
+          const auto  &g  = p.solid_geometry;
+          const double L  = g.upper_corner[0] - g.lower_corner[0];
+          const double A0 = (g.upper_corner[1] - g.lower_corner[1]) *
+                            (g.upper_corner[2] - g.lower_corner[2]);
+          const double t = p.point_load[0] / A0;
+          const double E = p.solid.youngs_modulus;
+          const double lambda =
+            bisect([&](
+                     const double x) { return E * x * (x * x - 1.) / 2. - t; },
+                   1. / std::sqrt(3.),
+                   2. + std::abs(t) / E);
+          return (lambda - 1.) * L;
         }
       };
 
@@ -2555,6 +2701,8 @@ namespace Talus
           return std::make_unique<Cantilever>(p);
         if (p.model == "hanging block")
           return std::make_unique<HangingBlock>(p);
+        if (p.model == "axial bar")
+          return std::make_unique<AxialBar>(p);
         if (p.model == "von Mises truss")
           return std::make_unique<VonMisesTruss>(p);
         if (p.model == "catenary" || p.model == "plane catenary")
@@ -2639,13 +2787,15 @@ namespace Talus
         p.solid.parse_parameters(prm, solid_s);
         p.solid_geometry.parse_parameters(prm, solid_s);
         prm.leave_subsection();
-        if ((p.model == "cantilever" || p.model == "hanging block") &&
+        if ((p.model == "cantilever" || p.model == "hanging block" ||
+             p.model == "axial bar") &&
             !p.solid_geometry.mesh_file.empty())
           InputFile::reject(solid_s,
                             "mesh file",
                             p.solid_geometry.mesh_file,
-                            "models 'cantilever' and 'hanging block' "
-                            "generate their box (leave 'mesh file' empty)");
+                            "models 'cantilever', 'hanging block' and "
+                            "'axial bar' generate their box (leave 'mesh "
+                            "file' empty)");
 
         const std::string gs = S + "/Geometry";
         prm.enter_subsection("Geometry");
@@ -2719,6 +2869,14 @@ namespace Talus
                             point_load_text,
                             "the cantilever needs an end load 0, 0, P with "
                             "P != 0");
+        if (p.model == "axial bar" &&
+            !(p.point_load[0] != 0. && p.point_load[1] == 0. &&
+              p.point_load[2] == 0.))
+          InputFile::reject(ls,
+                            "point load",
+                            point_load_text,
+                            "the axial bar needs an end load F, 0, 0 with "
+                            "F != 0");
         if (p.model == "hanging block")
           {
             if (!(p.gravity[0] == 0. && p.gravity[1] == 0. &&
@@ -2748,13 +2906,14 @@ namespace Talus
         p.dynamic_time_step = prm.get_double("time step");
         prm.leave_subsection();
         if (p.dynamic && p.model != "square membrane" && p.model != "barrier" &&
-            p.model != "vibrating string" && p.model != "solid")
+            p.model != "vibrating string" && p.model != "solid" &&
+            p.model != "axial bar")
           InputFile::reject(S + "/Dynamics",
                             "dynamic",
                             "true",
                             "only models 'square membrane', 'vibrating "
-                            "string', 'solid' and 'barrier' run in time so "
-                            "far");
+                            "string', 'solid', 'axial bar' and 'barrier' run "
+                            "in time so far");
         if (!p.dynamic && p.model == "vibrating string")
           InputFile::reject(S + "/Dynamics",
                             "dynamic",
@@ -2792,7 +2951,7 @@ namespace Talus
                             "circular membrane|"
                             "square membrane|sheared membrane|vibrating string|"
                             "sliding ring|capstan|brake|mesh file|barrier|"
-                            "solid|cantilever|hanging block"),
+                            "solid|cantilever|hanging block|axial bar"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
@@ -2820,7 +2979,9 @@ namespace Talus
         "traction on x_max: Timoshenko's tip deflection), 'hanging block' "
         "(the box hanging under gravity on a vertical cable of 'cable "
         "length' tied to the centre of its top face: cable force and "
-        "stretch by hand). "
+        "stretch by hand), 'axial bar' (the box on its symmetry planes "
+        "pulled on x_max by 'point load' (F, 0, 0) as a traction: exact "
+        "uniaxial stress, or with 'dynamic' the first axial period 4 L/c). "
         "Each model with a closed "
         "form reports and checks it.");
 
