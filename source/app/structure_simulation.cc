@@ -2288,14 +2288,15 @@ namespace Talus
         std::array<std::string, 3>
         support_parameter() const override
         {
-          return {
-            {S + "/Solid",
-             "fixed boundary ids",
-             p.solid_geometry.fixed_boundary_ids.empty() ?
-               std::string() :
-               std::to_string(p.solid_geometry.fixed_boundary_ids[0]) +
-                 (p.solid_geometry.fixed_boundary_ids.size() > 1 ? ", ..." :
-                                                                   "")}};
+          const auto &g = p.solid_geometry;
+          if (g.fixed_boundary_ids.empty() && !g.support_boxes.empty())
+            return {{S + "/Solid",
+                     "support boxes",
+                     std::to_string(g.support_boxes.size()) + " box(es)"}};
+          std::string ids;
+          for (const unsigned int id : g.fixed_boundary_ids)
+            ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+          return {{S + "/Solid", "fixed boundary ids", ids}};
         }
 
         void
