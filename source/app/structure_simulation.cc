@@ -2,18 +2,24 @@
 #include <talus/app/structure_simulation.h>
 #include <talus/base/input.h>
 #include <talus/structure/barrier_builder.h>
+#include <talus/structure/continuum_solid.h>
 #include <talus/structure/dynamic_solver.h>
+#include <talus/structure/mesh_input.h>
 #include <talus/structure/plane_string.h>
 #include <talus/structure/static_solver.h>
 #include <talus/structure/structure.h>
 
 #include <deal.II/base/convergence_table.h>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria.h>
 
+#include <deal.II/fe/fe_values.h>
+
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -115,9 +121,12 @@ namespace Talus
         bool   stick_slip = false;
         double spring_EA = 0., spring_length = 1.;
         Talus::Structure::BarrierBuilder barrier;
-        double                           mode_amplitude = 0.;
-        unsigned int                     n_levels = 1, first_level = 0;
-        double                           minimum_rate = 0.;
+        // Continuum solid.
+        Talus::Structure::ContinuumSolid<3> solid;
+        Talus::Structure::SolidGeometry     solid_geometry;
+        double                              mode_amplitude = 0.;
+        unsigned int                        n_levels = 1, first_level = 0;
+        double                              minimum_rate = 0.;
       };
 
 
@@ -181,6 +190,17 @@ namespace Talus
         /** Results compared with the closed form at the end. */
         virtual std::vector<Result>
         results(const Structure &s, const Vector<double> &u) = 0;
+
+        /**
+         * The parameter that decides how the model is held (subsection,
+         * entry, value), named when a part of the structure is connected
+         * to no support.
+         */
+        virtual std::array<std::string, 3>
+        support_parameter() const
+        {
+          return {{S, "model", p.model}};
+        }
 
         /** Solve the pre-stress equilibrium (lambda = 0) first. */
         virtual bool
@@ -1410,26 +1430,14 @@ namespace Talus
         void
         read(Triangulation<dim, 3> &tria, const std::string &what) const
         {
-          GridIn<dim, 3> grid_in;
-          grid_in.attach_triangulation(tria);
-          std::ifstream in(p.mesh_file);
-          if (!in)
-            InputFile::reject(S + "/Geometry",
-                              "mesh file",
-                              p.mesh_file,
-                              "the file cannot be opened");
-          try
-            {
-              grid_in.read(in, GridIn<dim, 3>::Format::msh);
-            }
-          catch (const std::exception &)
-            {
-              InputFile::reject(S + "/Geometry",
-                                "mesh file",
-                                p.mesh_file,
-                                "it is not a readable Gmsh (.msh) file of " +
-                                  what);
-            }
+          Talus::Structure::read_gmsh_mesh(
+            tria, p.mesh_file, S + "/Geometry", "mesh file", what);
+        }
+
+        std::array<std::string, 3>
+        support_parameter() const override
+        {
+          return {{S + "/Geometry", "mesh file", p.mesh_file}};
         }
 
         void
@@ -2211,6 +2219,472 @@ namespace Talus
       };
 
 
+      // ------------------------------------------------------------------
+      /**
+       * Mean of displacement component @p c of solid mesh @p mesh over its
+       * faces with boundary id @p id, int u_c dA0 / A0 (the work-conjugate
+       * of a uniform traction along c) [m].
+       */
+      double
+      face_mean(const Structure      &s,
+                const Vector<double> &u,
+                const unsigned int    mesh_index,
+                const unsigned int    id,
+                const unsigned int    c)
+      {
+        const auto                      &mesh = *s.solid_meshes[mesh_index];
+        const QGauss<2>                  quadrature(mesh.fe->degree + 1);
+        FEFaceValues<3>                  fe_face_values(*mesh.fe,
+                                       quadrature,
+                                       update_values | update_JxW_values);
+        const FEValuesExtractors::Scalar uc(c);
+        Vector<double>                   local(mesh.dof_handler.n_dofs());
+        for (unsigned int i = 0; i < local.size(); ++i)
+          local[i] = u[mesh.offset + i];
+        std::vector<double> values(quadrature.size());
+        double              integral = 0., area = 0.;
+        for (const auto &cell : mesh.dof_handler.active_cell_iterators())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->at_boundary(f) && cell->face(f)->boundary_id() == id)
+              {
+                fe_face_values.reinit(cell, f);
+                fe_face_values[uc].get_function_values(local, values);
+                for (unsigned int q = 0; q < quadrature.size(); ++q)
+                  {
+                    integral += values[q] * fe_face_values.JxW(q);
+                    area += fe_face_values.JxW(q);
+                  }
+              }
+        return integral / area;
+      }
+
+
+      // ------------------------------------------------------------------
+      /**
+       * A continuum solid alone (subsection Solid): generated box or Gmsh
+       * file of hexahedra, the supports and the traction of that
+       * subsection, gravity. Reports the largest displacement, compared
+       * with 'reference largest displacement' if that is set.
+       */
+      class SolidModel : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "continuum solid (St. Venant-Kirchhoff, FE_Q(" +
+                 std::to_string(p.solid.degree) +
+                 ")) with the supports and loads of subsection Solid";
+        }
+
+        bool
+        supports_dynamics() const override
+        {
+          return true;
+        }
+
+        std::array<std::string, 3>
+        support_parameter() const override
+        {
+          const auto &g = p.solid_geometry;
+          if (g.fixed_boundary_ids.empty() && !g.support_boxes.empty())
+            return {{S + "/Solid",
+                     "support boxes",
+                     std::to_string(g.support_boxes.size()) + " box(es)"}};
+          std::string ids;
+          for (const unsigned int id : g.fixed_boundary_ids)
+            ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+          return {{S + "/Solid", "fixed boundary ids", ids}};
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          const std::string ss   = S + "/Solid";
+          auto             &mesh = s.add_solid("solid", solid_component());
+          p.solid_geometry.create_triangulation(mesh.triangulation, level, ss);
+          if (p.solid_geometry.traction_boundary_id >= 0)
+            mesh.tractions.emplace_back(p.solid_geometry.traction_boundary_id,
+                                        p.solid_geometry.traction);
+          s.setup_dofs();
+          for (const unsigned int id : p.solid_geometry.fixed_boundary_ids)
+            if (s.prescribe_solid_boundary(0, id) == 0)
+              InputFile::reject(ss,
+                                "fixed boundary ids",
+                                std::to_string(id),
+                                "every fixed boundary id must be the id of "
+                                "faces on the boundary of the solid (a "
+                                "generated box has ids 0 to 5), and boundary "
+                                "id " +
+                                  std::to_string(id) + " has none");
+          unsigned int k = 0;
+          for (const auto &box : p.solid_geometry.support_boxes)
+            {
+              ++k;
+              if (s.prescribe_solid_box(
+                    0, box.lower, box.upper, box.components) == 0)
+                InputFile::reject(ss,
+                                  "support boxes",
+                                  "box " + std::to_string(k),
+                                  "every support box must contain a node of "
+                                  "the solid, and box " +
+                                    std::to_string(k) + " contains none");
+            }
+          s.gravity = p.gravity;
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          double umax = 0.;
+          for (unsigned int k = 0; k < s.n_nodes(); ++k)
+            umax = std::max(umax, s.node_displacement(u, k).norm());
+          if (p.reference_displacement > 0.)
+            return {
+              {"largest displacement [m]", umax, p.reference_displacement}};
+          return {{"largest displacement [m]", umax, 0., false}};
+        }
+
+      protected:
+        std::shared_ptr<Talus::Structure::ContinuumSolid<3>>
+        solid_component() const
+        {
+          return std::make_shared<Talus::Structure::ContinuumSolid<3>>(p.solid);
+        }
+      };
+
+
+      /**
+       * Cantilever: the generated box of subsection Solid (length L along
+       * x, width b along y, height h along z) clamped at x = x_min
+       * (boundary id 0: every DoF of the face fixed) and loaded on x = x_max
+       * (id 1) by the uniform dead shear traction P/(b h) along z, P the
+       * z component of 'point load'. The tip deflection is the load's
+       * work-conjugate, the mean of u_z over the end face,
+       * delta = int u_z dA / (b h). Reference: Timoshenko's beam,
+       *   delta = P L^3/(3 E I) + P L/(kappa G b h),  I = b h^3/12,
+       *   kappa = 10 (1 + nu)/(12 + 11 nu) (rectangle, Cowper 1966);
+       * Euler-Bernoulli P L^3/(3 E I) is printed. The load must be small
+       * (delta << h) for the linear beam theories to apply.
+       */
+      class Cantilever : public SolidModel
+      {
+      public:
+        using SolidModel::SolidModel;
+
+        std::string
+        description() const override
+        {
+          return "cantilever: continuum solid (St. Venant-Kirchhoff, FE_Q(" +
+                 std::to_string(p.solid.degree) +
+                 ")) clamped at x_min, end shear load; Timoshenko beam";
+        }
+
+        bool
+        supports_dynamics() const override
+        {
+          return false;
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          const auto &g    = p.solid_geometry;
+          auto       &mesh = s.add_solid("cantilever", solid_component());
+          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
+          const double b = g.upper_corner[1] - g.lower_corner[1];
+          const double h = g.upper_corner[2] - g.lower_corner[2];
+          mesh.tractions.emplace_back(
+            1, Tensor<1, 3>({0., 0., p.point_load[2] / (b * h)}));
+          s.setup_dofs();
+          s.prescribe_solid_boundary(0, 0);
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          const auto  &g               = p.solid_geometry;
+          const double L               = g.upper_corner[0] - g.lower_corner[0];
+          const double b               = g.upper_corner[1] - g.lower_corner[1];
+          const double h               = g.upper_corner[2] - g.lower_corner[2];
+          const double E               = p.solid.youngs_modulus;
+          const double nu              = p.solid.poissons_ratio;
+          const double P               = p.point_load[2];
+          const double I               = b * h * h * h / 12.;
+          const double G               = E / (2. * (1. + nu));
+          const double kap             = 10. * (1. + nu) / (12. + 11. * nu);
+          const double euler_bernoulli = P * L * L * L / (3. * E * I);
+          const double timoshenko = euler_bernoulli + P * L / (kap * G * b * h);
+          return {
+            {"tip deflection [m]", face_mean(s, u, 0, 1, 2), timoshenko},
+            {"Euler-Bernoulli deflection [m]", euler_bernoulli, 0., false}};
+        }
+      };
+
+
+      /**
+       * Axial bar: the generated box of subsection Solid (length L along x,
+       * section A0 = b h), held by its three symmetry planes (u_x = 0 on
+       * x = x_min, u_y = 0 on y = y_min, u_z = 0 on z = z_min: a
+       * homogeneous uniaxial stress state is admissible) and pulled on
+       * x = x_max (id 1) by the dead traction t = F/A0, F the x component
+       * of 'point load'. Static, exact for any mesh (the field is linear):
+       * S11 = E E11 with P11 = lambda S11 = t, i.e. E lambda (lambda^2 -
+       * 1)/2 = t, end displacement (lambda - 1) L. Dynamic (the load
+       * applied suddenly at t = 0 to the bar at rest): for nu = 0 the bar
+       * is a one-dimensional rod whose end oscillates about the static
+       * value with the period of the first axial mode, T1 = 4 L/c, c =
+       * sqrt(E/rho) (all modes of the rod, omega_k = (2k - 1) omega_1,
+       * cross the static value at T1/4 + n T1/2; the dispersion of the
+       * higher modes of the finite elements moves the crossings slightly).
+       * The period is measured from the crossings of the mean end
+       * displacement (linear interpolation); the largest end displacement,
+       * 2 (lambda - 1) L for the exact rod, is printed.
+       */
+      class AxialBar : public SolidModel
+      {
+      public:
+        using SolidModel::SolidModel;
+
+        std::string
+        description() const override
+        {
+          return "axial bar (continuum solid, FE_Q(" +
+                 std::to_string(p.solid.degree) +
+                 ")) on its symmetry planes, end traction" +
+                 (p.dynamic ? " applied suddenly: first axial period" :
+                              ": uniaxial stress");
+        }
+
+        std::array<std::string, 3>
+        support_parameter() const override
+        {
+          return {{S, "model", p.model}};
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          const auto &g    = p.solid_geometry;
+          auto       &mesh = s.add_solid("bar", solid_component());
+          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
+          const double A0 = (g.upper_corner[1] - g.lower_corner[1]) *
+                            (g.upper_corner[2] - g.lower_corner[2]);
+          mesh.tractions.emplace_back(
+            1, Tensor<1, 3>({p.point_load[0] / A0, 0., 0.}));
+          s.setup_dofs();
+          s.prescribe_solid_boundary(0, 0, {true, false, false});
+          s.prescribe_solid_boundary(0, 2, {false, true, false});
+          s.prescribe_solid_boundary(0, 4, {false, false, true});
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure      &s,
+                const Vector<double> &u,
+                const double          t) override
+        {
+          const double tip = face_mean(s, u, 0, 1, 0);
+          if (p.dynamic)
+            {
+              const double u_static = static_end_displacement();
+              if (!times.empty() &&
+                  (samples.back() - u_static) * (tip - u_static) < 0.)
+                crossings.push_back(times.back() +
+                                    (t - times.back()) *
+                                      (u_static - samples.back()) /
+                                      (tip - samples.back()));
+              times.push_back(t);
+              samples.push_back(tip);
+              largest = std::max(largest, std::abs(tip));
+            }
+          return {{"end_displacement", tip}};
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          const double u_static = static_end_displacement();
+          if (!p.dynamic)
+            return {
+              {"end displacement [m]", face_mean(s, u, 0, 1, 0), u_static}};
+          const auto  &g = p.solid_geometry;
+          const double L = g.upper_corner[0] - g.lower_corner[0];
+          const double T1 =
+            4. * L / std::sqrt(p.solid.youngs_modulus / p.solid.density);
+          std::vector<Result> r = {{"largest |end displacement| / static",
+                                    largest / std::abs(u_static),
+                                    2.,
+                                    false},
+                                   {"crossings of the static value",
+                                    double(crossings.size()),
+                                    0.,
+                                    false}};
+          r.push_back(
+            {"first axial period [s]",
+             crossings.size() >= 2 ?
+               2. * (crossings.back() - crossings[0]) / (crossings.size() - 1) :
+               0.,
+             T1});
+          return r;
+        }
+
+      private:
+        std::vector<double> times, samples, crossings;
+        double              largest = 0.;
+
+        /** (lambda - 1) L with E lambda (lambda^2 - 1)/2 = t. */
+        double
+        static_end_displacement() const
+        {
+          const auto  &g  = p.solid_geometry;
+          const double L  = g.upper_corner[0] - g.lower_corner[0];
+          const double A0 = (g.upper_corner[1] - g.lower_corner[1]) *
+                            (g.upper_corner[2] - g.lower_corner[2]);
+          const double t = p.point_load[0] / A0;
+          const double E = p.solid.youngs_modulus;
+          const double lambda =
+            bisect([&](
+                     const double x) { return E * x * (x * x - 1.) / 2. - t; },
+                   1. / std::sqrt(3.),
+                   2. + std::abs(t) / E);
+          return (lambda - 1.) * L;
+        }
+      };
+
+
+      /**
+       * A block hanging on a cable: the generated box of subsection Solid
+       * (subdivisions even along x and y, so that the centre of its top
+       * face is a vertex) and a vertical cable (subsection Line members,
+       * 'elements per member' elements) from the anchor at 'cable length'
+       * above that point down to it, tied to the block there. Symmetry
+       * supports: u_x = 0 on the plane x = x_c and u_y = 0 on y = y_c of the
+       * block and on every cable node (exact for this symmetric problem;
+       * they hold the block's rotations, which a cable through one node
+       * does not). Under gravity (0, 0, -g), reference by hand: the block
+       * weighs W = rho g V (consistent gravity integrates it exactly), the
+       * cable element k from the bottom (length l = L_c/n, lumped weights)
+       * carries N_k = W + w l (k + 1/2), w = rho_c A_c g, and stretches by
+       * (lambda_k - 1) l with EA lambda (lambda^2 - 1)/2 = N_k (the
+       * element's law); the attachment point drops by their sum and the
+       * anchor carries W + w L_c.
+       */
+      class HangingBlock : public SolidModel
+      {
+      public:
+        using SolidModel::SolidModel;
+
+        std::string
+        description() const override
+        {
+          return "block (continuum solid, FE_Q(" +
+                 std::to_string(p.solid.degree) +
+                 ")) hanging on a cable tied to the centre of its top face";
+        }
+
+        bool
+        supports_dynamics() const override
+        {
+          return false;
+        }
+
+        std::array<std::string, 3>
+        support_parameter() const override
+        {
+          const auto &n = p.solid_geometry.subdivisions;
+          return {{S + "/Solid",
+                   "subdivisions",
+                   std::to_string(n[0]) + ", " + std::to_string(n[1]) + ", " +
+                     std::to_string(n[2])}};
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          const auto    &g = p.solid_geometry;
+          const Point<3> top(0.5 * (g.lower_corner[0] + g.upper_corner[0]),
+                             0.5 * (g.lower_corner[1] + g.upper_corner[1]),
+                             g.upper_corner[2]);
+          anchor_point = top + Point<3>(0., 0., p.cable_length);
+          attach_point = top;
+          make_line(s.add_line_mesh("cable", line_element()).triangulation,
+                    anchor_point,
+                    top,
+                    p.elements);
+          auto &mesh = s.add_solid("block", solid_component());
+          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
+          s.setup_dofs();
+          anchor = node_at(s, anchor_point);
+          for (unsigned int c = 0; c < 3; ++c)
+            s.prescribe(anchor, c);
+          for (const unsigned int k : s.line_vertex_nodes(0))
+            for (unsigned int c = 0; c < 2; ++c)
+              s.prescribe(k, c);
+          const double big = 1. + g.lower_corner.distance(g.upper_corner);
+          s.prescribe_solid_box(0,
+                                Point<3>(top[0], top[1] - big, top[2] - big),
+                                Point<3>(top[0], top[1] + big, top[2] + big),
+                                {true, false, false});
+          s.prescribe_solid_box(0,
+                                Point<3>(top[0] - big, top[1], top[2] - big),
+                                Point<3>(top[0] + big, top[1], top[2] + big),
+                                {false, true, false});
+          s.gravity = p.gravity;
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &u) override
+        {
+          const auto  &g = p.solid_geometry;
+          const double V = (g.upper_corner[0] - g.lower_corner[0]) *
+                           (g.upper_corner[1] - g.lower_corner[1]) *
+                           (g.upper_corner[2] - g.lower_corner[2]);
+          const double gz   = -p.gravity[2];
+          const double W    = p.solid.density * gz * V;
+          const double w    = p.density * p.A * gz;
+          const double l    = p.cable_length / p.elements;
+          const double EA   = p.E * p.A;
+          double       drop = 0.;
+          for (unsigned int k = 0; k < p.elements; ++k)
+            {
+              const double N      = W + w * l * (k + 0.5);
+              const double lambda = bisect(
+                [&](const double x) { return EA * x * (x * x - 1.) / 2. - N; },
+                1.,
+                2. + N / EA);
+              drop += (lambda - 1.) * l;
+            }
+          // The cable element next to the block carries N_0.
+          const auto &cable    = *s.line_meshes[0];
+          double      N_bottom = 0.;
+          for (const auto &cell : cable.triangulation.active_cell_iterators())
+            if (cell->center().distance(attach_point) < 0.6 * l)
+              N_bottom = cable.force[cell->active_cell_index()];
+          const unsigned int attach = node_at(s, attach_point);
+          return {
+            {"anchor force [N]", s.reaction(anchor)[2], W + w * p.cable_length},
+            {"cable force at the block [N]", N_bottom, W + 0.5 * w * l},
+            {"drop of the attachment point [m]",
+             -s.node_displacement(u, attach)[2],
+             drop},
+            {"drop of the block's bottom centre [m]",
+             -s.node_displacement(u,
+                                  node_at(s,
+                                          Point<3>(attach_point[0],
+                                                   attach_point[1],
+                                                   g.lower_corner[2])))[2],
+             0.,
+             false}};
+        }
+
+      private:
+        Point<3>     anchor_point, attach_point;
+        unsigned int anchor = 0;
+      };
+
+
       std::unique_ptr<Model>
       create_model(const Parameters &p)
       {
@@ -2222,6 +2696,14 @@ namespace Talus
           return std::make_unique<Capstan>(p);
         if (p.model == "barrier")
           return std::make_unique<Barrier>(p);
+        if (p.model == "solid")
+          return std::make_unique<SolidModel>(p);
+        if (p.model == "cantilever")
+          return std::make_unique<Cantilever>(p);
+        if (p.model == "hanging block")
+          return std::make_unique<HangingBlock>(p);
+        if (p.model == "axial bar")
+          return std::make_unique<AxialBar>(p);
         if (p.model == "von Mises truss")
           return std::make_unique<VonMisesTruss>(p);
         if (p.model == "catenary" || p.model == "plane catenary")
@@ -2301,6 +2783,21 @@ namespace Talus
         p.brake_length = get_positive(prm, bs, "length");
         prm.leave_subsection();
 
+        const std::string solid_s = S + "/Solid";
+        prm.enter_subsection("Solid");
+        p.solid.parse_parameters(prm, solid_s);
+        p.solid_geometry.parse_parameters(prm, solid_s);
+        prm.leave_subsection();
+        if ((p.model == "cantilever" || p.model == "hanging block" ||
+             p.model == "axial bar") &&
+            !p.solid_geometry.mesh_file.empty())
+          InputFile::reject(solid_s,
+                            "mesh file",
+                            p.solid_geometry.mesh_file,
+                            "models 'cantilever', 'hanging block' and "
+                            "'axial bar' generate their box (leave 'mesh "
+                            "file' empty)");
+
         const std::string gs = S + "/Geometry";
         prm.enter_subsection("Geometry");
         p.half_span          = get_positive(prm, gs, "half span");
@@ -2365,6 +2862,38 @@ namespace Talus
                             "the sliding ring needs a non-zero load in the "
                             "x-z plane");
 
+        if (p.model == "cantilever" &&
+            !(p.point_load[2] != 0. && p.point_load[0] == 0. &&
+              p.point_load[1] == 0.))
+          InputFile::reject(ls,
+                            "point load",
+                            point_load_text,
+                            "the cantilever needs an end load 0, 0, P with "
+                            "P != 0");
+        if (p.model == "axial bar" &&
+            !(p.point_load[0] != 0. && p.point_load[1] == 0. &&
+              p.point_load[2] == 0.))
+          InputFile::reject(ls,
+                            "point load",
+                            point_load_text,
+                            "the axial bar needs an end load F, 0, 0 with "
+                            "F != 0");
+        if (p.model == "hanging block")
+          {
+            if (!(p.gravity[0] == 0. && p.gravity[1] == 0. &&
+                  p.gravity[2] < 0.))
+              InputFile::reject(ls,
+                                "gravity",
+                                gravity_text,
+                                "the hanging block needs gravity 0, 0, -g "
+                                "with g > 0");
+            if (p.prestress != 0.)
+              InputFile::reject(lm,
+                                "prestress",
+                                std::to_string(p.prestress),
+                                "the hanging block's cable has no "
+                                "pre-stress (its reference is for 0)");
+          }
         p.barrier.parse_parameters(prm, S + "/Barrier");
         prm.enter_subsection("Solver");
         p.arc_length_control = prm.get("control") == "arc length";
@@ -2378,12 +2907,14 @@ namespace Talus
         p.dynamic_time_step = prm.get_double("time step");
         prm.leave_subsection();
         if (p.dynamic && p.model != "square membrane" && p.model != "barrier" &&
-            p.model != "vibrating string")
+            p.model != "vibrating string" && p.model != "solid" &&
+            p.model != "axial bar")
           InputFile::reject(S + "/Dynamics",
                             "dynamic",
                             "true",
                             "only models 'square membrane', 'vibrating "
-                            "string' and 'barrier' run in time so far");
+                            "string', 'solid', 'axial bar' and 'barrier' run "
+                            "in time so far");
         if (!p.dynamic && p.model == "vibrating string")
           InputFile::reject(S + "/Dynamics",
                             "dynamic",
@@ -2420,7 +2951,8 @@ namespace Talus
         Patterns::Selection("von Mises truss|catenary|plane catenary|"
                             "circular membrane|"
                             "square membrane|sheared membrane|vibrating string|"
-                            "sliding ring|capstan|brake|mesh file|barrier"),
+                            "sliding ring|capstan|brake|mesh file|barrier|"
+                            "solid|cantilever|hanging block|axial bar"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
@@ -2441,7 +2973,16 @@ namespace Talus
         "ends or boundary fixed, gravity and pressure), 'barrier' (the standard barrier of subsection Barrier "
         "with net, posts, support cables, retaining and lateral ropes and "
         "brakes: staged form finding of the pre-stressed state, then "
-        "gravity and the field load; checks the global force balance). "
+        "gravity and the field load; checks the global force balance), "
+        "'solid' (a continuum solid of subsection Solid with its supports, "
+        "traction and gravity), 'cantilever' (the box of subsection Solid "
+        "clamped at x_min, end load 'point load' (0, 0, P) as a shear "
+        "traction on x_max: Timoshenko's tip deflection), 'hanging block' "
+        "(the box hanging under gravity on a vertical cable of 'cable "
+        "length' tied to the centre of its top face: cable force and "
+        "stretch by hand), 'axial bar' (the box on its symmetry planes "
+        "pulled on x_max by 'point load' (F, 0, 0) as a traction: exact "
+        "uniaxial stress, or with 'dynamic' the first axial period 4 L/c). "
         "Each model with a closed "
         "form reports and checks it.");
 
@@ -2699,6 +3240,11 @@ namespace Talus
                         "increments; empty: 0 to 1 [-].");
       prm.leave_subsection();
 
+      prm.enter_subsection("Solid");
+      Talus::Structure::ContinuumSolid<3>::declare_parameters(prm);
+      Talus::Structure::SolidGeometry::declare_parameters(prm);
+      prm.leave_subsection();
+
       Talus::Structure::BarrierBuilder::declare_parameters(prm);
       Talus::Structure::StaticSolver::declare_parameters(prm);
       Talus::Structure::DynamicSolver::declare_parameters(prm);
@@ -2792,6 +3338,40 @@ namespace Talus
           Structure structure;
           model->build(structure, level);
           structure.setup_system();
+          // A part held by no support (an unconnected component) makes the
+          // static stiffness singular; in a dynamic run a part with mass
+          // may move freely.
+          for (const auto &part : structure.parts())
+            if (!(part.held[0] && part.held[1] && part.held[2]) &&
+                (!p.dynamic || model->form_finding_before_dynamics() ||
+                 !(part.mass > 0.)))
+              {
+                std::string free;
+                for (unsigned int d = 0; d < 3; ++d)
+                  if (!part.held[d])
+                    free +=
+                      std::string(free.empty() ? "" : ", ") + char('x' + d);
+                const bool nothing =
+                  !(part.held[0] || part.held[1] || part.held[2]);
+                std::ostringstream names, msg;
+                for (unsigned int k = 0; k < part.meshes.size(); ++k)
+                  names << (k > 0 ? ", " : "") << part.meshes[k];
+                msg << "every part of the structure must be held by "
+                       "supports in x, y and z, directly or through nodes it "
+                       "shares with a held part (vertices of different "
+                       "meshes closer than 1e-8 of the structure size are "
+                       "tied), and the part made of mesh <"
+                    << names.str() << "> (" << part.n_nodes
+                    << " nodes, one at (" << part.a_node[0] << ", "
+                    << part.a_node[1] << ", " << part.a_node[2] << ")) is "
+                    << (nothing ? "connected to nothing" :
+                                  "held by no support along " + free)
+                    << ": its static stiffness would be singular (it can "
+                       "translate freely along "
+                    << free << ")";
+                const auto what = model->support_parameter();
+                InputFile::reject(what[0], what[1], what[2], msg.str());
+              }
           Talus::Structure::StaticSolver solver(structure);
           prm.enter_subsection(S);
           solver.parse_parameters(prm);
@@ -2804,11 +3384,17 @@ namespace Talus
             n_cells += m->triangulation.n_active_cells();
           for (const auto &m : structure.membrane_meshes)
             n_cells += m->triangulation.n_active_cells();
+          for (const auto &m : structure.solid_meshes)
+            n_cells += m->triangulation.n_active_cells();
           std::cout << "Level " << level << ": " << structure.line_meshes.size()
                     << " line mesh(es), " << structure.membrane_meshes.size()
-                    << " membrane mesh(es), " << n_cells << " cells, "
-                    << structure.n_nodes() << " nodes, " << structure.n_dofs()
-                    << " DoFs\n";
+                    << " membrane mesh(es), "
+                    << (structure.solid_meshes.empty() ?
+                          std::string() :
+                          std::to_string(structure.solid_meshes.size()) +
+                            " solid mesh(es), ")
+                    << n_cells << " cells, " << structure.n_nodes()
+                    << " nodes, " << structure.n_dofs() << " DoFs\n";
 
           // Load factors to visit.
           std::vector<double> path;

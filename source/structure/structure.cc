@@ -4,9 +4,12 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <deal.II/grid/grid_tools.h>
+
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
 
 #include <deal.II/numerics/data_out.h>
 
@@ -56,8 +59,40 @@ namespace Talus
     }
 
 
+    SolidMesh &
+    Structure::add_solid(const std::string                              &name,
+                         const std::shared_ptr<const ContinuumSolid<3>> &solid)
+    {
+      solid_meshes.push_back(std::make_unique<SolidMesh>());
+      solid_meshes.back()->name  = name;
+      solid_meshes.back()->solid = solid;
+      solid_meshes.back()->fe =
+        std::make_unique<dealii::FESystem<3>>(dealii::FE_Q<3>(solid->degree),
+                                              3);
+      return *solid_meshes.back();
+    }
+
+
     namespace
     {
+      /** Direction of every DoF of a mesh, into @p dof_component. */
+      template <int dim>
+      void
+      record_components(const dealii::DoFHandler<dim, 3> &dof_handler,
+                        const global_dof_index            offset,
+                        std::vector<unsigned char>       &dof_component)
+      {
+        const auto                   &fe = dof_handler.get_fe();
+        std::vector<global_dof_index> indices(fe.n_dofs_per_cell());
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          {
+            cell->get_dof_indices(indices);
+            for (unsigned int i = 0; i < indices.size(); ++i)
+              dof_component[offset + indices[i]] =
+                fe.system_to_component_index(i).first;
+          }
+      }
+
       struct VertexEntry
       {
         dealii::Point<3>                X;
@@ -128,6 +163,26 @@ namespace Talus
                                    MembraneCellOutput());
           collect_vertices(mesh->dof_handler, mesh->offset, entries);
         }
+      for (auto &mesh : solid_meshes)
+        {
+          if (mesh->triangulation.n_active_cells() == 0)
+            throw std::runtime_error("The solid mesh <" + mesh->name +
+                                     "> has no cells.");
+          mesh->dof_handler.reinit(mesh->triangulation);
+          mesh->dof_handler.distribute_dofs(*mesh->fe);
+          mesh->offset = total_dofs;
+          total_dofs += mesh->dof_handler.n_dofs();
+          mesh->cell_output.assign(mesh->triangulation.n_active_cells(),
+                                   SolidCellOutput());
+          collect_vertices(mesh->dof_handler, mesh->offset, entries);
+        }
+      dof_component.assign(total_dofs, 0);
+      for (const auto &mesh : line_meshes)
+        record_components(mesh->dof_handler, mesh->offset, dof_component);
+      for (const auto &mesh : membrane_meshes)
+        record_components(mesh->dof_handler, mesh->offset, dof_component);
+      for (const auto &mesh : solid_meshes)
+        record_components(mesh->dof_handler, mesh->offset, dof_component);
 
       // Merge coincident vertices (sweep over x).
       dealii::Point<3> lo = entries[0].X, hi = entries[0].X;
@@ -317,6 +372,178 @@ namespace Talus
 
 
     void
+    Structure::prescribe_dof(const global_dof_index dof, const double value)
+    {
+      AssertIndexRange(dof, total_dofs);
+      const unsigned int     node = dof_to_node[dof];
+      const global_dof_index master =
+        node == dealii::numbers::invalid_unsigned_int ?
+          dof :
+          nodes[node].dofs[dof_component[dof]];
+      for (auto &p : prescribed)
+        if (p.first == master)
+          {
+            p.second = value;
+            return;
+          }
+      prescribed.emplace_back(master, value);
+    }
+
+
+    unsigned int
+    Structure::prescribe_solid_boundary(const unsigned int       mesh,
+                                        const unsigned int       boundary_id,
+                                        const std::vector<bool> &components)
+    {
+      AssertIndexRange(mesh, solid_meshes.size());
+      const SolidMesh              &m  = *solid_meshes[mesh];
+      const auto                   &fe = *m.fe;
+      std::vector<global_dof_index> face_dofs(fe.n_dofs_per_face());
+      std::vector<bool>             done(m.dof_handler.n_dofs(), false);
+      unsigned int                  count = 0;
+      for (const auto &cell : m.dof_handler.active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->at_boundary(f) &&
+              cell->face(f)->boundary_id() == boundary_id)
+            {
+              cell->face(f)->get_dof_indices(face_dofs);
+              for (unsigned int i = 0; i < face_dofs.size(); ++i)
+                if (!done[face_dofs[i]] &&
+                    components[fe.face_system_to_component_index(i).first])
+                  {
+                    done[face_dofs[i]] = true;
+                    prescribe_dof(m.offset + face_dofs[i]);
+                    ++count;
+                  }
+            }
+      return count;
+    }
+
+
+    unsigned int
+    Structure::prescribe_solid_box(const unsigned int       mesh,
+                                   const dealii::Point<3>  &lower,
+                                   const dealii::Point<3>  &upper,
+                                   const std::vector<bool> &components)
+    {
+      AssertIndexRange(mesh, solid_meshes.size());
+      const SolidMesh              &m = *solid_meshes[mesh];
+      std::vector<dealii::Point<3>> support(m.dof_handler.n_dofs());
+      dealii::DoFTools::map_dofs_to_support_points(dealii::MappingQ1<3>(),
+                                                   m.dof_handler,
+                                                   support);
+      const double tol =
+        1e-10 * std::max(1., dealii::GridTools::diameter(m.triangulation));
+      unsigned int count = 0;
+      for (global_dof_index i = 0; i < support.size(); ++i)
+        {
+          const unsigned int c      = dof_component[m.offset + i];
+          bool               inside = components[c];
+          for (unsigned int d = 0; d < 3 && inside; ++d)
+            inside = support[i][d] >= lower[d] - tol &&
+                     support[i][d] <= upper[d] + tol;
+          if (inside)
+            {
+              prescribe_dof(m.offset + i);
+              ++count;
+            }
+        }
+      return count;
+    }
+
+
+    std::vector<StructurePart>
+    Structure::parts() const
+    {
+      // Union-find over the global DoFs: every cell joins its DoFs, every
+      // tie joins a copy to its master.
+      std::vector<unsigned int> parent(total_dofs);
+      std::iota(parent.begin(), parent.end(), 0u);
+      const auto join = [&](const std::vector<global_dof_index> &dofs) {
+        for (const auto d : dofs)
+          {
+            const unsigned int ra    = find_root(parent, dofs[0]);
+            const unsigned int rb    = find_root(parent, d);
+            parent[std::max(ra, rb)] = std::min(ra, rb);
+          }
+      };
+      std::vector<global_dof_index> indices;
+      const auto                    join_mesh = [&](const auto            &dof_handler,
+                                 const global_dof_index offset) {
+        indices.resize(dof_handler.get_fe().n_dofs_per_cell());
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          {
+            cell->get_dof_indices(indices);
+            for (auto &i : indices)
+              i += offset;
+            join(indices);
+          }
+      };
+      for (const auto &mesh : line_meshes)
+        if (mesh->sliding_cable)
+          {
+            indices.clear();
+            for (const auto &d : mesh->chain)
+              indices.insert(indices.end(), d.begin(), d.end());
+            join(indices);
+          }
+        else
+          join_mesh(mesh->dof_handler, mesh->offset);
+      for (const auto &mesh : membrane_meshes)
+        join_mesh(mesh->dof_handler, mesh->offset);
+      for (const auto &mesh : solid_meshes)
+        join_mesh(mesh->dof_handler, mesh->offset);
+      for (const auto &node : nodes)
+        for (const auto &slave : node.slaves)
+          for (unsigned int c = 0; c < 3; ++c)
+            join({node.dofs[c], slave[c]});
+
+      std::map<unsigned int, unsigned int> root_to_part;
+      std::vector<StructurePart>           result;
+      const auto part_of = [&](const global_dof_index dof) -> StructurePart & {
+        const unsigned int root = find_root(parent, dof);
+        auto               it   = root_to_part.find(root);
+        if (it == root_to_part.end())
+          {
+            result.emplace_back();
+            it = root_to_part.emplace(root, result.size() - 1).first;
+          }
+        return result[it->second];
+      };
+      const auto add_mesh = [&](const std::string     &name,
+                                const global_dof_index offset,
+                                const global_dof_index n) {
+        for (global_dof_index i = offset; i < offset + n; ++i)
+          {
+            auto &part = part_of(i);
+            if (std::find(part.meshes.begin(), part.meshes.end(), name) ==
+                part.meshes.end())
+              part.meshes.push_back(name);
+          }
+      };
+      for (const auto &mesh : line_meshes)
+        add_mesh(mesh->name, mesh->offset, mesh->dof_handler.n_dofs());
+      for (const auto &mesh : membrane_meshes)
+        add_mesh(mesh->name, mesh->offset, mesh->dof_handler.n_dofs());
+      for (const auto &mesh : solid_meshes)
+        add_mesh(mesh->name, mesh->offset, mesh->dof_handler.n_dofs());
+      for (const auto &node : nodes)
+        {
+          auto &part = part_of(node.dofs[0]);
+          if (part.n_nodes == 0)
+            part.a_node = node.X;
+          ++part.n_nodes;
+        }
+      for (const auto &p : prescribed)
+        part_of(p.first).held[dof_component[p.first]] = true;
+      for (global_dof_index i = 0; i < total_dofs; ++i)
+        if (dof_component[i] == 0 && i < mass.size())
+          part_of(i).mass += mass[i];
+      return result;
+    }
+
+
+    void
     Structure::release(const unsigned int node, const unsigned int c)
     {
       const global_dof_index dof = nodes[node].dofs[c];
@@ -392,6 +619,17 @@ namespace Talus
               i += mesh->offset;
             constraints.add_entries_local_to_global(indices, dsp, false);
           }
+      for (const auto &mesh : solid_meshes)
+        {
+          indices.resize(mesh->fe->n_dofs_per_cell());
+          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+            {
+              cell->get_dof_indices(indices);
+              for (auto &i : indices)
+                i += mesh->offset;
+              constraints.add_entries_local_to_global(indices, dsp, false);
+            }
+        }
       // Diagonal entries for every DoF (constrained rows too).
       for (global_dof_index i = 0; i < total_dofs; ++i)
         dsp.add(i, i);
@@ -456,14 +694,64 @@ namespace Talus
                 }
             }
         }
-      mass.reinit(total_dofs);
+      // Solids: row sums rho int N_I dV0; tractions int N_I t dA0.
+      traction_forces.reinit(total_dofs);
+      for (const auto &mesh : solid_meshes)
+        {
+          const auto             &fe = *mesh->fe;
+          const dealii::QGauss<3> quadrature(fe.degree + 1);
+          dealii::FEValues<3>     fe_values(
+            fe, quadrature, dealii::update_values | dealii::update_JxW_values);
+          const dealii::QGauss<2>       face_quadrature(fe.degree + 1);
+          dealii::FEFaceValues<3>       fe_face_values(fe,
+                                                 face_quadrature,
+                                                 dealii::update_values |
+                                                   dealii::update_JxW_values);
+          std::vector<global_dof_index> indices(fe.n_dofs_per_cell());
+          const double                  rho = mesh->solid->density;
+          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+            {
+              fe_values.reinit(cell);
+              cell->get_dof_indices(indices);
+              for (unsigned int i = 0; i < indices.size(); ++i)
+                {
+                  const unsigned int c = fe.system_to_component_index(i).first;
+                  for (const unsigned int q :
+                       fe_values.quadrature_point_indices())
+                    raw_mass[mesh->offset + indices[i]] +=
+                      rho * fe_values.shape_value_component(i, q, c) *
+                      fe_values.JxW(q);
+                }
+              for (const auto &[id, t] : mesh->tractions)
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->at_boundary(f) &&
+                      cell->face(f)->boundary_id() == id)
+                    {
+                      fe_face_values.reinit(cell, f);
+                      for (unsigned int i = 0; i < indices.size(); ++i)
+                        {
+                          const unsigned int c =
+                            fe.system_to_component_index(i).first;
+                          for (const unsigned int q :
+                               fe_face_values.quadrature_point_indices())
+                            traction_forces[mesh->offset + indices[i]] +=
+                              t[c] *
+                              fe_face_values.shape_value_component(i, q, c) *
+                              fe_face_values.JxW(q);
+                        }
+                    }
+            }
+        }
+      // Onto the master DoFs (DoFs of solids that are not at a vertex are
+      // their own masters).
+      mass = raw_mass;
       for (const auto &node : nodes)
-        for (unsigned int c = 0; c < 3; ++c)
-          {
-            mass[node.dofs[c]] = raw_mass[node.dofs[c]];
-            for (const auto &slave : node.slaves)
+        for (const auto &slave : node.slaves)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
               mass[node.dofs[c]] += raw_mass[slave[c]];
-          }
+              mass[slave[c]] = 0.;
+            }
     }
 
 
@@ -555,6 +843,40 @@ namespace Talus
                 }
             }
         }
+      for (const auto &mesh : solid_meshes)
+        {
+          const auto             &fe = *mesh->fe;
+          const dealii::QGauss<3> quadrature(fe.degree + 1);
+          dealii::FEValues<3>     fe_values(
+            fe, quadrature, dealii::update_values | dealii::update_JxW_values);
+          const unsigned int n   = fe.n_dofs_per_cell();
+          const double       rho = mesh->solid->density;
+          indices.resize(n);
+          Me.reinit(n, n);
+          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+            {
+              fe_values.reinit(cell);
+              cell->get_dof_indices(indices);
+              for (auto &i : indices)
+                i += mesh->offset;
+              Me = 0.;
+              for (unsigned int i = 0; i < n; ++i)
+                for (unsigned int j = 0; j < n; ++j)
+                  {
+                    const unsigned int ci =
+                      fe.system_to_component_index(i).first;
+                    if (ci != fe.system_to_component_index(j).first)
+                      continue;
+                    for (const unsigned int q :
+                         fe_values.quadrature_point_indices())
+                      Me(i, j) += rho *
+                                  fe_values.shape_value_component(i, q, ci) *
+                                  fe_values.shape_value_component(j, q, ci) *
+                                  fe_values.JxW(q);
+                  }
+              constraints.distribute_local_to_global(Me, indices, M);
+            }
+        }
     }
 
 
@@ -579,10 +901,10 @@ namespace Talus
       double V = 0.;
       for (global_dof_index i = 0; i < total_dofs; ++i)
         V -= external_forces[i] * u[i];
-      for (const auto &node : nodes)
-        for (unsigned int c = 0; c < 3; ++c)
-          V -= (scale_gravity ? load_factor : 1.) * mass[node.dofs[c]] *
-               gravity[c] * u[node.dofs[c]];
+      for (global_dof_index i = 0; i < total_dofs; ++i)
+        V -= (scale_gravity ? load_factor : 1.) * mass[i] *
+               gravity[dof_component[i]] * u[i] +
+             load_factor * traction_forces[i] * u[i];
       for (const auto &[node, F] : point_loads)
         for (unsigned int c = 0; c < 3; ++c)
           V -= load_factor * F[c] * u[nodes[node].dofs[c]];
@@ -768,6 +1090,48 @@ namespace Talus
             }
         }
 
+      // Solids: internal forces, gravity and tractions.
+      for (auto &mesh : solid_meshes)
+        {
+          const auto                   &fe = *mesh->fe;
+          const dealii::QGauss<3>       quadrature(fe.degree + 1);
+          dealii::FEValues<3>           fe_values(fe,
+                                        quadrature,
+                                        dealii::update_values |
+                                          dealii::update_gradients |
+                                          dealii::update_JxW_values);
+          const unsigned int            n   = fe.n_dofs_per_cell();
+          const double                  rho = mesh->solid->density;
+          std::vector<global_dof_index> sindices(n);
+          std::vector<double>           ue(n);
+          dealii::Vector<double>        re;
+          dealii::FullMatrix<double>    Ke;
+          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+            {
+              fe_values.reinit(cell);
+              cell->get_dof_indices(sindices);
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  sindices[i] += mesh->offset;
+                  ue[i] = u[sindices[i]];
+                }
+              auto &output = mesh->cell_output[cell->active_cell_index()];
+              mesh->solid->compute(fe_values, ue, re, Ke, &output);
+              last_strain_energy += output.strain_energy;
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  const unsigned int c = fe.system_to_component_index(i).first;
+                  if (rho != 0. && g[c] != 0.)
+                    for (const unsigned int q :
+                         fe_values.quadrature_point_indices())
+                      re[i] -= rho * g[c] *
+                               fe_values.shape_value_component(i, q, c) *
+                               fe_values.JxW(q);
+                }
+              add(Ke, re, sindices);
+            }
+        }
+
       // Point loads and external forces.
       {
         std::vector<global_dof_index> one(1);
@@ -778,6 +1142,14 @@ namespace Talus
               one[0]   = nodes[node].dofs[c];
               value[0] = -load_factor * F[c];
               raw_residual[one[0]] += value[0];
+              constraints.distribute_local_to_global(value, one, r);
+            }
+        for (global_dof_index i = 0; i < total_dofs; ++i)
+          if (traction_forces[i] != 0.)
+            {
+              one[0]   = i;
+              value[0] = -load_factor * traction_forces[i];
+              raw_residual[i] += value[0];
               constraints.distribute_local_to_global(value, one, r);
             }
         for (global_dof_index i = 0; i < total_dofs; ++i)
@@ -874,6 +1246,16 @@ namespace Talus
     }
 
 
+    std::vector<unsigned int>
+    Structure::solid_vertex_nodes(const unsigned int mesh) const
+    {
+      AssertIndexRange(mesh, solid_meshes.size());
+      return vertex_nodes(solid_meshes[mesh]->dof_handler,
+                          solid_meshes[mesh]->offset,
+                          dof_to_node);
+    }
+
+
     void
     Structure::set_external_force(const unsigned int          node,
                                   const dealii::Tensor<1, 3> &F)
@@ -911,7 +1293,8 @@ namespace Talus
         const dealii::Vector<double>     &u,
         const std::vector<std::pair<std::string, dealii::Vector<double>>>
                           &cell_data,
-        const std::string &filename)
+        const std::string &filename,
+        const unsigned int subdivisions = 1)
       {
         dealii::Vector<double> local(dof_handler.n_dofs());
         for (global_dof_index i = 0; i < local.size(); ++i)
@@ -930,7 +1313,7 @@ namespace Talus
                                  interpretation);
         for (const auto &[name, values] : cell_data)
           data_out.add_data_vector(values, name);
-        data_out.build_patches();
+        data_out.build_patches(subdivisions);
         std::ofstream out(filename);
         if (!out)
           throw std::runtime_error("Cannot write the file <" + filename + ">.");
@@ -995,6 +1378,26 @@ namespace Talus
                       {"min_principal_stress", smin},
                       {"wrinkling_state", state}},
                      directory + "/" + mesh->name + suffix);
+          write_pvd(mesh->name);
+        }
+      for (const auto &mesh : solid_meshes)
+        {
+          const unsigned int     n = mesh->cell_output.size();
+          dealii::Vector<double> von_mises(n), mean(n), energy(n);
+          for (unsigned int k = 0; k < n; ++k)
+            {
+              von_mises[k] = mesh->cell_output[k].von_mises;
+              mean[k]      = mesh->cell_output[k].mean_stress;
+              energy[k]    = mesh->cell_output[k].strain_energy;
+            }
+          write_mesh(mesh->dof_handler,
+                     mesh->offset,
+                     u,
+                     {{"von_mises_stress", von_mises},
+                      {"mean_stress", mean},
+                      {"strain_energy", energy}},
+                     directory + "/" + mesh->name + suffix,
+                     mesh->fe->degree);
           write_pvd(mesh->name);
         }
     }

@@ -13,21 +13,28 @@
 //  - Membrane: rigid rotation, uniaxial strain with lateral constraint
 //    (edge force t W lambda S11), tangent with pre-stress and follower
 //    pressure, wrinkled state (no compressive principal stress; tangent)
+//  - ContinuumSolid (St. Venant-Kirchhoff, one cell, Q1 and Q2, 3D and
+//    2D plane strain): rigid rotation, uniaxial stress (face force
+//    E A lambda (lambda^2 - 1)/2 with free lateral faces), tangent
 // Relative differences are printed rounded (or as "ok" below a bound).
 
+#include <talus/structure/continuum_solid.h>
 #include <talus/structure/line_elements.h>
 #include <talus/structure/membrane.h>
 #include <talus/structure/sliding_cable.h>
 
 #include <deal.II/base/quadrature_lib.h>
 
+#include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
 
 #include <cmath>
 #include <fstream>
@@ -121,6 +128,157 @@ namespace
            line_tangent_error(element, X0, X1, x0, x1, state),
            1e-6);
     (void)L;
+  }
+} // namespace
+
+
+namespace
+{
+  /**
+   * One cell [0,2] x [0,1] (x [0,1]) of ContinuumSolid<dim> with FE_Q(degree):
+   * rigid rotation, uniaxial stress along x, tangent vs central differences.
+   */
+  template <int dim>
+  void
+  check_solid(const unsigned int degree)
+  {
+    out << "ContinuumSolid<" << dim << ">, FE_Q(" << degree
+        << "), one cell 2 m x 1 m" << (dim == 3 ? " x 1 m" : "")
+        << " (E = 2e11 Pa, nu = 0.3" << (dim == 2 ? ", plane strain" : "")
+        << ")\n";
+    Triangulation<dim> tria;
+    Point<dim>         upper;
+    for (unsigned int d = 0; d < dim; ++d)
+      upper[d] = d == 0 ? 2. : 1.;
+    GridGenerator::hyper_rectangle(tria, Point<dim>(), upper);
+    FESystem<dim>   fe(FE_Q<dim>(degree), dim);
+    DoFHandler<dim> dof_handler(tria);
+    dof_handler.distribute_dofs(fe);
+    std::vector<Point<dim>> X(dof_handler.n_dofs());
+    DoFTools::map_dofs_to_support_points(MappingQ1<dim>(), dof_handler, X);
+    const QGauss<dim> quadrature(degree + 1);
+    FEValues<dim>     fe_values(
+      fe, quadrature, update_values | update_gradients | update_JxW_values);
+    fe_values.reinit(dof_handler.begin_active());
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> indices(n);
+    dof_handler.begin_active()->get_dof_indices(indices);
+
+    ContinuumSolid<dim> solid;
+    solid.youngs_modulus = 2e11;
+    solid.poissons_ratio = 0.3;
+    solid.degree         = degree;
+    const double       E = solid.youngs_modulus, nu = solid.poissons_ratio;
+    Vector<double>     r;
+    FullMatrix<double> K;
+    const auto         displacement =
+      [&](const std::function<Tensor<1, dim>(const Point<dim> &)> &map) {
+        std::vector<double> u(n);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const unsigned int c = fe.system_to_component_index(i).first;
+            u[i]                 = map(X[indices[i]])[c] - X[indices[i]][c];
+          }
+        return u;
+      };
+
+    // Rigid rotation by 90 degrees (3D: about (1,1,1)/sqrt(3)).
+    const auto rotation = [](const Point<dim> &p) {
+      Tensor<1, dim> y;
+      if constexpr (dim == 3)
+        {
+          const Tensor<1, 3> k(
+            {1. / std::sqrt(3.), 1. / std::sqrt(3.), 1. / std::sqrt(3.)});
+          y = cross_product_3d(k, p) + (k * p) * k;
+        }
+      else
+        {
+          y[0] = -p[1];
+          y[1] = p[0];
+        }
+      return y;
+    };
+    solid.compute(fe_values, displacement(rotation), r, K);
+    report("rigid rotation: |f| / (E A)", r.linfty_norm() / E, 1e-14);
+
+    // Uniaxial stress: stretch lambda along x, lateral stretch with
+    // S22 (= S33) = 0: E22 = -nu' E11 (3D nu' = nu, plane strain
+    // nu' = nu/(1-nu)), S11 = E' E11 (E' = E, plane strain E/(1-nu^2)).
+    const double lambda         = 1.2;
+    const double E11            = (lambda * lambda - 1.) / 2.;
+    const double nu_            = dim == 3 ? nu : nu / (1. - nu);
+    const double E_             = dim == 3 ? E : E / (1. - nu * nu);
+    const double lambda_lateral = std::sqrt(1. - 2. * nu_ * E11);
+    const auto   stretch        = [&](const Point<dim> &p) {
+      Tensor<1, dim> y = lambda_lateral * p;
+      y[0]             = lambda * p[0];
+      return y;
+    };
+    solid.compute(fe_values, displacement(stretch), r, K);
+    double F_end = 0., F_lateral = 0.;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const unsigned int c = fe.system_to_component_index(i).first;
+        if (c == 0 && X[indices[i]][0] > 1.5)
+          F_end += r[i];
+        if (c == 1 && X[indices[i]][1] > 0.5)
+          F_lateral += r[i];
+      }
+    const double F_exact = E_ * lambda * E11; // A0 = 1 m^2 (2D: per m)
+    out << "  uniaxial stress, lambda = 1.2: end force = " << F_end
+        << " N (E' A lambda (lambda^2 - 1)/2 = " << F_exact << ")\n";
+    report("uniaxial stress: end force error",
+           std::abs(F_end - F_exact) / F_exact,
+           1e-12);
+    report("uniaxial stress: lateral face force / end force",
+           std::abs(F_lateral) / F_exact,
+           1e-12);
+
+    // Rotated stretch: the end force rotates with the body (objectivity).
+    const auto rotated_stretch = [&](const Point<dim> &p) {
+      const Tensor<1, dim> y = stretch(p);
+      return rotation(Point<dim>(y));
+    };
+    solid.compute(fe_values, displacement(rotated_stretch), r, K);
+    Tensor<1, dim> F_rot;
+    for (unsigned int i = 0; i < n; ++i)
+      if (X[indices[i]][0] > 1.5)
+        F_rot[fe.system_to_component_index(i).first] += r[i];
+    Tensor<1, dim> e1;
+    e1[0] = 1.;
+    report("rotated stretch: |end force - R (F e1)| / F",
+           (F_rot - F_exact * rotation(Point<dim>(e1))).norm() / F_exact,
+           1e-12);
+
+    // Tangent at a general state.
+    std::vector<double> u0(n);
+    for (unsigned int i = 0; i < n; ++i)
+      u0[i] = 0.05 * std::sin(1.7 * i + 0.3) + 0.02 * std::cos(0.4 * i);
+    solid.compute(fe_values, u0, r, K);
+    FullMatrix<double> K_fd(n, n);
+    const double       h = 1e-7;
+    for (unsigned int j = 0; j < n; ++j)
+      {
+        auto up = u0, um = u0;
+        up[j] += h;
+        um[j] -= h;
+        Vector<double>     rp, rm;
+        FullMatrix<double> dummy;
+        solid.compute(fe_values, up, rp, dummy);
+        solid.compute(fe_values, um, rm, dummy);
+        for (unsigned int i = 0; i < n; ++i)
+          K_fd(i, j) = (rp[i] - rm[i]) / (2. * h);
+      }
+    report("tangent vs central differences",
+           relative_difference(K, K_fd),
+           1e-6);
+    // Energy: int W dV0 for the uniaxial stress state = E' E11^2/2 V.
+    SolidCellOutput output;
+    solid.compute(fe_values, displacement(stretch), r, K, &output);
+    report("uniaxial stress: strain energy error",
+           std::abs(output.strain_energy - 0.5 * E_ * E11 * E11 * 2.) /
+             (0.5 * E_ * E11 * E11 * 2.),
+           1e-12);
   }
 } // namespace
 
@@ -481,5 +639,9 @@ main()
     out << "  biaxial compression: " << output.n_slack
         << " of 4 points slack, |f| = " << r.linfty_norm() << '\n';
   }
+  check_solid<3>(1);
+  check_solid<3>(2);
+  check_solid<2>(1);
+  check_solid<2>(2);
   return 0;
 }

@@ -14,6 +14,11 @@
 //    set_external_force() each time step of a DynamicSolver loop; the
 //    forces read back sum to what was set, the positions are X + u, and a
 //    static solve with the same forces is balanced by the reactions
+//  - a continuum solid (an obstacle) tied to a cable: solid_vertex_nodes(),
+//    the cable's end shares the node of the block's top-centre vertex,
+//    supports on a boundary id, external forces on the top face balanced
+//    by the reactions; with FE_Q(2) the lumped mass (row sums, also on
+//    the DoFs that are not at a vertex) sums to rho V
 
 #include <talus/structure/dynamic_solver.h>
 #include <talus/structure/static_solver.h>
@@ -274,5 +279,78 @@ main()
         << ", |sum of reactions + forces| / |forces| "
         << ((R + F).norm() < 1e-9 * F.norm() ? "< 1e-9" : "NOT SMALL") << '\n';
   }
+  // A solid obstacle tied to a cable.
+  for (const unsigned int degree : {1u, 2u})
+    {
+      Structure obstacle;
+      auto      cable       = std::make_shared<Cable>();
+      cable->youngs_modulus = 1e11;
+      cable->area           = 1e-4;
+      cable->prestress      = 1e8;
+      cable->density        = 8000;
+      line(obstacle.add_line_mesh("cable", cable).triangulation,
+           Point<3>(0.5, 0.5, 2),
+           Point<3>(0.5, 0.5, 1),
+           2);
+      auto solid            = std::make_shared<ContinuumSolid<3>>();
+      solid->youngs_modulus = 1e9;
+      solid->poissons_ratio = 0.25;
+      solid->density        = 2000.;
+      solid->degree         = degree;
+      auto &block           = obstacle.add_solid("block", solid);
+      GridGenerator::subdivided_hyper_rectangle(block.triangulation,
+                                                {2, 2, 2},
+                                                Point<3>(0, 0, 0),
+                                                Point<3>(1, 1, 1),
+                                                true);
+      obstacle.setup_dofs();
+      const unsigned int fixed = obstacle.prescribe_solid_boundary(0, 4);
+      const unsigned int anchor =
+        obstacle.find_node(Point<3>(0.5, 0.5, 2), 1e-12);
+      for (unsigned int c = 0; c < 3; ++c)
+        obstacle.prescribe(anchor, c);
+      obstacle.setup_system();
+      const auto   vertex_nodes = obstacle.solid_vertex_nodes(0);
+      const auto   cable_nodes  = obstacle.line_vertex_nodes(0);
+      unsigned int shared       = 0;
+      for (const unsigned int n : vertex_nodes)
+        shared += std::count(cable_nodes.begin(), cable_nodes.end(), n);
+      double mass = 0.;
+      for (unsigned int i = 0; i < obstacle.n_dofs(); ++i)
+        mass += obstacle.lumped_mass()[i];
+      out << "solid FE_Q(" << degree
+          << ") tied to a cable: " << obstacle.n_nodes() << " nodes, "
+          << obstacle.n_dofs() << " DoFs, bottom face: " << fixed
+          << " DoFs fixed; vertices of the block that are cable nodes: "
+          << shared << "; lumped mass (x, y, z summed) / 3 = " << mass / 3.
+          << " kg (rho V + 8000 * 1e-4 * 1 = 2000.8)\n";
+      if (degree == 2)
+        continue;
+      // Horizontal forces on the top face, balanced by the supports.
+      StaticSolver obstacle_solver(obstacle);
+      obstacle_solver.setup();
+      Tensor<1, 3> F;
+      for (unsigned int v = 0; v < vertex_nodes.size(); ++v)
+        if (std::abs(obstacle.node_position(vertex_nodes[v])[2] - 1.) < 1e-12)
+          {
+            const Tensor<1, 3> f({1000., 200., 0.});
+            obstacle.set_external_force(vertex_nodes[v], f);
+            F += f;
+          }
+      const auto   st = obstacle_solver.solve(1.);
+      Tensor<1, 3> R;
+      for (unsigned int n = 0; n < obstacle.n_nodes(); ++n)
+        R += obstacle.reaction(n);
+      out << "  static solve with " << F << " N on the top face: converged "
+          << st.converged << ", |sum of reactions + forces| / |forces| "
+          << ((R + F).norm() < 1e-9 * F.norm() ? "< 1e-9" : "NOT SMALL")
+          << ", top centre moved along x: "
+          << (obstacle.node_displacement(
+                obstacle_solver.displacement,
+                obstacle.find_node(Point<3>(0.5, 0.5, 1), 1e-12))[0] > 0. ?
+                "yes" :
+                "no")
+          << '\n';
+    }
   return 0;
 }

@@ -1,6 +1,7 @@
 #ifndef talus_structure_structure_h
 #define talus_structure_structure_h
 
+#include <talus/structure/continuum_solid.h>
 #include <talus/structure/line_elements.h>
 #include <talus/structure/membrane.h>
 #include <talus/structure/sliding_cable.h>
@@ -68,9 +69,45 @@ namespace Talus
 
 
     /**
+     * A continuum solid mesh (Triangulation<3,3>, serial) with
+     * FESystem(FE_Q(degree),3), one ContinuumSolid, and dead tractions on
+     * boundary ids (scaled by the load factor).
+     */
+    struct SolidMesh
+    {
+      std::string                                                name;
+      dealii::Triangulation<3>                                   triangulation;
+      dealii::DoFHandler<3>                                      dof_handler;
+      std::shared_ptr<const ContinuumSolid<3>>                   solid;
+      std::unique_ptr<dealii::FESystem<3>>                       fe;
+      dealii::types::global_dof_index                            offset = 0;
+      std::vector<std::pair<unsigned int, dealii::Tensor<1, 3>>> tractions;
+      /** Results per active cell after the last assembly. */
+      std::vector<SolidCellOutput> cell_output;
+    };
+
+
+    /**
+     * A part of the structure: the DoFs connected through cells (elements)
+     * and ties (Structure::parts()).
+     */
+    struct StructurePart
+    {
+      std::vector<std::string> meshes; ///< names of its meshes
+      unsigned int             n_nodes = 0;
+      dealii::Point<3>         a_node; ///< position of one of its nodes [m]
+      /** Direction d has a prescribed DoF in the part; if not, the
+       * translation along d is a zero-energy mode of the stiffness. */
+      std::array<bool, 3> held = {{false, false, false}};
+      double              mass = 0.; ///< lumped, one direction [kg]
+    };
+
+
+    /**
      * The structural model: several deal.II meshes (membranes on
      * Triangulation<2,3>, trusses, cables, brakes and sliding cables on
-     * Triangulation<1,3>, each with FESystem(FE_Q(1),3)), their degrees of
+     * Triangulation<1,3>, each with FESystem(FE_Q(1),3), and continuum
+     * solids on Triangulation<3,3> with FESystem(FE_Q(p),3)), their degrees of
      * freedom in one global numbering (the DoFs of mesh m follow those of
      * mesh m-1), vertices that coincide across meshes tied by
      * AffineConstraints (shackles, post heads, cable ends), supports as
@@ -97,6 +134,11 @@ namespace Talus
       MembraneMesh &
       add_membrane(const std::string                     &name,
                    const std::shared_ptr<const Membrane> &membrane);
+
+      /** A continuum solid; fill its triangulation before setup_dofs(). */
+      SolidMesh &
+      add_solid(const std::string                              &name,
+                const std::shared_ptr<const ContinuumSolid<3>> &solid);
 
       /**
        * Distribute the DoFs of every mesh, number them globally and find
@@ -135,6 +177,50 @@ namespace Talus
       prescribe(const unsigned int node,
                 const unsigned int c,
                 const double       value = 0.);
+
+      /**
+       * Fix global DoF @p dof (of any mesh; a tied DoF is replaced by its
+       * master) at @p value times the load factor.
+       */
+      void
+      prescribe_dof(const dealii::types::global_dof_index dof,
+                    const double                          value = 0.);
+
+      /**
+       * Fix the components @p components (x, y, z) of every DoF of solid
+       * mesh @p mesh on the faces with boundary id @p boundary_id. Returns
+       * the number of DoFs fixed.
+       */
+      unsigned int
+      prescribe_solid_boundary(const unsigned int       mesh,
+                               const unsigned int       boundary_id,
+                               const std::vector<bool> &components = {true,
+                                                                      true,
+                                                                      true});
+
+      /**
+       * Fix the components @p components of every DoF of solid mesh
+       * @p mesh whose support point lies in the box [@p lower, @p upper]
+       * (with a tolerance of 1e-10 of the mesh size). Returns the number of
+       * DoFs fixed.
+       */
+      unsigned int
+      prescribe_solid_box(const unsigned int       mesh,
+                          const dealii::Point<3>  &lower,
+                          const dealii::Point<3>  &upper,
+                          const std::vector<bool> &components);
+
+      /**
+       * The connected parts of the structure (after setup_system()): DoFs
+       * joined by a cell of any mesh or by a tie, with their meshes, a node
+       * position, the directions in which a DoF is prescribed and their
+       * mass. A part with no prescribed DoF along a direction can
+       * translate freely along it (every element is invariant under
+       * translations): its static stiffness is singular; with no
+       * prescribed DoF at all it is connected to nothing.
+       */
+      std::vector<StructurePart>
+      parts() const;
 
       /** Remove the condition of prescribe() (call setup_system() again,
        * which keeps nothing but the constraints and the matrix pattern). */
@@ -189,7 +275,8 @@ namespace Talus
 
       /**
        * Lumped mass per DoF [kg] (rho A L/2 per node of a line element,
-       * rho t int N_I dA0 for membranes), summed onto the master DoF of
+       * rho t int N_I dA0 for membranes, rho int N_I dV0 for solids),
+       * summed onto the master DoF of
        * each node; zero on tied DoFs.
        */
       const dealii::Vector<double> &
@@ -199,7 +286,7 @@ namespace Talus
        * Consistent mass matrix (condensed with the constraints; sparsity of
        * setup_system()): rho A L/6 [[2,1],[1,2]] per component for line
        * elements, the lumped masses for sliding cables, rho t int N_I N_J
-       * dA0 for membranes [kg].
+       * dA0 for membranes, rho int N_I N_J dV0 for solids [kg].
        */
       void
       assemble_consistent_mass(dealii::SparseMatrix<double> &M) const;
@@ -251,6 +338,10 @@ namespace Talus
       std::vector<unsigned int>
       line_vertex_nodes(const unsigned int mesh) const;
 
+      /** As membrane_vertex_nodes() for solid mesh @p mesh. */
+      std::vector<unsigned int>
+      solid_vertex_nodes(const unsigned int mesh) const;
+
       /** Set the external force on @p node to @p F [N] (replacing the
        * previous one; not scaled by the load factor). */
       void
@@ -284,6 +375,7 @@ namespace Talus
 
       std::vector<std::unique_ptr<LineMesh>>     line_meshes;
       std::vector<std::unique_ptr<MembraneMesh>> membrane_meshes;
+      std::vector<std::unique_ptr<SolidMesh>>    solid_meshes;
 
     private:
       dealii::FESystem<1, 3> line_fe{dealii::FE_Q<1, 3>(1), 3};
@@ -296,8 +388,13 @@ namespace Talus
         std::vector<std::array<dealii::types::global_dof_index, 3>> slaves;
       };
       std::vector<Node> nodes;
-      /** Node of every global DoF. */
-      std::vector<unsigned int>       dof_to_node;
+      /** Node of every global DoF (invalid for the DoFs of solids that
+       * are not at a vertex). */
+      std::vector<unsigned int> dof_to_node;
+      /** Direction (0, 1, 2) of every global DoF. */
+      std::vector<unsigned char> dof_component;
+      /** Tractions of the solids at load factor 1, per DoF [N]. */
+      dealii::Vector<double>          traction_forces;
       dealii::types::global_dof_index total_dofs = 0;
 
       std::vector<std::pair<dealii::types::global_dof_index, double>>

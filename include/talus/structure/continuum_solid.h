@@ -1,0 +1,155 @@
+#ifndef talus_structure_continuum_solid_h
+#define talus_structure_continuum_solid_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <string>
+#include <vector>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    /** Results of one solid cell for output. */
+    struct SolidCellOutput
+    {
+      /** int W(E) dV0 [J]. */
+      double strain_energy = 0.;
+      /** Cell mean of the von Mises stress of the Cauchy stress [Pa]. */
+      double von_mises = 0.;
+      /** Cell mean of the mean Cauchy stress tr(sigma)/3 [Pa]. */
+      double mean_stress = 0.;
+    };
+
+
+    /**
+     * A continuum solid in the barrier structure (rigid or elastic
+     * obstacles, verification): geometrically nonlinear, total-Lagrangian
+     * St. Venant-Kirchhoff elasticity on a Triangulation<dim,dim> with
+     * FESystem(FE_Q(degree), dim); dim = 3 in the Structure, dim = 2 (plane
+     * strain) for element checks. With F = I + Grad u,
+     *   E = (F^T F - I)/2,  S = lambda tr(E) I + 2 mu E,  P = F S,
+     *   W(E) = lambda/2 tr(E)^2 + mu E:E,
+     *   f_i = int P : Grad phi_i dV0,
+     *   K_ij = int dE_i : C : dE_j + S : (Grad phi_i^T Grad phi_j) dV0,
+     *   dE_i = sym(F^T Grad phi_i),
+     * with lambda = E nu/((1+nu)(1-2nu)), mu = E/(2(1+nu)) and Gauss
+     * quadrature of degree + 1 points per direction (full integration:
+     * linear elements lock in bending, measured in doc/verification.md).
+     * Gravity, tractions and the mass are added by the Structure. The
+     * St. Venant-Kirchhoff law is the membrane's in three dimensions; it is
+     * for moderate strains (it softens and loses stability in strong
+     * compression, stretch below 1/sqrt(3) in uniaxial stress). Source:
+     * Holzapfel, Nonlinear Solid Mechanics (2000) ch. 6 and 8; Wriggers,
+     * Nonlinear Finite Element Methods (2008) ch. 4.
+     */
+    template <int dim>
+    class ContinuumSolid
+    {
+    public:
+      double       youngs_modulus = 2.1e11; ///< E [Pa]
+      double       poissons_ratio = 0.3;    ///< nu [-], in (-1, 0.5)
+      double       density        = 7850.;  ///< rho_0 [kg/m^3]
+      unsigned int degree         = 1;      ///< of FE_Q [-]
+
+      /** The material entries of the current subsection (Structure/Solid). */
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Read them; @p subsection (e.g. "Structure/Solid") for messages. */
+      void
+      parse_parameters(dealii::ParameterHandler &prm,
+                       const std::string        &subsection);
+
+      /** Lame's first parameter lambda [Pa]. */
+      double
+      lame_lambda() const;
+
+      /** Shear modulus mu [Pa]. */
+      double
+      shear_modulus() const;
+
+      /** PK2 stress S(E) [Pa]. */
+      dealii::SymmetricTensor<2, dim>
+      stress(const dealii::SymmetricTensor<2, dim> &E) const;
+
+      /** Stored energy W(E) per reference volume [J/m^3]. */
+      double
+      energy_density(const dealii::SymmetricTensor<2, dim> &E) const;
+
+      /**
+       * Internal forces r = f_int and their derivative K of the cell on
+       * which @p fe_values (update_values, gradients, JxW) was reinitialised
+       * in the reference configuration, at the displacements @p u of its
+       * dofs (FESystem order).
+       */
+      void
+      compute(const dealii::FEValues<dim> &fe_values,
+              const std::vector<double>   &u,
+              dealii::Vector<double>      &r,
+              dealii::FullMatrix<double>  &K,
+              SolidCellOutput             *output = nullptr) const;
+    };
+
+
+    /**
+     * Geometry, supports and surface load of a continuum solid, from
+     * subsection Structure/Solid: a Gmsh file of hexahedra or a generated
+     * box (GridGenerator::subdivided_hyper_rectangle, colorized: boundary
+     * ids 0..5 on the faces x = x_min, x_max, y_min, y_max, z_min, z_max),
+     * fixed boundary ids (all components of every DoF on those faces),
+     * support boxes (the listed components of every DoF whose support
+     * point lies in an axis-aligned box) and a dead traction on one
+     * boundary id, scaled by the load factor.
+     */
+    class SolidGeometry
+    {
+    public:
+      /** A box of supports: DoFs of components @p components in it. */
+      struct SupportBox
+      {
+        dealii::Point<3>  lower, upper;
+        std::vector<bool> components = std::vector<bool>(3, false);
+      };
+
+      std::string               mesh_file; ///< empty: generated box
+      dealii::Point<3>          lower_corner, upper_corner; ///< [m]
+      std::vector<unsigned int> subdivisions = {1, 1, 1};
+      std::vector<unsigned int> fixed_boundary_ids;
+      std::vector<SupportBox>   support_boxes;
+      int                       traction_boundary_id = -1;
+      dealii::Tensor<1, 3>      traction; ///< [Pa]
+
+      /** The geometry entries of the current subsection (Structure/Solid). */
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Read them; @p subsection for messages. */
+      void
+      parse_parameters(dealii::ParameterHandler &prm,
+                       const std::string        &subsection);
+
+      /**
+       * Fill @p tria: read the mesh file (errors name 'mesh file' in
+       * @p subsection) or generate the box with subdivisions times
+       * 2^@p level cells per direction.
+       */
+      void
+      create_triangulation(dealii::Triangulation<3> &tria,
+                           const unsigned int        level,
+                           const std::string        &subsection) const;
+    };
+  } // namespace Structure
+} // namespace Talus
+
+#endif

@@ -1,0 +1,340 @@
+#include <talus/base/input.h>
+#include <talus/structure/continuum_solid.h>
+#include <talus/structure/mesh_input.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/grid/grid_generator.h>
+
+#include <deal.II/fe/fe_values_extractors.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace Talus
+{
+  namespace Structure
+  {
+    template <int dim>
+    void
+    ContinuumSolid<dim>::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.declare_entry("Young's modulus",
+                        "2.1e11",
+                        dealii::Patterns::Double(),
+                        "Young's modulus E of the St. Venant-Kirchhoff solid "
+                        "[Pa], > 0.");
+      prm.declare_entry("Poisson's ratio",
+                        "0.3",
+                        dealii::Patterns::Double(),
+                        "Poisson's ratio nu of the solid [-], strictly "
+                        "between -1 and 0.5.");
+      prm.declare_entry("density",
+                        "7850",
+                        dealii::Patterns::Double(),
+                        "Density rho_0 of the solid (reference "
+                        "configuration) [kg/m^3], >= 0.");
+      prm.declare_entry("degree",
+                        "1",
+                        dealii::Patterns::Integer(1, 4),
+                        "Polynomial degree of the FE_Q elements of the solid "
+                        "[-] (Gauss quadrature with degree + 1 points per "
+                        "direction; ties to other meshes are at the cell "
+                        "vertices).");
+    }
+
+
+    template <int dim>
+    void
+    ContinuumSolid<dim>::parse_parameters(dealii::ParameterHandler &prm,
+                                          const std::string        &subsection)
+    {
+      youngs_modulus = get_positive(prm, subsection, "Young's modulus");
+      poissons_ratio =
+        get_in_open_interval(prm, subsection, "Poisson's ratio", -1., 0.5);
+      density = get_non_negative(prm, subsection, "density");
+      degree  = prm.get_integer("degree");
+    }
+
+
+    template <int dim>
+    double
+    ContinuumSolid<dim>::lame_lambda() const
+    {
+      return youngs_modulus * poissons_ratio /
+             ((1. + poissons_ratio) * (1. - 2. * poissons_ratio));
+    }
+
+
+    template <int dim>
+    double
+    ContinuumSolid<dim>::shear_modulus() const
+    {
+      return youngs_modulus / (2. * (1. + poissons_ratio));
+    }
+
+
+    template <int dim>
+    dealii::SymmetricTensor<2, dim>
+    ContinuumSolid<dim>::stress(const dealii::SymmetricTensor<2, dim> &E) const
+    {
+      return lame_lambda() * dealii::trace(E) *
+               dealii::unit_symmetric_tensor<dim>() +
+             2. * shear_modulus() * E;
+    }
+
+
+    template <int dim>
+    double
+    ContinuumSolid<dim>::energy_density(
+      const dealii::SymmetricTensor<2, dim> &E) const
+    {
+      const double trE = dealii::trace(E);
+      return 0.5 * lame_lambda() * trE * trE + shear_modulus() * (E * E);
+    }
+
+
+    template <int dim>
+    void
+    ContinuumSolid<dim>::compute(const dealii::FEValues<dim> &fe_values,
+                                 const std::vector<double>   &u,
+                                 dealii::Vector<double>      &r,
+                                 dealii::FullMatrix<double>  &K,
+                                 SolidCellOutput             *output) const
+    {
+      const unsigned int n = fe_values.get_fe().n_dofs_per_cell();
+      r.reinit(n);
+      K.reinit(n, n);
+      const dealii::FEValuesExtractors::Vector     displacement(0);
+      const double                                 lambda = lame_lambda();
+      const double                                 mu     = shear_modulus();
+      std::vector<dealii::Tensor<2, dim>>          grad_phi(n);
+      std::vector<dealii::SymmetricTensor<2, dim>> dE(n);
+      std::vector<double>                          tr_dE(n);
+      double energy = 0., volume = 0., von_mises = 0., mean = 0.;
+      for (const unsigned int q : fe_values.quadrature_point_indices())
+        {
+          // H = Grad u; E = (H + H^T + H^T H)/2 without forming F^T F - I
+          // (which loses the digits of small strains).
+          dealii::Tensor<2, dim> H;
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              grad_phi[i] = fe_values[displacement].gradient(i, q);
+              H += u[i] * grad_phi[i];
+            }
+          const dealii::Tensor<2, dim> F =
+            H + dealii::Tensor<2, dim>(dealii::unit_symmetric_tensor<dim>());
+          const dealii::SymmetricTensor<2, dim> E =
+            dealii::symmetrize(H) +
+            0.5 * dealii::symmetrize(dealii::transpose(H) * H);
+          const dealii::SymmetricTensor<2, dim> S   = stress(E);
+          const dealii::Tensor<2, dim>          St  = S;
+          const dealii::Tensor<2, dim>          P   = F * St;
+          const double                          JxW = fe_values.JxW(q);
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              dE[i]    = dealii::symmetrize(dealii::transpose(F) * grad_phi[i]);
+              tr_dE[i] = dealii::trace(dE[i]);
+              r(i) += dealii::scalar_product(P, grad_phi[i]) * JxW;
+            }
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const dealii::Tensor<2, dim> grad_i_S = grad_phi[i] * St;
+              for (unsigned int j = 0; j < n; ++j)
+                K(i, j) +=
+                  (lambda * tr_dE[i] * tr_dE[j] + 2. * mu * (dE[i] * dE[j]) +
+                   dealii::scalar_product(grad_i_S, grad_phi[j])) *
+                  JxW;
+            }
+          if (output != nullptr)
+            {
+              energy += energy_density(E) * JxW;
+              volume += JxW;
+              const double                          J = dealii::determinant(F);
+              const dealii::SymmetricTensor<2, dim> sigma =
+                dealii::symmetrize(P * dealii::transpose(F)) / J;
+              const dealii::SymmetricTensor<2, dim> s = dealii::deviator(sigma);
+              von_mises += std::sqrt(1.5 * (s * s)) * JxW;
+              mean += dealii::trace(sigma) / 3. * JxW;
+            }
+        }
+      if (output != nullptr)
+        {
+          output->strain_energy = energy;
+          output->von_mises     = von_mises / volume;
+          output->mean_stress   = mean / volume;
+        }
+    }
+
+
+    void
+    SolidGeometry::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.declare_entry("mesh file",
+                        "",
+                        dealii::Patterns::Anything(),
+                        "Gmsh (.msh) file of hexahedra for the solid; empty: "
+                        "the box 'lower corner' to 'upper corner' with "
+                        "'subdivisions' cells, its faces x_min, x_max, y_min, "
+                        "y_max, z_min, z_max with boundary ids 0 to 5.");
+      prm.declare_entry("lower corner",
+                        "0, 0, 0",
+                        dealii::Patterns::List(dealii::Patterns::Double(),
+                                               3,
+                                               3),
+                        "Corner of the generated box with the smallest "
+                        "coordinates [m].");
+      prm.declare_entry("upper corner",
+                        "1, 0.1, 0.1",
+                        dealii::Patterns::List(dealii::Patterns::Double(),
+                                               3,
+                                               3),
+                        "Opposite corner of the generated box [m], larger in "
+                        "every coordinate.");
+      prm.declare_entry("subdivisions",
+                        "10, 1, 1",
+                        dealii::Patterns::List(dealii::Patterns::Integer(1),
+                                               3,
+                                               3),
+                        "Cells of the generated box along x, y, z on level 0 "
+                        "(doubled on every level of a convergence study) "
+                        "[-].");
+      prm.declare_entry("fixed boundary ids",
+                        "",
+                        dealii::Patterns::List(
+                          dealii::Patterns::Integer(0, 255)),
+                        "Boundary ids whose faces are clamped (every "
+                        "component of every DoF on them fixed) [-].");
+      prm.declare_entry("support boxes",
+                        "",
+                        dealii::Patterns::Anything(),
+                        "Supports by position, separated by ';', each "
+                        "'x0, y0, z0, x1, y1, z1, components': the listed "
+                        "components (a word of x, y, z, e.g. 'xz') of every "
+                        "DoF of the solid whose support point lies in the "
+                        "box [x0, x1] x [y0, y1] x [z0, z1] are fixed "
+                        "(coordinates in m; a flat box selects a plane, "
+                        "e.g. a symmetry plane).");
+      prm.declare_entry("traction boundary id",
+                        "-1",
+                        dealii::Patterns::Integer(-1, 255),
+                        "Boundary id that carries 'traction'; -1: none [-].");
+      prm.declare_entry("traction",
+                        "0, 0, 0",
+                        dealii::Patterns::List(dealii::Patterns::Double(),
+                                               3,
+                                               3),
+                        "Dead surface load on the faces of 'traction boundary "
+                        "id', per reference area, scaled by the load factor "
+                        "[Pa].");
+    }
+
+
+    namespace
+    {
+      dealii::Point<3>
+      get_point(dealii::ParameterHandler &prm, const std::string &entry)
+      {
+        const auto v = dealii::Utilities::string_to_double(
+          dealii::Utilities::split_string_list(prm.get(entry)));
+        return dealii::Point<3>(v[0], v[1], v[2]);
+      }
+    } // namespace
+
+
+    void
+    SolidGeometry::parse_parameters(dealii::ParameterHandler &prm,
+                                    const std::string        &subsection)
+    {
+      mesh_file    = prm.get("mesh file");
+      lower_corner = get_point(prm, "lower corner");
+      upper_corner = get_point(prm, "upper corner");
+      const auto s = dealii::Utilities::string_to_int(
+        dealii::Utilities::split_string_list(prm.get("subdivisions")));
+      subdivisions.assign(s.begin(), s.end());
+      if (mesh_file.empty())
+        for (unsigned int d = 0; d < 3; ++d)
+          if (!(upper_corner[d] > lower_corner[d]))
+            InputFile::reject(subsection,
+                              "upper corner",
+                              prm.get("upper corner"),
+                              "the box needs upper corner > lower corner (" +
+                                prm.get("lower corner") +
+                                ") in every coordinate");
+      fixed_boundary_ids.clear();
+      for (const int id : dealii::Utilities::string_to_int(
+             dealii::Utilities::split_string_list(
+               prm.get("fixed boundary ids"))))
+        fixed_boundary_ids.push_back(id);
+
+      support_boxes.clear();
+      const std::string boxes = prm.get("support boxes");
+      for (const auto &text : dealii::Utilities::split_string_list(boxes, ';'))
+        {
+          if (text.empty())
+            continue;
+          const auto fields = dealii::Utilities::split_string_list(text, ',');
+          SupportBox box;
+          bool       ok = fields.size() == 7;
+          try
+            {
+              for (unsigned int d = 0; ok && d < 3; ++d)
+                {
+                  box.lower[d] = std::stod(fields[d]);
+                  box.upper[d] = std::stod(fields[3 + d]);
+                  ok           = ok && box.upper[d] >= box.lower[d];
+                }
+            }
+          catch (const std::exception &)
+            {
+              ok = false;
+            }
+          if (ok)
+            {
+              ok = !fields[6].empty();
+              for (const char c : fields[6])
+                if (c >= 'x' && c <= 'z')
+                  box.components[c - 'x'] = true;
+                else
+                  ok = false;
+            }
+          if (!ok)
+            InputFile::reject(subsection,
+                              "support boxes",
+                              boxes,
+                              "each box separated by ';' must be 'x0, y0, z0, "
+                              "x1, y1, z1, components' with x0 <= x1, y0 <= "
+                              "y1, z0 <= z1 and components a word of x, y, z "
+                              "(not <" +
+                                text + ">)");
+          support_boxes.push_back(box);
+        }
+      traction_boundary_id = prm.get_integer("traction boundary id");
+      const auto t         = get_point(prm, "traction");
+      for (unsigned int d = 0; d < 3; ++d)
+        traction[d] = t[d];
+    }
+
+
+    void
+    SolidGeometry::create_triangulation(dealii::Triangulation<3> &tria,
+                                        const unsigned int        level,
+                                        const std::string &subsection) const
+    {
+      if (!mesh_file.empty())
+        {
+          read_gmsh_mesh(tria, mesh_file, subsection, "mesh file", "hexahedra");
+          return;
+        }
+      std::vector<unsigned int> n(3);
+      for (unsigned int d = 0; d < 3; ++d)
+        n[d] = subdivisions[d] << level;
+      dealii::GridGenerator::subdivided_hyper_rectangle(
+        tria, n, lower_corner, upper_corner, true);
+    }
+
+
+    template class ContinuumSolid<2>;
+    template class ContinuumSolid<3>;
+  } // namespace Structure
+} // namespace Talus
