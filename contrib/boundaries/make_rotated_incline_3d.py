@@ -15,24 +15,20 @@ import sys
 G, THETA, H = 9.81, math.radians(30.), 0.1
 
 
-def write(out, name, rho_deg, mu, condition, end_time=0.5, suffix=""):
-    r = math.radians(rho_deg)
-    t = (math.cos(r), 0., math.sin(r))
-    e2 = (0., 1., 0.)
-    n = (-math.sin(r), 0., math.cos(r))   # (t x e2)
-    o = (0.15 + 0.2 * math.sin(r), 0.013, 0.117)
-    P = lambda s, w, h: tuple(o[i] + s * t[i] + w * e2[i] + h * n[i] for i in range(3))
-    # body mesh: s in [0.1, 0.5], w in [0.2, 0.4], h in [0, 0.2], 8 x 4 x 4 hexes
-    ns, nw, nh = 8, 4, 4
+def write_block_mesh(path, P, s_range, w_range, h_range):
+    """A structured hexahedral Gmsh mesh (format 2.2) of the block
+    {P(s, w, h): s, w, h in the ranges (first, last, number of cells)}."""
+    (s0, s1, ns), (w0, w1, nw), (h0, h1, nh) = s_range, w_range, h_range
     nodes = {}
     for k in range(nh + 1):
         for j in range(nw + 1):
             for i in range(ns + 1):
                 nodes[(i, j, k)] = len(nodes) + 1
-    with open(f"{out}/{name}.msh", "w") as f:
+    with open(path, "w") as f:
         f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(nodes))
         for (i, j, k), idx in nodes.items():
-            p = P(0.1 + 0.4 * i / ns, 0.2 + 0.2 * j / nw, 0.2 * k / nh)
+            p = P(s0 + (s1 - s0) * i / ns, w0 + (w1 - w0) * j / nw,
+                  h0 + (h1 - h0) * k / nh)
             f.write("%d %.12g %.12g %.12g\n" % (idx, *p))
         f.write("$EndNodes\n$Elements\n%d\n" % (ns * nw * nh))
         e = 0
@@ -45,6 +41,18 @@ def write(out, name, rho_deg, mu, condition, end_time=0.5, suffix=""):
                          nodes[(i + 1, j + 1, k + 1)], nodes[(i, j + 1, k + 1)]]
                     f.write("%d 5 2 1 1 %s\n" % (e, " ".join(map(str, v))))
         f.write("$EndElements\n")
+
+
+def write(out, name, rho_deg, mu, condition, end_time=0.5, suffix=""):
+    r = math.radians(rho_deg)
+    t = (math.cos(r), 0., math.sin(r))
+    e2 = (0., 1., 0.)
+    n = (-math.sin(r), 0., math.cos(r))   # (t x e2)
+    o = (0.15 + 0.2 * math.sin(r), 0.013, 0.117)
+    P = lambda s, w, h: tuple(o[i] + s * t[i] + w * e2[i] + h * n[i] for i in range(3))
+    # body mesh: s in [0.1, 0.5], w in [0.2, 0.4], h in [0, 0.2], 8 x 4 x 4 hexes
+    write_block_mesh(f"{out}/{name}.msh", P, (0.1, 0.5, 8), (0.2, 0.4, 4),
+                     (0., 0.2, 4))
     plane = [P(-0.1, -0.003, 0), P(1.6, -0.003, 0), P(-0.1, 0.58, 0)]
     g = tuple(G * (math.sin(THETA) * t[i] - math.cos(THETA) * n[i]) for i in range(3))
     sliding = math.tan(THETA) > mu

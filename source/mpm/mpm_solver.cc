@@ -419,6 +419,8 @@ namespace Talus
         // tangent of the undeformed, virgin material (Nitsche's method)
         const unsigned int   n_history = points.n_history();
         std::vector<double>  h_old(n_history, 0.), h_new(n_history, 0.);
+        model.initialize_history(
+          dealii::ArrayView<double>(h_old.data(), n_history));
         dealii::Tensor<2, 3> P;
         dealii::Tensor<4, 3> A;
         const auto           I = dealii::unit_symmetric_tensor<3>();
