@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Compare the 3D granular block on a grid-aligned slope with tilted gravity
 (benchmarks/granular_3d/block_on_slope.prm, basal friction on the grid's
 bottom face) and on a 15 degree slope of boundary particles with vertical
@@ -73,7 +73,7 @@ def main():
         a, b = results[0][t], results[1][t]
         print("| %.2f | %d / %d | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | "
               "%.3f / %.3f | %.2f / %.2f |" %
-              (t, a[0], b[0], a[1] - s0[0], b[1] - s0[1], a[2], b[2] + 0.,
+              (t, a[0], b[0], a[1] - s0[0], b[1] - s0[1], a[2], b[2],
                a[3], b[3], a[4], b[4], a[5], b[5]))
 
 

@@ -44,7 +44,7 @@ def main():
     write_block_mesh(os.path.join(out, name + ".msh"), P, (0.1, 0.5, 8),
                      (0.2, 0.6, 8), (0., 0.2, 4))
     fmt = lambda p: ", ".join("%.10g" % x for x in p)
-    plane = [P(-0.02, 0.001, 0.), P(2.2, 0.001, 0.), P(-0.02, 0.799, 0.)]
+    plane = [P(-0.02, 0.001, 0.), P(1.95, 0.001, 0.), P(-0.02, 0.799, 0.)]
     with open(os.path.join(out, name + ".prm"), "w") as f:
         f.write(f"""# The granular block of block_on_slope.prm on a 15 degree slope that does
 # not follow the grid: gravity vertical, the slope a 'plane' of boundary
@@ -57,9 +57,9 @@ def main():
 # Down the slope: t = ({fmt(T)}); slope normal n = ({fmt(N)}).
 set dimension = 3
 subsection Background grid
-  set lower corner = 0, 0, 0
-  set upper corner = 2.3, 0.8, 1.0
-  set subdivisions = 23, 8, 10
+  set lower corner = 0, 0, 0.1
+  set upper corner = 2.0, 0.8, 1.0
+  set subdivisions = 20, 8, 9
   set slip boundaries = 2, 3
 end
 subsection Body
