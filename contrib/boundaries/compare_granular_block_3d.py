@@ -69,8 +69,13 @@ def main():
     print("| t [s] | points | mean travel [m] (grid / particles) | front s [m] "
           "| rear s [m] | top h [m] | kinetic energy [J] |")
     print("|---|---|---|---|---|---|---|")
-    for t in sorted(set(results[0]) & set(results[1])):
-        a, b = results[0][t], results[1][t]
+    # output times differ by a fraction of an (adaptive) step: pair each
+    # output of the first run with the nearest one of the second
+    for t in sorted(results[0]):
+        t1 = min(results[1], key=lambda k: abs(k - t))
+        if abs(t1 - t) > 0.02:
+            continue
+        a, b = results[0][t], results[1][t1]
         print("| %.2f | %d / %d | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | "
               "%.3f / %.3f | %.2f / %.2f |" %
               (t, a[0], b[0], a[1] - s0[0], b[1] - s0[1], a[2], b[2],
