@@ -362,9 +362,9 @@ namespace Talus
                                          return o.str();
                                        }(desc.nitsche_theta) +
                                        "), stabilisation" :
-                                       ", penalty")
-                  << " beta = " << std::setprecision(4)
-                  << desc.beta << " Pa/m" << std::defaultfloat << '\n';
+                                     ", penalty")
+                  << " beta = " << std::setprecision(4) << desc.beta << " Pa/m"
+                  << std::defaultfloat << '\n';
           }
       }
     if (!test_mode)
@@ -465,12 +465,12 @@ namespace Talus
     double              max_penetration = 0.;
     double              last_momentum   = initial.momentum[0];
     std::vector<double> crossings;
-    double              total_lost_mass = 0.;
+    double              total_lost_mass               = 0.;
     unsigned int        total_lost_boundary_particles = 0;
-    unsigned long       total_newton    = 0;
-    unsigned long       total_multiplier_updates = 0;
-    double              max_constraint_gap       = 0.;
-    unsigned int        total_rejected  = 0;
+    unsigned long       total_newton                  = 0;
+    unsigned long       total_multiplier_updates      = 0;
+    double              max_constraint_gap            = 0.;
+    unsigned int        total_rejected                = 0;
     while (!time_control.finished())
       {
         const double      step  = time_control.next_step();
@@ -511,7 +511,8 @@ namespace Talus
         time_control.accept(dt_taken);
         total_newton += result.iterations;
         total_multiplier_updates += result.multiplier_updates;
-        max_constraint_gap = std::max(max_constraint_gap, result.constraint_gap);
+        max_constraint_gap =
+          std::max(max_constraint_gap, result.constraint_gap);
 
         const unsigned int n_lost    = points.take_lost_count();
         const double       lost_mass = points.take_lost_mass();
@@ -675,10 +676,9 @@ namespace Talus
               << "\n  lost mass: " << round(total_lost_mass) << " kg\n";
         if (boundaries.any_augmented())
           pcout << "  multiplier updates: " << total_multiplier_updates
-                << " in " << time_control.step
-                << " steps, largest gap left " << std::setprecision(2)
-                << std::scientific << max_constraint_gap << std::defaultfloat
-                << std::setprecision(6) << " m (tolerance "
+                << " in " << time_control.step << " steps, largest gap left "
+                << std::setprecision(2) << std::scientific << max_constraint_gap
+                << std::defaultfloat << std::setprecision(6) << " m (tolerance "
                 << boundaries.multiplier_tolerance() << " m)\n";
         if (total_lost_boundary_particles > 0)
           pcout << "  lost boundary particles: "
@@ -700,8 +700,7 @@ namespace Talus
                   std::to_string(total_lost_boundary_particles) +
                     " boundary particles lost, " :
                   std::string())
-            << "wall time "
-            << format_seconds(wall_seconds()) << "\n"
+            << "wall time " << format_seconds(wall_seconds()) << "\n"
             << "Output in " << output.directory() << "/\n";
     if (compare)
       for (const auto &e : errors)

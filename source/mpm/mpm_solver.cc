@@ -417,8 +417,8 @@ namespace Talus
       const auto                &dof_handler = grid.dof_handler;
       {
         // tangent of the undeformed, virgin material (Nitsche's method)
-        const unsigned int   n_history = points.n_history();
-        std::vector<double>  h_old(n_history, 0.), h_new(n_history, 0.);
+        const unsigned int  n_history = points.n_history();
+        std::vector<double> h_old(n_history, 0.), h_new(n_history, 0.);
         model.initialize_history(
           dealii::ArrayView<double>(h_old.data(), n_history));
         dealii::Tensor<2, 3> P;
@@ -1042,9 +1042,9 @@ namespace Talus
                   // force also changes with the stress, df_j += w D dT_j.
                   // Symmetry term (theta): r_i -= theta/beta (f - w T) .
                   // dT_i, its tangent without second derivatives of S.
-                  const double                 k = bp.beta * bp.weight;
-                  const dealii::Tensor<2, dim> D = -bf.dforce_du / k;
-                  const dealii::Tensor<1, dim> q = bf.force - bp.lambda;
+                  const double                 k       = bp.beta * bp.weight;
+                  const dealii::Tensor<2, dim> D       = -bf.dforce_du / k;
+                  const dealii::Tensor<1, dim> q       = bf.force - bp.lambda;
                   const double                 c_theta = bp.theta / bp.beta;
                   for (unsigned int j = 0; j < dofs_per_cell; ++j)
                     {
@@ -1060,7 +1060,8 @@ namespace Talus
                         continue;
                       for (unsigned int j = 0; j < dofs_per_cell; ++j)
                         {
-                          k_local(i, j) -= Ni * bp.weight * (D * dT[j])[comp[i]];
+                          k_local(i, j) -=
+                            Ni * bp.weight * (D * dT[j])[comp[i]];
                           k_local(i, j) +=
                             c_theta * ((df[j] - bp.weight * dT[j]) * dT[i]);
                         }
@@ -2177,67 +2178,70 @@ namespace Talus
                 }
               props[BP::state] = 0.;
             }
-          double                              work = 0.;
+          double work = 0.;
+          // per-particle traction, force and gap at commit (debugging)
+          const bool debug_boundary = std::getenv("TALUS_DEBUG_NITSCHE");
           std::vector<dealii::Tensor<1, dim>> dT(dofs_per_cell);
           std::vector<double>                 du_local(dofs_per_cell);
           for (const auto &c : boundary_cells)
             {
-            for (unsigned int i = 0; i < dofs_per_cell; ++i)
-              du_local[i] = displacement(c.dofs[i]);
-            for (unsigned int b = 0; b < c.n_boundary; ++b)
-              {
-                BoundaryPoint &bp = boundary_points[c.first_boundary + b];
-                dealii::Tensor<1, dim> du_b;
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  {
-                    const auto ci = fe.system_to_component_index(i);
-                    du_b[ci.first] += bp.N[ci.second] * du_local[i];
-                  }
-                if (bp.nitsche && bp.with_stress)
-                  {
-                    dealii::Tensor<1, dim> T;
-                    boundary_traction(bp, du_local, T, dT);
-                    bp.lambda = bp.weight * T;
-                  }
-                const BoundaryForce bf = boundary_force(bp, du_b);
-                if (std::getenv("TALUS_DEBUG_NITSCHE") && bf.state != 0)
-                  std::cerr << "  bp " << bp.particle->get_location()
-                            << " lambda.n " << bp.lambda * bp.normal
-                            << " f.n " << bf.force * bp.normal << " g.n "
-                            << bf.gap * bp.normal << std::endl;
-                // The part of the force on nodes without mass (constrained)
-                // does not act on the material: report the rest.
-                double active_share = 0.;
-                for (unsigned int k = 0; k < n_nodes; ++k)
-                  if (nodal_mass(c.dofs[fe.component_to_system_index(0, k)]) >
-                      0.)
-                    active_share += bp.N[k];
-                // dissipated: -f . (relative increment - elastic gap change)
-                work -= bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
-                // a merged (cell-wise) point shares its gap, state and,
-                // by weight, its reaction among its particles
-                // the multiplier the next step starts from reproduces this
-                // force at zero increment: lambda - k g = f
-                const dealii::Tensor<1, dim> lambda =
-                  bp.augmented ? bf.force + bp.beta * bp.weight * bf.gap :
-                                 dealii::Tensor<1, dim>();
-                const auto write = [&](auto particle, const double share) {
-                  auto props = particle->get_properties();
-                  for (unsigned int d = 0; d < dim; ++d)
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                du_local[i] = displacement(c.dofs[i]);
+              for (unsigned int b = 0; b < c.n_boundary; ++b)
+                {
+                  BoundaryPoint &bp = boundary_points[c.first_boundary + b];
+                  dealii::Tensor<1, dim> du_b;
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
                     {
-                      props[BP::gap + d]        = bf.gap[d];
-                      props[BP::multiplier + d] = share * lambda[d];
-                      props[BP::reaction + d] =
-                        -share * active_share * bf.force[d];
+                      const auto ci = fe.system_to_component_index(i);
+                      du_b[ci.first] += bp.N[ci.second] * du_local[i];
                     }
-                  props[BP::state] = bf.state;
-                };
-                if (bp.members.empty())
-                  write(bp.particle, 1.);
-                else
-                  for (unsigned int m = 0; m < bp.members.size(); ++m)
-                    write(bp.members[m], bp.member_weights[m] / bp.weight);
-              }
+                  if (bp.nitsche && bp.with_stress)
+                    {
+                      dealii::Tensor<1, dim> T;
+                      boundary_traction(bp, du_local, T, dT);
+                      bp.lambda = bp.weight * T;
+                    }
+                  const BoundaryForce bf = boundary_force(bp, du_b);
+                  if (debug_boundary && bf.state != 0)
+                    std::cerr << "  bp " << bp.particle->get_location()
+                              << " lambda.n " << bp.lambda * bp.normal
+                              << " f.n " << bf.force * bp.normal << " g.n "
+                              << bf.gap * bp.normal << std::endl;
+                  // The part of the force on nodes without mass (constrained)
+                  // does not act on the material: report the rest.
+                  double active_share = 0.;
+                  for (unsigned int k = 0; k < n_nodes; ++k)
+                    if (nodal_mass(c.dofs[fe.component_to_system_index(0, k)]) >
+                        0.)
+                      active_share += bp.N[k];
+                  // dissipated: -f . (relative increment - elastic gap change)
+                  work -=
+                    bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
+                  // a merged (cell-wise) point shares its gap, state and,
+                  // by weight, its reaction among its particles
+                  // the multiplier the next step starts from reproduces this
+                  // force at zero increment: lambda - k g = f
+                  const dealii::Tensor<1, dim> lambda =
+                    bp.augmented ? bf.force + bp.beta * bp.weight * bf.gap :
+                                   dealii::Tensor<1, dim>();
+                  const auto write = [&](auto particle, const double share) {
+                    auto props = particle->get_properties();
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        props[BP::gap + d]        = bf.gap[d];
+                        props[BP::multiplier + d] = share * lambda[d];
+                        props[BP::reaction + d] =
+                          -share * active_share * bf.force[d];
+                      }
+                    props[BP::state] = bf.state;
+                  };
+                  if (bp.members.empty())
+                    write(bp.particle, 1.);
+                  else
+                    for (unsigned int m = 0; m < bp.members.size(); ++m)
+                      write(bp.members[m], bp.member_weights[m] / bp.weight);
+                }
             }
           friction_dissipation +=
             dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
@@ -2420,8 +2424,7 @@ namespace Talus
       boundary_cells.clear();
       with_nitsche = false;
       for (unsigned int b = 0; b < boundary_particles->n_boundaries(); ++b)
-        with_nitsche =
-          with_nitsche || boundary_particles->boundary(b).nitsche;
+        with_nitsche = with_nitsche || boundary_particles->boundary(b).nitsche;
       if (with_nitsche)
         project_stress_to_grid();
       for (const auto &cell : grid.dof_handler.active_cell_iterators())
@@ -2578,9 +2581,9 @@ namespace Talus
                                                                          k)]);
                     bp.sigma_n /= S;
                     bp.with_stress = true;
-                    bp.full_cell   = std::find(massive.begin(),
-                                             massive.end(),
-                                             false) == massive.end();
+                    bp.full_cell =
+                      std::find(massive.begin(), massive.end(), false) ==
+                      massive.end();
                   }
               }
           }
@@ -2699,8 +2702,7 @@ namespace Talus
                   const double N  = shape_values[k * n_nodes + ci.second];
                   for (unsigned int j = 0; j < dim; ++j)
                     local[j][i] +=
-                      N * m *
-                      props[Properties::stress + voigt[ci.first][j]];
+                      N * m * props[Properties::stress + voigt[ci.first][j]];
                 }
             }
           for (unsigned int j = 0; j < dim; ++j)
@@ -2796,13 +2798,12 @@ namespace Talus
             // the constraint violated: the whole gap when bonded or
             // sticking, its normal part when sliding or frictionless
             const dealii::Tensor<1, dim> g = bp.gap_old + du_b - bp.du_bar;
-            const bool whole = bp.condition == Boundaries::Condition::fixed ||
-                               (bp.condition ==
-                                  Boundaries::Condition::friction &&
-                                bf.state == 1);
+            const bool                   whole =
+              bp.condition == Boundaries::Condition::fixed ||
+              (bp.condition == Boundaries::Condition::friction &&
+               bf.state == 1);
             largest_gap =
-              std::max(largest_gap,
-                       whole ? g.norm() : std::abs(g * bp.normal));
+              std::max(largest_gap, whole ? g.norm() : std::abs(g * bp.normal));
             bp.lambda = bf.force;
           }
       return dealii::Utilities::MPI::max(largest_gap, grid.mpi_communicator);
@@ -2878,9 +2879,8 @@ namespace Talus
                     // carries the force into the next step; augmented
                     // Lagrangian: the multiplier does, the gap keeps only
                     // its normal part
-                    r.gap   = b.augmented || b.nitsche ?
-                                gn * n :
-                                gn * n - (limit / k) * s;
+                    r.gap   = b.augmented || b.nitsche ? gn * n :
+                                                         gn * n - (limit / k) * s;
                     r.state = 2;
                   }
               }

@@ -73,24 +73,24 @@ namespace Talus
     template <int dim>
     struct BoundaryDescription
     {
-      std::string  name;
-      std::string  geometry;
-      Condition    condition            = Condition::fixed;
-      std::string  method               = "penalty";
+      std::string name;
+      std::string geometry;
+      Condition   condition = Condition::fixed;
+      std::string method    = "penalty";
       /**
        * Impose the condition with Lagrange multipliers iterated by Uzawa
        * updates on top of the penalty spring (method = augmented
        * Lagrangian): the constraint then holds to a tolerance that does
        * not depend on the penalty value.
        */
-      bool         augmented            = false;
+      bool augmented = false;
       /**
        * Impose the condition by Nitsche's method (method = Nitsche): the
        * penalty spring plus the material's traction at the boundary and,
        * with weight nitsche_theta, the symmetry term.
        */
-      bool   nitsche       = false;
-      double nitsche_theta = -1.;
+      bool         nitsche              = false;
+      double       nitsche_theta        = -1.;
       double       friction_coefficient = 0.;
       double       penalty_factor       = 100.;
       double       penalty_parameter    = 0.; ///< [Pa/m], 0: automatic
@@ -326,7 +326,7 @@ namespace Talus
       const MPM::BackgroundGrid<dim>         &grid;
       dealii::Particles::ParticleHandler<dim> handler;
       std::vector<BoundaryDescription<dim>>   boundaries;
-      unsigned int                            lost = 0;
+      unsigned int                            lost                   = 0;
       double                                  relative_gap_tolerance = 1e-5;
       double                                  gap_tolerance          = 0.;
       unsigned int                            max_updates            = 20;

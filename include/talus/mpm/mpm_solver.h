@@ -252,7 +252,8 @@ namespace Talus
         int frozen = -1;
         /** State at the last Newton iterate (-1: none yet). */
         int last_state = -1;
-        /** Slip direction (against the tangential force) at the last iterate. */
+        /** Slip direction (against the tangential force) at the last iterate.
+         */
         dealii::Tensor<1, dim> last_slip;
       };
 
@@ -443,8 +444,8 @@ namespace Talus
       std::vector<dealii::TrilinosWrappers::MPI::Vector> nodal_stress;
       dealii::Tensor<4, dim>                             elastic_tangent;
       bool                                               with_nitsche = false;
-      std::vector<double>                 shape_values;
-      std::vector<dealii::Tensor<1, dim>> shape_gradients;
+      std::vector<double>                                shape_values;
+      std::vector<dealii::Tensor<1, dim>>                shape_gradients;
       std::vector<dealii::Tensor<1, dim>> particle_forces; ///< m_p b_p [N]
 
       dealii::AffineConstraints<double>                          constraints;
