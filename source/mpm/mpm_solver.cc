@@ -14,8 +14,11 @@
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/vector.h>
 
+#include <deal.II/grid/grid_tools.h>
+
 #include <deal.II/dofs/dof_tools.h>
 
+#include <deal.II/fe/fe_interface_values.h>
 #include <deal.II/fe/fe_values.h>
 
 #include <deal.II/differentiation/ad/sacado_product_types.h>
@@ -363,6 +366,25 @@ namespace Talus
           "(v_p += interpolated grid velocity increment; no numerical "
           "dissipation), 0 = PIC (v_p = interpolated grid velocity; "
           "dissipative), in between a blend.");
+        prm.declare_entry(
+          "ghost penalty factor",
+          "0",
+          Patterns::Double(0),
+          "Small-cut stabilisation (ghost penalty, Burman 2010; for MPM "
+          "Coombs et al. 2020, CMAME 358) [-], >= 0; 0: off. Adds "
+          "gamma h int_F [grad du . n] . [grad v . n] dA over every face F "
+          "between two cells with material points of which at least one "
+          "is cut: it has a face neighbour without material points or "
+          "contains boundary particles. gamma = factor * M with M the "
+          "P-wave modulus of the undeformed material (lambda + 2 mu) and "
+          "h the cell size along the face normal; du is the displacement "
+          "increment of the step. It ties the gradient of cells that hold "
+          "only a sliver of material to their neighbours, so that their "
+          "outer nodes are not nearly free (small-cut instability). "
+          "Weakly consistent: the penalised jump vanishes for linear "
+          "fields, the added energy scales with the factor. "
+          "doc/theory.md and doc/verification.md give the measured effect "
+          "of the factor.");
         prm.declare_entry("abort on lost material points",
                           "false",
                           Patterns::Bool(),
@@ -401,10 +423,11 @@ namespace Talus
       linear_tolerance      = get_positive(prm, sub, "linear solver tolerance");
       max_linear_iterations = prm.get_integer("maximum linear iterations");
       abort_on_lost_points  = prm.get_bool("abort on lost material points");
-      use_fbar        = prm.get("volumetric locking treatment") == "F-bar";
-      line_search     = prm.get_bool("line search");
-      flip_fraction   = prm.get_double("FLIP fraction");
-      max_line_search = prm.get_integer("maximum line search halvings");
+      use_fbar             = prm.get("volumetric locking treatment") == "F-bar";
+      line_search          = prm.get_bool("line search");
+      flip_fraction        = prm.get_double("FLIP fraction");
+      ghost_penalty_factor = prm.get_double("ghost penalty factor");
+      max_line_search      = prm.get_integer("maximum line search halvings");
       prm.leave_subsection();
     }
 
@@ -439,7 +462,10 @@ namespace Talus
       }
 
       dealii::DynamicSparsityPattern dsp(grid.locally_relevant_dofs);
-      dealii::DoFTools::make_sparsity_pattern(dof_handler, dsp);
+      if (ghost_penalty_factor > 0.)
+        dealii::DoFTools::make_flux_sparsity_pattern(dof_handler, dsp);
+      else
+        dealii::DoFTools::make_sparsity_pattern(dof_handler, dsp);
       dealii::SparsityTools::distribute_sparsity_pattern(
         dsp,
         grid.locally_owned_dofs,
@@ -743,6 +769,8 @@ namespace Talus
       cache_particles();
       project_to_grid();
       cache_boundary_particles();
+      if (ghost_penalty_factor > 0.)
+        setup_ghost_penalty();
       initialize_friction_states();
       make_constraints();
       amg_current = false;
@@ -1073,6 +1101,24 @@ namespace Talus
               k_local, r_local, c.dofs, matrix, residual);
           else
             constraints.distribute_local_to_global(r_local, c.dofs, residual);
+        }
+
+      // Ghost penalty: linear in the increment, r = -K_g du.
+      for (const auto &g : ghost_faces)
+        {
+          if (!ok)
+            break;
+          const unsigned int     n = g.dofs.size();
+          dealii::Vector<double> du_g(n), r_g(n);
+          for (unsigned int i = 0; i < n; ++i)
+            du_g[i] = du(g.dofs[i]);
+          g.matrix.vmult(r_g, du_g);
+          r_g *= -1.;
+          if (with_matrix)
+            constraints.distribute_local_to_global(
+              g.matrix, r_g, g.dofs, matrix, residual);
+          else
+            constraints.distribute_local_to_global(r_g, g.dofs, residual);
         }
 
       residual.compress(dealii::VectorOperation::add);
@@ -2668,6 +2714,117 @@ namespace Talus
             }
           boundary_cells.push_back(std::move(c));
         }
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::setup_ghost_penalty()
+    {
+      ghost_faces.clear();
+      const auto &dof_handler = grid.dof_handler;
+      // Per cell: bit 0 material points, bit 1 boundary particles, bit 2
+      // cut (computed on owned cells, then sent to the ghost cells).
+      std::vector<unsigned char> flags(grid.triangulation.n_active_cells(), 0);
+      for (const auto &c : cells)
+        flags[c.cell->active_cell_index()] |= 1;
+      for (const auto &c : boundary_cells)
+        flags[c.cell->active_cell_index()] |= 2;
+      using Iterator = typename dealii::DoFHandler<dim>::active_cell_iterator;
+      const auto exchange = [&]() {
+        dealii::GridTools::
+          exchange_cell_data_to_ghosts<unsigned char, dealii::DoFHandler<dim>>(
+            dof_handler,
+            [&](const Iterator &cell) {
+              return flags[cell->active_cell_index()];
+            },
+            [&](const Iterator &cell, const unsigned char &f) {
+              flags[cell->active_cell_index()] = f;
+            });
+      };
+      exchange();
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned() && (flags[cell->active_cell_index()] & 1))
+          {
+            bool cut = (flags[cell->active_cell_index()] & 2) != 0;
+            for (const unsigned int f : cell->face_indices())
+              if (!cell->at_boundary(f) &&
+                  !(flags[cell->neighbor(f)->active_cell_index()] & 1))
+                cut = true;
+            if (cut)
+              flags[cell->active_cell_index()] |= 4;
+          }
+      exchange();
+
+      const double gamma = ghost_penalty_factor * elastic_tangent[0][0][0][0];
+      const dealii::QGauss<dim - 1>  quadrature(2);
+      dealii::FEInterfaceValues<dim> fiv(grid.mapping,
+                                         grid.fe,
+                                         quadrature,
+                                         dealii::update_gradients |
+                                           dealii::update_JxW_values |
+                                           dealii::update_normal_vectors);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned() ||
+              !(flags[cell->active_cell_index()] & 1))
+            continue;
+          for (const unsigned int f : cell->face_indices())
+            {
+              if (cell->at_boundary(f))
+                continue;
+              const auto neighbor = cell->neighbor(f);
+              const auto nf       = neighbor->active_cell_index();
+              if (!(flags[nf] & 1) ||
+                  !((flags[cell->active_cell_index()] | flags[nf]) & 4))
+                continue;
+              // each face once: the lower cell id (owned neighbour) or the
+              // lower subdomain (ghost neighbour) assembles it
+              if (neighbor->is_locally_owned() ?
+                    !(cell->id() < neighbor->id()) :
+                    !(cell->subdomain_id() < neighbor->subdomain_id()))
+                continue;
+              fiv.reinit(cell,
+                         f,
+                         dealii::numbers::invalid_unsigned_int,
+                         neighbor,
+                         cell->neighbor_of_neighbor(f),
+                         dealii::numbers::invalid_unsigned_int);
+              GhostFace g;
+              g.dofs                     = fiv.get_interface_dof_indices();
+              const unsigned int n       = g.dofs.size();
+              const double       h       = cell->extent_in_direction(f / 2);
+              const auto        &normals = fiv.get_normal_vectors();
+              g.matrix.reinit(n, n);
+              std::vector<double>       jump(n);
+              std::vector<unsigned int> component(n);
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  const auto pair = fiv.interface_dof_to_dof_indices(i);
+                  component[i] =
+                    grid.fe
+                      .system_to_component_index(
+                        pair[0] != dealii::numbers::invalid_unsigned_int ?
+                          pair[0] :
+                          pair[1])
+                      .first;
+                }
+              for (unsigned int q = 0; q < fiv.n_quadrature_points; ++q)
+                {
+                  for (unsigned int i = 0; i < n; ++i)
+                    jump[i] = fiv.jump_in_shape_gradients(i, q, component[i]) *
+                              normals[q];
+                  const double w = gamma * h * fiv.JxW(q);
+                  for (unsigned int i = 0; i < n; ++i)
+                    for (unsigned int j = 0; j < n; ++j)
+                      if (component[i] == component[j])
+                        g.matrix(i, j) += w * jump[i] * jump[j];
+                }
+              ghost_faces.push_back(std::move(g));
+            }
+        }
+      n_ghost_faces = dealii::Utilities::MPI::sum(
+        static_cast<unsigned int>(ghost_faces.size()), grid.mpi_communicator);
     }
 
 

@@ -33,6 +33,8 @@ namespace Talus
     double time               = 0.;
     double displacement_error = 0.; ///< [sum V0 |u - u_ex|^2 / sum V0]^1/2
     double stress_error       = 0.; ///< max |sigma - sigma_ex| / max |sigma_ex|
+    /** [sum V0 |sigma - sigma_ex|^2 / sum V0]^1/2 / max |sigma_ex| */
+    double stress_rms_error = 0.;
   };
 
   /**

@@ -170,6 +170,8 @@ namespace Talus
       std::vector<dealii::Point<dim>> polygon;
       std::string                     mesh_file;
       unsigned int                    points_per_direction;
+      /** Clip the points' sub-cells to a box or polygon body. */
+      bool clip_to_body = false;
       std::unique_ptr<dealii::Functions::ParsedFunction<dim>> initial_velocity;
       unsigned int                                            history_size;
 

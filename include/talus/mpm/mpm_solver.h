@@ -160,6 +160,21 @@ namespace Talus
         return n_active;
       }
 
+      /**
+       * Ghost penalty (small-cut stabilisation): the factor of gamma = factor
+       * * M (0: off) and the number of stabilised faces in the last step.
+       */
+      double
+      ghost_penalty() const
+      {
+        return ghost_penalty_factor;
+      }
+      unsigned int
+      n_ghost_penalty_faces() const
+      {
+        return n_ghost_faces;
+      }
+
       /** Throw an error instead of a warning when points leave the grid. */
       bool abort_on_lost_points = false;
 
@@ -459,6 +474,23 @@ namespace Talus
       std::vector<unsigned int>           owned_components;
       bool                                reuse_preconditioner = true;
       std::vector<std::vector<bool>>      constant_modes;
+
+      /**
+       * Ghost penalty (small-cut stabilisation): the factor of gamma =
+       * factor * M, and the face matrices gamma h int_F [grad N_i . n]
+       * [grad N_j . n] of the present step with their interface dofs.
+       */
+      double ghost_penalty_factor = 0.;
+      struct GhostFace
+      {
+        std::vector<dealii::types::global_dof_index> dofs;
+        dealii::FullMatrix<double>                   matrix;
+      };
+      std::vector<GhostFace> ghost_faces;
+      unsigned int           n_ghost_faces = 0;
+      /** Find the faces to stabilise and compute their matrices. */
+      void
+      setup_ghost_penalty();
 
       /** Anti-locking treatment ("none" or "F-bar"). */
       bool use_fbar = false;
