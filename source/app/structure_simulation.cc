@@ -39,6 +39,7 @@ namespace Talus
     {
       using namespace dealii;
       using Talus::Structure::Structure;
+      using Talus::Structure::StructurePart;
 
       const std::string S = "Structure";
 
@@ -117,6 +118,9 @@ namespace Talus
         double mass_damping = 0., stiffness_damping = 0.;
         bool   arc_length_control = false;
         double shear_strain       = 0.;
+        /** Model 'stretched membrane': engineering strains along x, y. */
+        double stretch_x = 0., stretch_y = 0.;
+        bool   uniaxial_stress = false;
         double friction = 0., wrap_angle = 180., drum_radius = 0.5;
         bool   stick_slip = false;
         double spring_EA = 0., spring_length = 1.;
@@ -2045,6 +2049,275 @@ namespace Talus
 
 
       /**
+       * A square membrane (side a, centred at the origin, in the x-y plane,
+       * u_z = 0) under a homogeneous stretch imposed on its boundary:
+       * biaxial, u_x = lambda e_x x and u_y = lambda e_y y on every boundary
+       * node, or uniaxial stress, u_x = lambda e_x x on the edges x = +-a/2,
+       * u_y = 0 on the line y = 0, the edges y = +-a/2 free. Material axis
+       * 1 is x (orthotropic or isotropic MembraneMaterial). Closed form
+       * with lambda_1 = 1 + e_x, E_11 = (lambda_1^2 - 1)/2 and (biaxial)
+       * lambda_2 = 1 + e_y, E_22 = (lambda_2^2 - 1)/2:
+       *   S = C E + S_0 (E_12 = 0), D = 1 - nu12^2 E2/E1,
+       *   S_11 = (E1 E_11 + nu12 E2 E_22)/D, S_22 = (nu12 E2 E_11 + E2 E_22)/D;
+       * uniaxial stress: S_22 = 0, so E_22 = -nu12 E_11 (no pre-stress)
+       * and S_11 = E1 E_11. Cauchy stresses sigma_11 = lambda_1 S_11 /
+       * lambda_2, sigma_22 = lambda_2 S_22 / lambda_1 (J = lambda_1
+       * lambda_2, thickness constant), and the edge forces (reactions)
+       * F_x = t a lambda_1 S_11 on x = a/2, F_y = t a lambda_2 S_22 on
+       * y = a/2.
+       */
+      class StretchedMembrane : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return std::string("square ") +
+                 (p.orthotropic ? "orthotropic" : "isotropic") +
+                 " membrane under " +
+                 (p.uniaxial_stress ? "uniaxial stress" : "biaxial stretch");
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          make_flat_mesh(s.add_membrane("membrane", membrane()).triangulation,
+                         false,
+                         p.side,
+                         p.refinements + level);
+          s.setup_dofs();
+          const double h = 0.5 * p.side * (1. - 1e-10);
+          x_edge = s.find_nodes([&](const Point<3> &x) { return x[0] > h; });
+          y_edge = s.find_nodes([&](const Point<3> &x) { return x[1] > h; });
+          for (unsigned int n = 0; n < s.n_nodes(); ++n)
+            {
+              const Point<3> X = s.node_position(n);
+              const bool on_x = std::abs(X[0]) > h, on_y = std::abs(X[1]) > h;
+              if (on_x)
+                s.prescribe(n, 0, p.stretch_x * X[0]);
+              if (p.uniaxial_stress ? std::abs(X[1]) < 1e-10 * p.side :
+                                      on_y || on_x)
+                s.prescribe(n, 1, p.uniaxial_stress ? 0. : p.stretch_y * X[1]);
+              if (!p.uniaxial_stress && on_y && !on_x)
+                s.prescribe(n, 0, p.stretch_x * X[0]);
+              // In-plane problem (no stiffness normal to the flat sheet).
+              s.prescribe(n, 2);
+            }
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &) override
+        {
+          const auto  &m  = s.membrane_meshes[0]->membrane->material;
+          const double E1 = m.youngs_modulus_1, E2 = m.youngs_modulus_2,
+                       nu = m.poissons_ratio, t = m.thickness;
+          const double D  = 1. - nu * nu * E2 / E1;
+          const double l1 = 1. + p.stretch_x, E11 = 0.5 * (l1 * l1 - 1.);
+          double       l2 = 1. + p.stretch_y, E22 = 0.5 * (l2 * l2 - 1.);
+          if (p.uniaxial_stress)
+            {
+              E22 = -nu * E11;
+              l2  = std::sqrt(1. + 2. * E22);
+            }
+          const double S11     = p.uniaxial_stress ? E1 * E11 :
+                                                     (E1 * E11 + nu * E2 * E22) / D,
+                       S22     = p.uniaxial_stress ? 0. :
+                                                     (nu * E2 * E11 + E2 * E22) / D;
+          const double sigma11 = l1 * S11 / l2, sigma22 = l2 * S22 / l1;
+          double       Fx = 0., Fy = 0., smax = -1e300, smin = 1e300;
+          for (const unsigned int n : x_edge)
+            Fx += s.reaction(n)[0];
+          for (const unsigned int n : y_edge)
+            Fy += s.reaction(n)[1];
+          for (const auto &o : s.membrane_meshes[0]->cell_output)
+            {
+              smax = std::max(smax, o.max_principal);
+              smin = std::min(smin, o.min_principal);
+            }
+          // Principal values of the homogeneous state (no shear).
+          const double big      = std::max(sigma11, sigma22),
+                       small    = std::min(sigma11, sigma22);
+          std::vector<Result> r = {
+            {"edge force F_x on x = a/2 [N]", Fx, t * p.side * l1 * S11},
+            {"largest principal Cauchy stress [Pa]", smax, big}};
+          if (p.uniaxial_stress)
+            r.push_back({"|smallest principal stress| / largest (0)",
+                         std::abs(smin) / smax,
+                         0.,
+                         true,
+                         true});
+          else
+            {
+              r.push_back(
+                {"edge force F_y on y = a/2 [N]", Fy, t * p.side * l2 * S22});
+              r.push_back(
+                {"smallest principal Cauchy stress [Pa]", smin, small});
+            }
+          return r;
+        }
+
+      private:
+        std::vector<unsigned int> x_edge, y_edge;
+      };
+
+
+      /**
+       * A straight truss of length L ('span') along x in 'elements per
+       * member' elements, fixed at x = 0, u_y = u_z = 0 everywhere, its end
+       * loaded by F = lambda F_x ('point load' (F_x, 0, 0)) along the load
+       * path. Every element carries N = F, so the stretch lambda_s is
+       * uniform and solves (Truss: Green-Lagrange strain
+       * eps = (lambda_s^2 - 1)/2, S = E (eps - eps_p) + sigma_0,
+       * N = A S lambda_s, yield |S| <= sigma_y + H alpha)
+       *   elastic: A (E (eps - eps_p) + sigma_0) lambda_s = F,
+       *   on yield (loading): S = sign (sigma_y + H alpha),
+       *     alpha = alpha_old + Dgamma, eps_p = eps_p,old + sign Dgamma,
+       *     Dgamma = (|S_trial| - sigma_y - H alpha_old)/(E + H),
+       *   i.e. A S(lambda_s) lambda_s = F, a scalar monotone equation solved
+       *   here by bisection, the history (eps_p, alpha) carried from step to
+       *   step independently of the finite elements. The end displacement
+       *   is U = L (lambda_s - 1); after unloading to F = 0 (sigma_0 = 0)
+       *   the residual elongation is exactly L (sqrt(1 + 2 eps_p) - 1).
+       */
+      class PlasticBar : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "elasto-plastic bar with linear hardening, loaded along "
+                 "the load path";
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          make_line(s.add_line_mesh("bar", line_element()).triangulation,
+                    Point<3>(),
+                    Point<3>(p.span, 0, 0),
+                    p.elements);
+          s.setup_dofs();
+          end = node_at(s, Point<3>(p.span, 0, 0));
+          for (unsigned int n = 0; n < s.n_nodes(); ++n)
+            {
+              s.prescribe(n, 1);
+              s.prescribe(n, 2);
+            }
+          s.prescribe(node_at(s, Point<3>()), 0);
+          s.add_point_load(end, p.point_load);
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        /** Return-mapped PK2 stress at stretch @p l from the history
+         * (eps_p, alpha); @p new_eps_p, @p new_alpha the updated one. */
+        double
+        stress(const double l, double &new_eps_p, double &new_alpha) const
+        {
+          const double eps = 0.5 * (l * l - 1.);
+          double       S   = p.E * (eps - eps_p) + p.prestress;
+          new_eps_p        = eps_p;
+          new_alpha        = alpha;
+          const double phi =
+            std::abs(S) - (p.yield_stress + p.hardening * alpha);
+          if (p.yield_stress > 0. && phi > 0.)
+            {
+              const double dgamma = phi / (p.E + p.hardening),
+                           sign   = S > 0. ? 1. : -1.;
+              new_eps_p += sign * dgamma;
+              new_alpha += dgamma;
+              S -= p.E * sign * dgamma;
+            }
+          return S;
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure      &s,
+                const Vector<double> &u,
+                const double          lambda) override
+        {
+          const double F = lambda * p.point_load[0];
+          double       e = 0., a = 0.;
+          const double l =
+            bisect([&](
+                     const double l) { return p.A * stress(l, e, a) * l - F; },
+                   0.5,
+                   2.);
+          stress(l, eps_p, alpha);
+          const auto  &mesh              = *s.line_meshes[0];
+          const double U                 = s.node_displacement(u, end)[0];
+          const double U_ex              = p.span * (l - 1.);
+          double       max_plastic_error = 0.;
+          for (const auto &state : mesh.state)
+            max_plastic_error =
+              std::max(max_plastic_error, std::abs(state.plastic - eps_p));
+          U_max       = std::max(U_max, std::abs(U_ex));
+          path_error  = std::max(path_error, std::abs(U - U_ex));
+          plastic_err = std::max(plastic_err, max_plastic_error);
+          F_last      = F;
+          U_last      = U;
+          rows.push_back({{F, U, U_ex, mesh.state[0].plastic, eps_p}});
+          return {{"force_F", F},
+                  {"end_displacement", U},
+                  {"end_displacement_reference", U_ex},
+                  {"plastic_strain", mesh.state[0].plastic},
+                  {"plastic_strain_reference", eps_p}};
+        }
+
+        std::vector<Result>
+        results(const Structure &, const Vector<double> &) override
+        {
+          std::cout << "  path (F [N], U and U_ref [m], eps_p and its "
+                       "closed form [-]):\n";
+          for (const auto &r : rows)
+            std::cout << "    F = " << std::setw(9) << std::setprecision(6)
+                      << r[0] << "  U = " << std::setw(12)
+                      << std::setprecision(8) << r[1]
+                      << "  U_ref = " << std::setw(12) << r[2]
+                      << "  eps_p = " << std::setw(12) << r[3]
+                      << "  ref = " << std::setw(12) << r[4] << '\n';
+          std::vector<Result> r = {
+            {"max over the path |U - U_ref| / max |U_ref|",
+             path_error / std::max(U_max, 1e-300),
+             0.,
+             true,
+             true},
+            {"max over the path |eps_p - eps_p,ref|",
+             plastic_err,
+             0.,
+             true,
+             true}};
+          if (F_last == 0. && p.prestress == 0.)
+            r.push_back({"residual elongation at F = 0 [m]",
+                         U_last,
+                         p.span * (std::sqrt(1. + 2. * eps_p) - 1.)});
+          return r;
+        }
+
+      private:
+        unsigned int end   = 0;
+        double       eps_p = 0., alpha = 0.;
+        double       U_max = 0., path_error = 0., plastic_err = 0., F_last = 0.,
+               U_last = 0.;
+        std::vector<std::array<double, 5>> rows;
+      };
+
+
+      /**
        * A pre-stressed Cable of span L in two elements (ends fixed), its
        * middle node released from the deflection A (y fixed): for small A
        * one degree of freedom with k = 4 N/L (N = A sigma_0, the lateral
@@ -2685,6 +2958,27 @@ namespace Talus
       };
 
 
+      /**
+       * Whether the free rotation of @p part (Structure::parts(),
+       * can_rotate) is a mechanism to reject at set-up: in static runs
+       * always when the part has a membrane or a solid; a part of cables
+       * and trusses only when it is held at a single point (a cable held
+       * at its two ends may swing about their line, stabilised by its
+       * tension and load, e.g. the catenary). In dynamic runs a part with
+       * mass may move freely (as for the translations).
+       */
+      bool
+      rotation_is_mechanism(const Parameters    &p,
+                            const Model         &model,
+                            const StructurePart &part)
+      {
+        if (p.dynamic && !model.form_finding_before_dynamics() &&
+            part.mass > 0.)
+          return false;
+        return part.has_continuum || part.held_at_one_point;
+      }
+
+
       std::unique_ptr<Model>
       create_model(const Parameters &p)
       {
@@ -2692,6 +2986,10 @@ namespace Talus
           return std::make_unique<VibratingString>(p);
         if (p.model == "sheared membrane")
           return std::make_unique<ShearedMembrane>(p);
+        if (p.model == "stretched membrane")
+          return std::make_unique<StretchedMembrane>(p);
+        if (p.model == "plastic bar")
+          return std::make_unique<PlasticBar>(p);
         if (p.model == "capstan")
           return std::make_unique<Capstan>(p);
         if (p.model == "barrier")
@@ -2772,6 +3070,13 @@ namespace Talus
         p.wrinkling          = prm.get_bool("wrinkling");
         p.initial_deflection = prm.get_double("initial deflection");
         p.shear_strain       = prm.get_double("shear strain");
+        {
+          const auto e = Utilities::string_to_double(
+            Utilities::split_string_list(prm.get("stretch")));
+          p.stretch_x = e[0];
+          p.stretch_y = e[1];
+        }
+        p.uniaxial_stress = prm.get_bool("uniaxial stress");
         prm.leave_subsection();
 
         const std::string bs = S + "/Brake";
@@ -2870,6 +3175,20 @@ namespace Talus
                             point_load_text,
                             "the cantilever needs an end load 0, 0, P with "
                             "P != 0");
+        if (p.model == "plastic bar" &&
+            !(p.point_load[0] != 0. && p.point_load[1] == 0. &&
+              p.point_load[2] == 0.))
+          InputFile::reject(ls,
+                            "point load",
+                            point_load_text,
+                            "the plastic bar needs an end load F, 0, 0 with "
+                            "F != 0");
+        if (p.model == "plastic bar" && p.line_element != "truss")
+          InputFile::reject(lm,
+                            "element",
+                            p.line_element,
+                            "the plastic bar is made of 'truss' elements "
+                            "(a cable has no plasticity)");
         if (p.model == "axial bar" &&
             !(p.point_load[0] != 0. && p.point_load[1] == 0. &&
               p.point_load[2] == 0.))
@@ -2952,7 +3271,8 @@ namespace Talus
                             "circular membrane|"
                             "square membrane|sheared membrane|vibrating string|"
                             "sliding ring|capstan|brake|mesh file|barrier|"
-                            "solid|cantilever|hanging block|axial bar"),
+                            "solid|cantilever|hanging block|axial bar|"
+                            "stretched membrane|plastic bar"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
@@ -2982,7 +3302,13 @@ namespace Talus
         "length' tied to the centre of its top face: cable force and "
         "stretch by hand), 'axial bar' (the box on its symmetry planes "
         "pulled on x_max by 'point load' (F, 0, 0) as a traction: exact "
-        "uniaxial stress, or with 'dynamic' the first axial period 4 L/c). "
+        "uniaxial stress, or with 'dynamic' the first axial period 4 L/c), "
+        "'stretched membrane' (square membrane, orthotropic or not, under "
+        "the homogeneous biaxial stretch or uniaxial stress of 'stretch'), "
+        "'plastic bar' (a straight truss of 'span' along x, fixed at x = 0, "
+        "its end loaded by the x component of 'point load' along 'load "
+        "path': elasto-plastic with linear hardening, loading, unloading "
+        "and residual elongation in closed form). "
         "Each model with a closed "
         "form reports and checks it.");
 
@@ -3099,6 +3425,22 @@ namespace Talus
                         "Model 'sheared membrane': engineering shear strain "
                         "gamma imposed on the boundary (u_x = gamma (y + "
                         "a/2)) at load factor 1 [-].");
+      prm.declare_entry("stretch",
+                        "0.01, 0.005",
+                        Patterns::List(Patterns::Double(), 2, 2),
+                        "Model 'stretched membrane': engineering strains "
+                        "lambda_1 - 1, lambda_2 - 1 along x and y imposed on "
+                        "the boundary (u_x = e_x x, u_y = e_y y) at load "
+                        "factor 1 [-]; with 'uniaxial stress' only e_x is "
+                        "used.");
+      prm.declare_entry("uniaxial stress",
+                        "false",
+                        Patterns::Bool(),
+                        "Model 'stretched membrane': prescribe u_x = e_x x "
+                        "on the edges x = +-a/2 only and hold u_y on the "
+                        "line y = 0 (lateral edges free: uniaxial stress) "
+                        "instead of the biaxial stretch of the whole "
+                        "boundary.");
       prm.declare_entry("initial deflection",
                         "0",
                         Patterns::Double(),
@@ -3369,6 +3711,47 @@ namespace Talus
                     << ": its static stiffness would be singular (it can "
                        "translate freely along "
                     << free << ")";
+                const auto what = model->support_parameter();
+                InputFile::reject(what[0], what[1], what[2], msg.str());
+              }
+          // A part held in x, y and z whose supports lie at one point or on
+          // one line can still rotate about that line (a rigid-body
+          // mechanism: Newton would fail on a singular matrix later).
+          for (const auto &part : structure.parts())
+            if (part.can_rotate && rotation_is_mechanism(p, *model, part))
+              {
+                std::ostringstream names, msg;
+                for (unsigned int k = 0; k < part.meshes.size(); ++k)
+                  names << (k > 0 ? ", " : "") << part.meshes[k];
+                // Round-off of the eigenvectors: print 0 for |v| < 1e-9.
+                const auto clean = [](const double v) {
+                  return std::abs(v) < 1e-9 ? 0. : v;
+                };
+                const auto point = [&](const Tensor<1, 3> &v) {
+                  std::ostringstream o;
+                  o << '(' << clean(v[0]) << ", " << clean(v[1]) << ", "
+                    << clean(v[2]) << ')';
+                  return o.str();
+                };
+                msg << "the part made of mesh <" << names.str() << "> ("
+                    << part.n_nodes << " nodes, one at " << point(part.a_node)
+                    << ") is held in x, y and z, but ";
+                if (part.held_at_one_point)
+                  msg << "all its supports are at one point, "
+                      << point(part.axis_point)
+                      << ", so it can rotate freely about that point";
+                else
+                  msg << "all its supports lie on the line through "
+                      << point(part.axis_point) << " along "
+                      << point(part.rotation_axis)
+                      << ", so it can rotate freely about that line";
+                msg << " (a rigid-body mechanism: its static stiffness "
+                       "would be singular). "
+                    << (part.held_at_one_point ?
+                          "Hold it at three or more points that are not on "
+                          "one line (e.g. a face)" :
+                          "Hold it also at a point off that line (e.g. a "
+                          "face)");
                 const auto what = model->support_parameter();
                 InputFile::reject(what[0], what[1], what[2], msg.str());
               }

@@ -3,6 +3,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 
 #include <deal.II/grid/grid_tools.h>
 
@@ -539,7 +540,173 @@ namespace Talus
       for (global_dof_index i = 0; i < total_dofs; ++i)
         if (dof_component[i] == 0 && i < mass.size())
           part_of(i).mass += mass[i];
+      for (const auto &mesh : membrane_meshes)
+        if (mesh->dof_handler.n_dofs() > 0)
+          part_of(mesh->offset).has_continuum = true;
+      for (const auto &mesh : solid_meshes)
+        if (mesh->dof_handler.n_dofs() > 0)
+          part_of(mesh->offset).has_continuum = true;
+      find_rotation_mechanisms(result,
+                               [&](const global_dof_index dof) -> unsigned int {
+                                 return root_to_part.at(find_root(parent, dof));
+                               });
       return result;
+    }
+
+
+    void
+    Structure::find_rotation_mechanisms(
+      std::vector<StructurePart>                          &parts,
+      const std::function<unsigned int(global_dof_index)> &part_index) const
+    {
+      // Position of every prescribed DoF: its node, or for DoFs of solids
+      // that are not at a vertex their support point.
+      std::map<global_dof_index, dealii::Point<3>> position;
+      for (const auto &p : prescribed)
+        if (dof_to_node[p.first] != dealii::numbers::invalid_unsigned_int)
+          position[p.first] = nodes[dof_to_node[p.first]].X;
+      for (const auto &mesh : solid_meshes)
+        {
+          std::vector<dealii::Point<3>> support(mesh->dof_handler.n_dofs());
+          dealii::DoFTools::map_dofs_to_support_points(dealii::MappingQ1<3>(),
+                                                       mesh->dof_handler,
+                                                       support);
+          for (const auto &p : prescribed)
+            if (p.first >= mesh->offset &&
+                p.first < mesh->offset + mesh->dof_handler.n_dofs() &&
+                position.find(p.first) == position.end())
+              position[p.first] = support[p.first - mesh->offset];
+        }
+      // Centroid and size of each part (from its nodes).
+      const unsigned int            n_parts = parts.size();
+      std::vector<dealii::Point<3>> centre(n_parts);
+      std::vector<double>           size(n_parts, 0.);
+      std::vector<unsigned int>     count(n_parts, 0);
+      std::vector<unsigned int>     node_part(nodes.size());
+      for (unsigned int n = 0; n < nodes.size(); ++n)
+        {
+          node_part[n] = part_index(nodes[n].dofs[0]);
+          centre[node_part[n]] += nodes[n].X;
+          ++count[node_part[n]];
+        }
+      for (unsigned int k = 0; k < n_parts; ++k)
+        if (count[k] > 0)
+          centre[k] /= count[k];
+      for (unsigned int n = 0; n < nodes.size(); ++n)
+        size[node_part[n]] =
+          std::max(size[node_part[n]],
+                   (nodes[n].X - centre[node_part[n]]).norm());
+      // Gram matrices A^T A of the rigid-body modes (translations, and
+      // rotations about the centroid divided by the size) evaluated at the
+      // nodes (3 rows each) and at the prescribed DoFs (1 row each).
+      using Gram = std::array<std::array<double, 6>, 6>;
+      std::vector<Gram> all(n_parts), held(n_parts);
+      const auto        add_row = [&](Gram                   &G,
+                               const unsigned int      k,
+                               const dealii::Point<3> &x,
+                               const unsigned int      c) {
+        std::array<double, 6> row{};
+        row[c] = 1.;
+        const dealii::Tensor<1, 3> r =
+          (x - centre[k]) / std::max(size[k], 1e-300);
+        for (unsigned int a = 0; a < 3; ++a)
+          {
+            dealii::Tensor<1, 3> axis;
+            axis[a]    = 1.;
+            row[3 + a] = dealii::cross_product_3d(axis, r)[c];
+          }
+        for (unsigned int i = 0; i < 6; ++i)
+          for (unsigned int j = 0; j < 6; ++j)
+            G[i][j] += row[i] * row[j];
+      };
+      for (unsigned int n = 0; n < nodes.size(); ++n)
+        for (unsigned int c = 0; c < 3; ++c)
+          add_row(all[node_part[n]], node_part[n], nodes[n].X, c);
+      for (const auto &p : prescribed)
+        {
+          const unsigned int k = part_index(p.first);
+          add_row(held[k], k, position.at(p.first), dof_component[p.first]);
+        }
+      std::vector<double>           spread(n_parts, 0.);
+      std::vector<bool>             first_seen(n_parts, false);
+      std::vector<dealii::Point<3>> first(n_parts);
+      for (const auto &p : prescribed)
+        {
+          const unsigned int k = part_index(p.first);
+          if (!first_seen[k])
+            {
+              first_seen[k] = true;
+              first[k]      = position.at(p.first);
+            }
+          spread[k] =
+            std::max(spread[k], (position.at(p.first) - first[k]).norm());
+        }
+      for (unsigned int k = 0; k < n_parts; ++k)
+        {
+          parts[k].held_at_one_point =
+            first_seen[k] && spread[k] <= 1e-8 * std::max(size[k], 1e-300);
+          if (!(parts[k].held[0] && parts[k].held[1] && parts[k].held[2]))
+            continue;
+          // Null space of the held modes, then the largest motion of the
+          // nodes within it.
+          dealii::LAPACKFullMatrix<double> G(6, 6);
+          double                           trace = 0.;
+          for (unsigned int i = 0; i < 6; ++i)
+            {
+              trace += held[k][i][i];
+              for (unsigned int j = 0; j < 6; ++j)
+                G(i, j) = held[k][i][j];
+            }
+          dealii::Vector<double>     values;
+          dealii::FullMatrix<double> vectors;
+          G.compute_eigenvalues_symmetric(
+            -1., 2. * trace + 1., 1e-14 * trace, values, vectors);
+          std::vector<unsigned int> null;
+          for (unsigned int i = 0; i < values.size(); ++i)
+            if (values[i] < 1e-10 * trace)
+              null.push_back(i);
+          if (null.empty())
+            continue;
+          double total = 0.;
+          for (unsigned int i = 0; i < 6; ++i)
+            total += all[k][i][i];
+          dealii::LAPACKFullMatrix<double> M(null.size(), null.size());
+          for (unsigned int a = 0; a < null.size(); ++a)
+            for (unsigned int b = 0; b < null.size(); ++b)
+              {
+                double m = 0.;
+                for (unsigned int i = 0; i < 6; ++i)
+                  for (unsigned int j = 0; j < 6; ++j)
+                    m +=
+                      vectors(i, null[a]) * all[k][i][j] * vectors(j, null[b]);
+                M(a, b) = m;
+              }
+          dealii::Vector<double>     moved;
+          dealii::FullMatrix<double> directions;
+          M.compute_eigenvalues_symmetric(
+            -1., 2. * total + 1., 1e-14 * total, moved, directions);
+          if (moved.size() == 0 || !(moved[moved.size() - 1] > 1e-8 * total))
+            continue;
+          // The motion t + omega x (x - c)/size: axis along omega, through
+          // c + size omega x t / |omega|^2.
+          dealii::Tensor<1, 3> t, omega;
+          for (unsigned int a = 0; a < null.size(); ++a)
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                const double w = directions(a, moved.size() - 1);
+                t[i] += w * vectors(i, null[a]);
+                omega[i] += w * vectors(3 + i, null[a]);
+              }
+          if (!(omega.norm() > 1e-8))
+            continue;
+          parts[k].can_rotate    = true;
+          parts[k].rotation_axis = omega / omega.norm();
+          parts[k].axis_point =
+            parts[k].held_at_one_point ?
+              first[k] :
+              centre[k] + size[k] * dealii::cross_product_3d(omega, t) /
+                            omega.norm_square();
+        }
     }
 
 

@@ -100,6 +100,22 @@ namespace Talus
        * translation along d is a zero-energy mode of the stiffness. */
       std::array<bool, 3> held = {{false, false, false}};
       double              mass = 0.; ///< lumped, one direction [kg]
+      /**
+       * A rigid motion with a rotation moves nodes of the part but no
+       * prescribed DoF (the supports lie at one point or on one line, the
+       * rotation axis): the rank of the six rigid-body modes evaluated at
+       * the prescribed DoFs is smaller than at all the part's nodes. Only
+       * meaningful when the part is held in x, y and z.
+       */
+      bool can_rotate = false;
+      /** Axis of that rotation (unit) and a point on it [m]. */
+      dealii::Tensor<1, 3> rotation_axis;
+      dealii::Point<3>     axis_point;
+      /** The part has a continuum solid or a membrane mesh (elements that
+       * resist in-plane shear, unlike cables and trusses). */
+      bool has_continuum = false;
+      /** All prescribed DoFs of the part are at one point. */
+      bool held_at_one_point = false;
     };
 
 
@@ -380,6 +396,14 @@ namespace Talus
     private:
       dealii::FESystem<1, 3> line_fe{dealii::FE_Q<1, 3>(1), 3};
       dealii::FESystem<2, 3> membrane_fe{dealii::FE_Q<2, 3>(1), 3};
+
+      /** Sets StructurePart::can_rotate and its axis (parts()); @p
+       * part_index maps a global DoF to its part. */
+      void
+      find_rotation_mechanisms(
+        std::vector<StructurePart> &parts,
+        const std::function<unsigned int(dealii::types::global_dof_index)>
+          &part_index) const;
 
       struct Node
       {
