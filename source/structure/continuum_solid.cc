@@ -95,12 +95,14 @@ namespace Talus
 
 
     template <int dim>
+    template <int spacedim>
     void
-    ContinuumSolid<dim>::compute(const dealii::FEValues<dim> &fe_values,
-                                 const std::vector<double>   &u,
-                                 dealii::Vector<double>      &r,
-                                 dealii::FullMatrix<double>  &K,
-                                 SolidCellOutput             *output) const
+    ContinuumSolid<dim>::compute(
+      const dealii::FEValues<dim, spacedim> &fe_values,
+      const std::vector<double>             &u,
+      dealii::Vector<double>                &r,
+      dealii::FullMatrix<double>            &K,
+      SolidCellOutput                       *output) const
     {
       const unsigned int n = fe_values.get_fe().n_dofs_per_cell();
       r.reinit(n);
@@ -119,7 +121,11 @@ namespace Talus
           dealii::Tensor<2, dim> H;
           for (unsigned int i = 0; i < n; ++i)
             {
-              grad_phi[i] = fe_values[displacement].gradient(i, q);
+              // The in-plane block (all of it for spacedim = dim).
+              const auto g = fe_values[displacement].gradient(i, q);
+              for (unsigned int a = 0; a < dim; ++a)
+                for (unsigned int b = 0; b < dim; ++b)
+                  grad_phi[i][a][b] = g[a][b];
               H += u[i] * grad_phi[i];
             }
           const dealii::Tensor<2, dim> F =
@@ -153,9 +159,16 @@ namespace Talus
               const double                          J = dealii::determinant(F);
               const dealii::SymmetricTensor<2, dim> sigma =
                 dealii::symmetrize(P * dealii::transpose(F)) / J;
-              const dealii::SymmetricTensor<2, dim> s = dealii::deviator(sigma);
+              // Plane strain (dim = 2): F_33 = 1, sigma_33 = lambda tr E/J.
+              dealii::SymmetricTensor<2, 3> sigma3;
+              for (unsigned int a = 0; a < dim; ++a)
+                for (unsigned int b = a; b < dim; ++b)
+                  sigma3[a][b] = sigma[a][b];
+              if (dim == 2)
+                sigma3[2][2] = lambda * dealii::trace(E) / J;
+              const dealii::SymmetricTensor<2, 3> s = dealii::deviator(sigma3);
               von_mises += std::sqrt(1.5 * (s * s)) * JxW;
-              mean += dealii::trace(sigma) / 3. * JxW;
+              mean += dealii::trace(sigma3) / 3. * JxW;
             }
         }
       if (output != nullptr)
@@ -336,5 +349,23 @@ namespace Talus
 
     template class ContinuumSolid<2>;
     template class ContinuumSolid<3>;
+    template void
+    ContinuumSolid<2>::compute(const dealii::FEValues<2, 2> &,
+                               const std::vector<double> &,
+                               dealii::Vector<double> &,
+                               dealii::FullMatrix<double> &,
+                               SolidCellOutput *) const;
+    template void
+    ContinuumSolid<2>::compute(const dealii::FEValues<2, 3> &,
+                               const std::vector<double> &,
+                               dealii::Vector<double> &,
+                               dealii::FullMatrix<double> &,
+                               SolidCellOutput *) const;
+    template void
+    ContinuumSolid<3>::compute(const dealii::FEValues<3, 3> &,
+                               const std::vector<double> &,
+                               dealii::Vector<double> &,
+                               dealii::FullMatrix<double> &,
+                               SolidCellOutput *) const;
   } // namespace Structure
 } // namespace Talus

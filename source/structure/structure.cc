@@ -74,6 +74,51 @@ namespace Talus
     }
 
 
+    PlaneSolidMesh &
+    Structure::add_plane_solid(
+      const std::string                              &name,
+      const std::shared_ptr<const ContinuumSolid<2>> &solid,
+      const double                                    thickness,
+      const dealii::Triangulation<2>                 &plane)
+    {
+      plane_solid_meshes.push_back(std::make_unique<PlaneSolidMesh>());
+      auto &mesh     = *plane_solid_meshes.back();
+      mesh.name      = name;
+      mesh.solid     = solid;
+      mesh.thickness = thickness;
+      mesh.fe        = std::make_unique<dealii::FESystem<2, 3>>(
+        dealii::FE_Q<2, 3>(solid->degree), 3);
+      // The cells of the plane in order, at z = 0, with their boundary ids
+      // (GridGenerator::flatten_triangulation keeps neither the order of
+      // refined meshes nor all ids reliably).
+      std::vector<dealii::Point<3>> vertices(plane.n_vertices());
+      for (unsigned int v = 0; v < plane.n_vertices(); ++v)
+        vertices[v] = dealii::Point<3>(plane.get_vertices()[v][0],
+                                       plane.get_vertices()[v][1],
+                                       0.);
+      std::vector<dealii::CellData<2>> cells;
+      dealii::SubCellData              boundary;
+      for (const auto &cell : plane.active_cell_iterators())
+        {
+          dealii::CellData<2> c;
+          for (const unsigned int v : cell->vertex_indices())
+            c.vertices[v] = cell->vertex_index(v);
+          cells.push_back(c);
+          for (const unsigned int f : cell->face_indices())
+            if (cell->at_boundary(f) && cell->face(f)->boundary_id() != 0)
+              {
+                dealii::CellData<1> line;
+                line.vertices    = {cell->face(f)->vertex_index(0),
+                                    cell->face(f)->vertex_index(1)};
+                line.boundary_id = cell->face(f)->boundary_id();
+                boundary.boundary_lines.push_back(line);
+              }
+        }
+      mesh.triangulation.create_triangulation(vertices, cells, boundary);
+      return mesh;
+    }
+
+
     namespace
     {
       /** Direction of every DoF of a mesh, into @p dof_component. */
@@ -164,26 +209,26 @@ namespace Talus
                                    MembraneCellOutput());
           collect_vertices(mesh->dof_handler, mesh->offset, entries);
         }
-      for (auto &mesh : solid_meshes)
-        {
-          if (mesh->triangulation.n_active_cells() == 0)
-            throw std::runtime_error("The solid mesh <" + mesh->name +
-                                     "> has no cells.");
-          mesh->dof_handler.reinit(mesh->triangulation);
-          mesh->dof_handler.distribute_dofs(*mesh->fe);
-          mesh->offset = total_dofs;
-          total_dofs += mesh->dof_handler.n_dofs();
-          mesh->cell_output.assign(mesh->triangulation.n_active_cells(),
-                                   SolidCellOutput());
-          collect_vertices(mesh->dof_handler, mesh->offset, entries);
-        }
+      for_each_solid_mesh([&](auto &mesh) {
+        if (mesh.triangulation.n_active_cells() == 0)
+          throw std::runtime_error("The solid mesh <" + mesh.name +
+                                   "> has no cells.");
+        mesh.dof_handler.reinit(mesh.triangulation);
+        mesh.dof_handler.distribute_dofs(*mesh.fe);
+        mesh.offset = total_dofs;
+        total_dofs += mesh.dof_handler.n_dofs();
+        mesh.cell_output.assign(mesh.triangulation.n_active_cells(),
+                                SolidCellOutput());
+        collect_vertices(mesh.dof_handler, mesh.offset, entries);
+      });
       dof_component.assign(total_dofs, 0);
       for (const auto &mesh : line_meshes)
         record_components(mesh->dof_handler, mesh->offset, dof_component);
       for (const auto &mesh : membrane_meshes)
         record_components(mesh->dof_handler, mesh->offset, dof_component);
-      for (const auto &mesh : solid_meshes)
-        record_components(mesh->dof_handler, mesh->offset, dof_component);
+      for_each_solid_mesh([&](const auto &mesh) {
+        record_components(mesh.dof_handler, mesh.offset, dof_component);
+      });
 
       // Merge coincident vertices (sweep over x).
       dealii::Point<3> lo = entries[0].X, hi = entries[0].X;
@@ -301,6 +346,11 @@ namespace Talus
       external_forces.reinit(total_dofs);
       prescribed.clear();
       point_loads.clear();
+      // Plane-strain solids: no out-of-plane displacement.
+      for (const auto &mesh : plane_solid_meshes)
+        for (global_dof_index i = 0; i < mesh->dof_handler.n_dofs(); ++i)
+          if (dof_component[mesh->offset + i] == 2)
+            prescribe_dof(mesh->offset + i);
     }
 
 
@@ -397,7 +447,18 @@ namespace Talus
                                         const std::vector<bool> &components)
     {
       AssertIndexRange(mesh, solid_meshes.size());
-      const SolidMesh              &m  = *solid_meshes[mesh];
+      return prescribe_solid_boundary(*solid_meshes[mesh],
+                                      boundary_id,
+                                      components);
+    }
+
+
+    template <int dim>
+    unsigned int
+    Structure::prescribe_solid_boundary(const SolidMeshT<dim>   &m,
+                                        const unsigned int       boundary_id,
+                                        const std::vector<bool> &components)
+    {
       const auto                   &fe = *m.fe;
       std::vector<global_dof_index> face_dofs(fe.n_dofs_per_face());
       std::vector<bool>             done(m.dof_handler.n_dofs(), false);
@@ -428,9 +489,19 @@ namespace Talus
                                    const std::vector<bool> &components)
     {
       AssertIndexRange(mesh, solid_meshes.size());
-      const SolidMesh              &m = *solid_meshes[mesh];
+      return prescribe_solid_box(*solid_meshes[mesh], lower, upper, components);
+    }
+
+
+    template <int dim>
+    unsigned int
+    Structure::prescribe_solid_box(const SolidMeshT<dim>   &m,
+                                   const dealii::Point<3>  &lower,
+                                   const dealii::Point<3>  &upper,
+                                   const std::vector<bool> &components)
+    {
       std::vector<dealii::Point<3>> support(m.dof_handler.n_dofs());
-      dealii::DoFTools::map_dofs_to_support_points(dealii::MappingQ1<3>(),
+      dealii::DoFTools::map_dofs_to_support_points(dealii::MappingQ1<dim, 3>(),
                                                    m.dof_handler,
                                                    support);
       const double tol =
@@ -451,6 +522,26 @@ namespace Talus
         }
       return count;
     }
+
+
+    template unsigned int
+    Structure::prescribe_solid_boundary(const SolidMeshT<2> &,
+                                        const unsigned int,
+                                        const std::vector<bool> &);
+    template unsigned int
+    Structure::prescribe_solid_boundary(const SolidMeshT<3> &,
+                                        const unsigned int,
+                                        const std::vector<bool> &);
+    template unsigned int
+    Structure::prescribe_solid_box(const SolidMeshT<2> &,
+                                   const dealii::Point<3> &,
+                                   const dealii::Point<3> &,
+                                   const std::vector<bool> &);
+    template unsigned int
+    Structure::prescribe_solid_box(const SolidMeshT<3> &,
+                                   const dealii::Point<3> &,
+                                   const dealii::Point<3> &,
+                                   const std::vector<bool> &);
 
 
     std::vector<StructurePart>
@@ -492,8 +583,8 @@ namespace Talus
           join_mesh(mesh->dof_handler, mesh->offset);
       for (const auto &mesh : membrane_meshes)
         join_mesh(mesh->dof_handler, mesh->offset);
-      for (const auto &mesh : solid_meshes)
-        join_mesh(mesh->dof_handler, mesh->offset);
+      for_each_solid_mesh(
+        [&](const auto &mesh) { join_mesh(mesh.dof_handler, mesh.offset); });
       for (const auto &node : nodes)
         for (const auto &slave : node.slaves)
           for (unsigned int c = 0; c < 3; ++c)
@@ -526,8 +617,9 @@ namespace Talus
         add_mesh(mesh->name, mesh->offset, mesh->dof_handler.n_dofs());
       for (const auto &mesh : membrane_meshes)
         add_mesh(mesh->name, mesh->offset, mesh->dof_handler.n_dofs());
-      for (const auto &mesh : solid_meshes)
-        add_mesh(mesh->name, mesh->offset, mesh->dof_handler.n_dofs());
+      for_each_solid_mesh([&](const auto &mesh) {
+        add_mesh(mesh.name, mesh.offset, mesh.dof_handler.n_dofs());
+      });
       for (const auto &node : nodes)
         {
           auto &part = part_of(node.dofs[0]);
@@ -543,9 +635,10 @@ namespace Talus
       for (const auto &mesh : membrane_meshes)
         if (mesh->dof_handler.n_dofs() > 0)
           part_of(mesh->offset).has_continuum = true;
-      for (const auto &mesh : solid_meshes)
-        if (mesh->dof_handler.n_dofs() > 0)
-          part_of(mesh->offset).has_continuum = true;
+      for_each_solid_mesh([&](const auto &mesh) {
+        if (mesh.dof_handler.n_dofs() > 0)
+          part_of(mesh.offset).has_continuum = true;
+      });
       find_rotation_mechanisms(result,
                                [&](const global_dof_index dof) -> unsigned int {
                                  return root_to_part.at(find_root(parent, dof));
@@ -565,18 +658,17 @@ namespace Talus
       for (const auto &p : prescribed)
         if (dof_to_node[p.first] != dealii::numbers::invalid_unsigned_int)
           position[p.first] = nodes[dof_to_node[p.first]].X;
-      for (const auto &mesh : solid_meshes)
-        {
-          std::vector<dealii::Point<3>> support(mesh->dof_handler.n_dofs());
-          dealii::DoFTools::map_dofs_to_support_points(dealii::MappingQ1<3>(),
-                                                       mesh->dof_handler,
-                                                       support);
-          for (const auto &p : prescribed)
-            if (p.first >= mesh->offset &&
-                p.first < mesh->offset + mesh->dof_handler.n_dofs() &&
-                position.find(p.first) == position.end())
-              position[p.first] = support[p.first - mesh->offset];
-        }
+      for_each_solid_mesh([&](const auto &mesh) {
+        constexpr int dim = std::decay_t<decltype(mesh)>::dimension;
+        std::vector<dealii::Point<3>> support(mesh.dof_handler.n_dofs());
+        dealii::DoFTools::map_dofs_to_support_points(
+          dealii::MappingQ1<dim, 3>(), mesh.dof_handler, support);
+        for (const auto &p : prescribed)
+          if (p.first >= mesh.offset &&
+              p.first < mesh.offset + mesh.dof_handler.n_dofs() &&
+              position.find(p.first) == position.end())
+            position[p.first] = support[p.first - mesh.offset];
+      });
       // Centroid and size of each part (from its nodes).
       const unsigned int            n_parts = parts.size();
       std::vector<dealii::Point<3>> centre(n_parts);
@@ -786,17 +878,19 @@ namespace Talus
               i += mesh->offset;
             constraints.add_entries_local_to_global(indices, dsp, false);
           }
-      for (const auto &mesh : solid_meshes)
-        {
-          indices.resize(mesh->fe->n_dofs_per_cell());
-          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
-            {
-              cell->get_dof_indices(indices);
-              for (auto &i : indices)
-                i += mesh->offset;
-              constraints.add_entries_local_to_global(indices, dsp, false);
-            }
-        }
+      for_each_solid_mesh([&](auto &solid_mesh) {
+        auto *const   mesh = &solid_mesh;
+        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+
+        indices.resize(mesh->fe->n_dofs_per_cell());
+        for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+          {
+            cell->get_dof_indices(indices);
+            for (auto &i : indices)
+              i += mesh->offset;
+            constraints.add_entries_local_to_global(indices, dsp, false);
+          }
+      });
       // Diagonal entries for every DoF (constrained rows too).
       for (global_dof_index i = 0; i < total_dofs; ++i)
         dsp.add(i, i);
@@ -863,52 +957,53 @@ namespace Talus
         }
       // Solids: row sums rho int N_I dV0; tractions int N_I t dA0.
       traction_forces.reinit(total_dofs);
-      for (const auto &mesh : solid_meshes)
-        {
-          const auto             &fe = *mesh->fe;
-          const dealii::QGauss<3> quadrature(fe.degree + 1);
-          dealii::FEValues<3>     fe_values(
-            fe, quadrature, dealii::update_values | dealii::update_JxW_values);
-          const dealii::QGauss<2>       face_quadrature(fe.degree + 1);
-          dealii::FEFaceValues<3>       fe_face_values(fe,
-                                                 face_quadrature,
-                                                 dealii::update_values |
-                                                   dealii::update_JxW_values);
-          std::vector<global_dof_index> indices(fe.n_dofs_per_cell());
-          const double                  rho = mesh->solid->density;
-          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
-            {
-              fe_values.reinit(cell);
-              cell->get_dof_indices(indices);
-              for (unsigned int i = 0; i < indices.size(); ++i)
-                {
-                  const unsigned int c = fe.system_to_component_index(i).first;
-                  for (const unsigned int q :
-                       fe_values.quadrature_point_indices())
-                    raw_mass[mesh->offset + indices[i]] +=
-                      rho * fe_values.shape_value_component(i, q, c) *
-                      fe_values.JxW(q);
-                }
-              for (const auto &[id, t] : mesh->tractions)
-                for (const unsigned int f : cell->face_indices())
-                  if (cell->at_boundary(f) &&
-                      cell->face(f)->boundary_id() == id)
-                    {
-                      fe_face_values.reinit(cell, f);
-                      for (unsigned int i = 0; i < indices.size(); ++i)
-                        {
-                          const unsigned int c =
-                            fe.system_to_component_index(i).first;
-                          for (const unsigned int q :
-                               fe_face_values.quadrature_point_indices())
-                            traction_forces[mesh->offset + indices[i]] +=
-                              t[c] *
-                              fe_face_values.shape_value_component(i, q, c) *
-                              fe_face_values.JxW(q);
-                        }
-                    }
-            }
-        }
+      for_each_solid_mesh([&](auto &solid_mesh) {
+        auto *const   mesh = &solid_mesh;
+        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+
+        const auto               &fe = *mesh->fe;
+        const dealii::QGauss<dim> quadrature(fe.degree + 1);
+        dealii::FEValues<dim, 3>  fe_values(
+          fe, quadrature, dealii::update_values | dealii::update_JxW_values);
+        const dealii::QGauss<dim - 1> face_quadrature(fe.degree + 1);
+        dealii::FEFaceValues<dim, 3>  fe_face_values(
+          fe,
+          face_quadrature,
+          dealii::update_values | dealii::update_JxW_values);
+        std::vector<global_dof_index> indices(fe.n_dofs_per_cell());
+        const double rho = mesh->solid->density * mesh->thickness;
+        for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+          {
+            fe_values.reinit(cell);
+            cell->get_dof_indices(indices);
+            for (unsigned int i = 0; i < indices.size(); ++i)
+              {
+                const unsigned int c = fe.system_to_component_index(i).first;
+                for (const unsigned int q :
+                     fe_values.quadrature_point_indices())
+                  raw_mass[mesh->offset + indices[i]] +=
+                    rho * fe_values.shape_value_component(i, q, c) *
+                    fe_values.JxW(q);
+              }
+            for (const auto &[id, t] : mesh->tractions)
+              for (const unsigned int f : cell->face_indices())
+                if (cell->at_boundary(f) && cell->face(f)->boundary_id() == id)
+                  {
+                    fe_face_values.reinit(cell, f);
+                    for (unsigned int i = 0; i < indices.size(); ++i)
+                      {
+                        const unsigned int c =
+                          fe.system_to_component_index(i).first;
+                        for (const unsigned int q :
+                             fe_face_values.quadrature_point_indices())
+                          traction_forces[mesh->offset + indices[i]] +=
+                            mesh->thickness * t[c] *
+                            fe_face_values.shape_value_component(i, q, c) *
+                            fe_face_values.JxW(q);
+                      }
+                  }
+          }
+      });
       // Onto the master DoFs (DoFs of solids that are not at a vertex are
       // their own masters).
       mass = raw_mass;
@@ -1010,40 +1105,41 @@ namespace Talus
                 }
             }
         }
-      for (const auto &mesh : solid_meshes)
-        {
-          const auto             &fe = *mesh->fe;
-          const dealii::QGauss<3> quadrature(fe.degree + 1);
-          dealii::FEValues<3>     fe_values(
-            fe, quadrature, dealii::update_values | dealii::update_JxW_values);
-          const unsigned int n   = fe.n_dofs_per_cell();
-          const double       rho = mesh->solid->density;
-          indices.resize(n);
-          Me.reinit(n, n);
-          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
-            {
-              fe_values.reinit(cell);
-              cell->get_dof_indices(indices);
-              for (auto &i : indices)
-                i += mesh->offset;
-              Me = 0.;
-              for (unsigned int i = 0; i < n; ++i)
-                for (unsigned int j = 0; j < n; ++j)
-                  {
-                    const unsigned int ci =
-                      fe.system_to_component_index(i).first;
-                    if (ci != fe.system_to_component_index(j).first)
-                      continue;
-                    for (const unsigned int q :
-                         fe_values.quadrature_point_indices())
-                      Me(i, j) += rho *
-                                  fe_values.shape_value_component(i, q, ci) *
-                                  fe_values.shape_value_component(j, q, ci) *
-                                  fe_values.JxW(q);
-                  }
-              constraints.distribute_local_to_global(Me, indices, M);
-            }
-        }
+      for_each_solid_mesh([&](auto &solid_mesh) {
+        auto *const   mesh = &solid_mesh;
+        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+
+        const auto               &fe = *mesh->fe;
+        const dealii::QGauss<dim> quadrature(fe.degree + 1);
+        dealii::FEValues<dim, 3>  fe_values(
+          fe, quadrature, dealii::update_values | dealii::update_JxW_values);
+        const unsigned int n   = fe.n_dofs_per_cell();
+        const double       rho = mesh->solid->density * mesh->thickness;
+        indices.resize(n);
+        Me.reinit(n, n);
+        for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+          {
+            fe_values.reinit(cell);
+            cell->get_dof_indices(indices);
+            for (auto &i : indices)
+              i += mesh->offset;
+            Me = 0.;
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                {
+                  const unsigned int ci = fe.system_to_component_index(i).first;
+                  if (ci != fe.system_to_component_index(j).first)
+                    continue;
+                  for (const unsigned int q :
+                       fe_values.quadrature_point_indices())
+                    Me(i, j) += rho *
+                                fe_values.shape_value_component(i, q, ci) *
+                                fe_values.shape_value_component(j, q, ci) *
+                                fe_values.JxW(q);
+                }
+            constraints.distribute_local_to_global(Me, indices, M);
+          }
+      });
     }
 
 
@@ -1258,46 +1354,55 @@ namespace Talus
         }
 
       // Solids: internal forces, gravity and tractions.
-      for (auto &mesh : solid_meshes)
-        {
-          const auto                   &fe = *mesh->fe;
-          const dealii::QGauss<3>       quadrature(fe.degree + 1);
-          dealii::FEValues<3>           fe_values(fe,
-                                        quadrature,
-                                        dealii::update_values |
-                                          dealii::update_gradients |
-                                          dealii::update_JxW_values);
-          const unsigned int            n   = fe.n_dofs_per_cell();
-          const double                  rho = mesh->solid->density;
-          std::vector<global_dof_index> sindices(n);
-          std::vector<double>           ue(n);
-          dealii::Vector<double>        re;
-          dealii::FullMatrix<double>    Ke;
-          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
-            {
-              fe_values.reinit(cell);
-              cell->get_dof_indices(sindices);
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  sindices[i] += mesh->offset;
-                  ue[i] = u[sindices[i]];
-                }
-              auto &output = mesh->cell_output[cell->active_cell_index()];
-              mesh->solid->compute(fe_values, ue, re, Ke, &output);
-              last_strain_energy += output.strain_energy;
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  const unsigned int c = fe.system_to_component_index(i).first;
-                  if (rho != 0. && g[c] != 0.)
-                    for (const unsigned int q :
-                         fe_values.quadrature_point_indices())
-                      re[i] -= rho * g[c] *
-                               fe_values.shape_value_component(i, q, c) *
-                               fe_values.JxW(q);
-                }
-              add(Ke, re, sindices);
-            }
-        }
+      for_each_solid_mesh([&](auto &solid_mesh) {
+        auto *const   mesh = &solid_mesh;
+        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+
+        const auto               &fe = *mesh->fe;
+        const dealii::QGauss<dim> quadrature(fe.degree + 1);
+        dealii::FEValues<dim, 3>  fe_values(fe,
+                                           quadrature,
+                                           dealii::update_values |
+                                             dealii::update_gradients |
+                                             dealii::update_JxW_values);
+        const unsigned int        n   = fe.n_dofs_per_cell();
+        const double              rho = mesh->solid->density * mesh->thickness;
+        std::vector<global_dof_index> sindices(n);
+        std::vector<double>           ue(n);
+        dealii::Vector<double>        re;
+        dealii::FullMatrix<double>    Ke;
+        for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+          {
+            fe_values.reinit(cell);
+            cell->get_dof_indices(sindices);
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                sindices[i] += mesh->offset;
+                ue[i] = u[sindices[i]];
+              }
+            auto &output = mesh->cell_output[cell->active_cell_index()];
+            mesh->solid->compute(fe_values, ue, re, Ke, &output);
+            if (mesh->thickness != 1.)
+              {
+                // Plane strain: per unit thickness times t.
+                re *= mesh->thickness;
+                Ke *= mesh->thickness;
+                output.strain_energy *= mesh->thickness;
+              }
+            last_strain_energy += output.strain_energy;
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const unsigned int c = fe.system_to_component_index(i).first;
+                if (rho != 0. && g[c] != 0.)
+                  for (const unsigned int q :
+                       fe_values.quadrature_point_indices())
+                    re[i] -= rho * g[c] *
+                             fe_values.shape_value_component(i, q, c) *
+                             fe_values.JxW(q);
+              }
+            add(Ke, re, sindices);
+          }
+      });
 
       // Point loads and external forces.
       {
@@ -1419,6 +1524,16 @@ namespace Talus
       AssertIndexRange(mesh, solid_meshes.size());
       return vertex_nodes(solid_meshes[mesh]->dof_handler,
                           solid_meshes[mesh]->offset,
+                          dof_to_node);
+    }
+
+
+    std::vector<unsigned int>
+    Structure::plane_solid_vertex_nodes(const unsigned int mesh) const
+    {
+      AssertIndexRange(mesh, plane_solid_meshes.size());
+      return vertex_nodes(plane_solid_meshes[mesh]->dof_handler,
+                          plane_solid_meshes[mesh]->offset,
                           dof_to_node);
     }
 
@@ -1547,26 +1662,28 @@ namespace Talus
                      directory + "/" + mesh->name + suffix);
           write_pvd(mesh->name);
         }
-      for (const auto &mesh : solid_meshes)
-        {
-          const unsigned int     n = mesh->cell_output.size();
-          dealii::Vector<double> von_mises(n), mean(n), energy(n);
-          for (unsigned int k = 0; k < n; ++k)
-            {
-              von_mises[k] = mesh->cell_output[k].von_mises;
-              mean[k]      = mesh->cell_output[k].mean_stress;
-              energy[k]    = mesh->cell_output[k].strain_energy;
-            }
-          write_mesh(mesh->dof_handler,
-                     mesh->offset,
-                     u,
-                     {{"von_mises_stress", von_mises},
-                      {"mean_stress", mean},
-                      {"strain_energy", energy}},
-                     directory + "/" + mesh->name + suffix,
-                     mesh->fe->degree);
-          write_pvd(mesh->name);
-        }
+      for_each_solid_mesh([&](auto &solid_mesh) {
+        auto *const   mesh = &solid_mesh;
+        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+
+        const unsigned int     n = mesh->cell_output.size();
+        dealii::Vector<double> von_mises(n), mean(n), energy(n);
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            von_mises[k] = mesh->cell_output[k].von_mises;
+            mean[k]      = mesh->cell_output[k].mean_stress;
+            energy[k]    = mesh->cell_output[k].strain_energy;
+          }
+        write_mesh(mesh->dof_handler,
+                   mesh->offset,
+                   u,
+                   {{"von_mises_stress", von_mises},
+                    {"mean_stress", mean},
+                    {"strain_energy", energy}},
+                   directory + "/" + mesh->name + suffix,
+                   mesh->fe->degree);
+        write_pvd(mesh->name);
+      });
     }
 
 
