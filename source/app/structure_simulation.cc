@@ -84,6 +84,12 @@ namespace Talus
       struct Parameters
       {
         std::string model;
+        /** The model as written in the file ('plane cantilever'); model
+         * holds the name without 'plane ' for the plane-strain solids. */
+        std::string model_text;
+        /** A 'plane' solid model: Triangulation<2,2> in the x-y plane. */
+        bool        plane_solid = false;
+        std::string solid_traction_text; ///< as written, for messages
         // Line members.
         std::string  line_element;
         double       E = 0., A = 0., prestress = 0., density = 0.;
@@ -203,7 +209,7 @@ namespace Talus
         virtual std::array<std::string, 3>
         support_parameter() const
         {
-          return {{S, "model", p.model}};
+          return {{S, "model", p.model_text}};
         }
 
         /** Solve the pre-stress equilibrium (lambda = 0) first. */
@@ -2058,10 +2064,10 @@ namespace Talus
        * with lambda_1 = 1 + e_x, E_11 = (lambda_1^2 - 1)/2 and (biaxial)
        * lambda_2 = 1 + e_y, E_22 = (lambda_2^2 - 1)/2:
        *   S = C E + S_0 (E_12 = 0), D = 1 - nu12^2 E2/E1,
-       *   S_11 = (E1 E_11 + nu12 E2 E_22)/D, S_22 = (nu12 E2 E_11 + E2 E_22)/D;
-       * uniaxial stress: S_22 = 0, so E_22 = -nu12 E_11 (no pre-stress)
-       * and S_11 = E1 E_11. Cauchy stresses sigma_11 = lambda_1 S_11 /
-       * lambda_2, sigma_22 = lambda_2 S_22 / lambda_1 (J = lambda_1
+       *   S_11 = (E1 E_11 + nu12 E2 E_22)/D, S_22 = (nu12 E2 E_11 + E2
+       * E_22)/D; uniaxial stress: S_22 = 0, so E_22 = -nu12 E_11 (no
+       * pre-stress) and S_11 = E1 E_11. Cauchy stresses sigma_11 = lambda_1
+       * S_11 / lambda_2, sigma_22 = lambda_2 S_22 / lambda_1 (J = lambda_1
        * lambda_2, thickness constant), and the edge forces (reactions)
        * F_x = t a lambda_1 S_11 on x = a/2, F_y = t a lambda_2 S_22 on
        * y = a/2.
@@ -2492,24 +2498,24 @@ namespace Talus
       };
 
 
+
       // ------------------------------------------------------------------
       /**
        * Mean of displacement component @p c of solid mesh @p mesh over its
        * faces with boundary id @p id, int u_c dA0 / A0 (the work-conjugate
        * of a uniform traction along c) [m].
        */
+      template <int dim>
       double
-      face_mean(const Structure      &s,
-                const Vector<double> &u,
-                const unsigned int    mesh_index,
-                const unsigned int    id,
-                const unsigned int    c)
+      face_mean(const Talus::Structure::SolidMeshT<dim> &mesh,
+                const Vector<double>                    &u,
+                const unsigned int                       id,
+                const unsigned int                       c)
       {
-        const auto                      &mesh = *s.solid_meshes[mesh_index];
-        const QGauss<2>                  quadrature(mesh.fe->degree + 1);
-        FEFaceValues<3>                  fe_face_values(*mesh.fe,
-                                       quadrature,
-                                       update_values | update_JxW_values);
+        const QGauss<dim - 1>            quadrature(mesh.fe->degree + 1);
+        FEFaceValues<dim, 3>             fe_face_values(*mesh.fe,
+                                            quadrature,
+                                            update_values | update_JxW_values);
         const FEValuesExtractors::Scalar uc(c);
         Vector<double>                   local(mesh.dof_handler.n_dofs());
         for (unsigned int i = 0; i < local.size(); ++i)
@@ -2547,7 +2553,8 @@ namespace Talus
         std::string
         description() const override
         {
-          return "continuum solid (St. Venant-Kirchhoff, FE_Q(" +
+          return std::string(p.plane_solid ? "plane-strain " : "") +
+                 "continuum solid (St. Venant-Kirchhoff, FE_Q(" +
                  std::to_string(p.solid.degree) +
                  ")) with the supports and loads of subsection Solid";
         }
@@ -2575,36 +2582,43 @@ namespace Talus
         void
         build(Structure &s, const unsigned int level) override
         {
-          const std::string ss   = S + "/Solid";
-          auto             &mesh = s.add_solid("solid", solid_component());
-          p.solid_geometry.create_triangulation(mesh.triangulation, level, ss);
+          const std::string ss = S + "/Solid";
           if (p.solid_geometry.traction_boundary_id >= 0)
-            mesh.tractions.emplace_back(p.solid_geometry.traction_boundary_id,
-                                        p.solid_geometry.traction);
+            add_solid_mesh(s, "solid", level)
+              .emplace_back(p.solid_geometry.traction_boundary_id,
+                            p.solid_geometry.traction);
+          else
+            add_solid_mesh(s, "solid", level);
           s.setup_dofs();
-          for (const unsigned int id : p.solid_geometry.fixed_boundary_ids)
-            if (s.prescribe_solid_boundary(0, id) == 0)
-              InputFile::reject(ss,
-                                "fixed boundary ids",
-                                std::to_string(id),
-                                "every fixed boundary id must be the id of "
-                                "faces on the boundary of the solid (a "
-                                "generated box has ids 0 to 5), and boundary "
-                                "id " +
-                                  std::to_string(id) + " has none");
-          unsigned int k = 0;
-          for (const auto &box : p.solid_geometry.support_boxes)
-            {
-              ++k;
-              if (s.prescribe_solid_box(
-                    0, box.lower, box.upper, box.components) == 0)
+          on_solid(s, [&](const auto &mesh) {
+            for (const unsigned int id : p.solid_geometry.fixed_boundary_ids)
+              if (s.prescribe_solid_boundary(mesh, id) == 0)
                 InputFile::reject(ss,
-                                  "support boxes",
-                                  "box " + std::to_string(k),
-                                  "every support box must contain a node of "
-                                  "the solid, and box " +
-                                    std::to_string(k) + " contains none");
-            }
+                                  "fixed boundary ids",
+                                  std::to_string(id),
+                                  "every fixed boundary id must be the id of "
+                                  "faces on the boundary of the solid (a "
+                                  "generated box has ids 0 to 5, a plane "
+                                  "rectangle 0 to 3), and boundary id " +
+                                    std::to_string(id) + " has none");
+            unsigned int k = 0;
+            for (const auto &box : p.solid_geometry.support_boxes)
+              {
+                ++k;
+                if (s.prescribe_solid_box(
+                      mesh, box.lower, box.upper, box.components) == 0)
+                  InputFile::reject(
+                    ss,
+                    "support boxes",
+                    "box " + std::to_string(k),
+                    std::string("every support box must contain a node of "
+                                "the solid") +
+                      (p.plane_solid ? " (a plane solid lies at "
+                                       "z = 0)" :
+                                       "") +
+                      ", and box " + std::to_string(k) + " contains none");
+              }
+          });
           s.gravity = p.gravity;
         }
 
@@ -2625,6 +2639,105 @@ namespace Talus
         solid_component() const
         {
           return std::make_shared<Talus::Structure::ContinuumSolid<3>>(p.solid);
+        }
+
+        /**
+         * Add the model's solid named @p name: the box of subsection Solid
+         * (Triangulation<3,3>), or for the plane models its rectangle in
+         * the x-y plane as a plane-strain solid of 'thickness' t. Returns
+         * its tractions (to fill before setup_dofs()).
+         */
+        std::vector<std::pair<unsigned int, Tensor<1, 3>>> &
+        add_solid_mesh(Structure         &s,
+                       const std::string &name,
+                       const unsigned int level) const
+        {
+          const auto &g = p.solid_geometry;
+          if (p.plane_solid)
+            {
+              Triangulation<2> plane;
+              g.create_triangulation(plane, level, S + "/Solid");
+              auto solid =
+                std::make_shared<Talus::Structure::ContinuumSolid<2>>();
+              solid->youngs_modulus = p.solid.youngs_modulus;
+              solid->poissons_ratio = p.solid.poissons_ratio;
+              solid->density        = p.solid.density;
+              solid->degree         = p.solid.degree;
+              return s.add_plane_solid(name, solid, g.thickness, plane)
+                .tractions;
+            }
+          auto &mesh = s.add_solid(name, solid_component());
+          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
+          return mesh.tractions;
+        }
+
+        /** Call @p f with the model's (last) solid mesh, 3D or plane. */
+        template <typename Function>
+        static void
+        on_solid(const Structure &s, const Function &f)
+        {
+          if (!s.plane_solid_meshes.empty())
+            f(*s.plane_solid_meshes.back());
+          else
+            f(*s.solid_meshes.back());
+        }
+
+        /** Mean of displacement component @p c over the faces of boundary
+         * id @p id of the model's solid (the work-conjugate of a uniform
+         * traction there) [m]. */
+        static double
+        solid_face_mean(const Structure      &s,
+                        const Vector<double> &u,
+                        const unsigned int    id,
+                        const unsigned int    c)
+        {
+          double mean = 0.;
+          on_solid(s,
+                   [&](const auto &mesh) { mean = face_mean(mesh, u, id, c); });
+          return mean;
+        }
+
+        /** Direction of the "vertical" (height, load, gravity): z, or y
+         * for a plane solid. */
+        unsigned int
+        vertical() const
+        {
+          return p.plane_solid ? 1 : 2;
+        }
+
+        /** Cross-section of the generated solid normal to x: width b
+         * (y extent, or the thickness t of a plane solid) and height h
+         * (z extent, or the y extent of a plane solid) [m]. */
+        double
+        width() const
+        {
+          const auto &g = p.solid_geometry;
+          return p.plane_solid ? g.thickness :
+                                 g.upper_corner[1] - g.lower_corner[1];
+        }
+
+        double
+        height() const
+        {
+          const auto &g = p.solid_geometry;
+          return g.upper_corner[vertical()] - g.lower_corner[vertical()];
+        }
+
+        /** Young's modulus and Poisson's ratio of the beam and bar
+         * formulas: E, nu, or for plane strain E/(1 - nu^2), nu/(1 - nu). */
+        double
+        effective_modulus() const
+        {
+          const double nu = p.solid.poissons_ratio;
+          return p.plane_solid ? p.solid.youngs_modulus / (1. - nu * nu) :
+                                 p.solid.youngs_modulus;
+        }
+
+        double
+        effective_poisson() const
+        {
+          const double nu = p.solid.poissons_ratio;
+          return p.plane_solid ? nu / (1. - nu) : nu;
         }
       };
 
@@ -2650,7 +2763,8 @@ namespace Talus
         std::string
         description() const override
         {
-          return "cantilever: continuum solid (St. Venant-Kirchhoff, FE_Q(" +
+          return std::string(p.plane_solid ? "plane-strain " : "") +
+                 "cantilever: continuum solid (St. Venant-Kirchhoff, FE_Q(" +
                  std::to_string(p.solid.degree) +
                  ")) clamped at x_min, end shear load; Timoshenko beam";
         }
@@ -2664,15 +2778,37 @@ namespace Talus
         void
         build(Structure &s, const unsigned int level) override
         {
-          const auto &g    = p.solid_geometry;
-          auto       &mesh = s.add_solid("cantilever", solid_component());
-          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
-          const double b = g.upper_corner[1] - g.lower_corner[1];
-          const double h = g.upper_corner[2] - g.lower_corner[2];
-          mesh.tractions.emplace_back(
-            1, Tensor<1, 3>({0., 0., p.point_load[2] / (b * h)}));
+          Tensor<1, 3> traction;
+          traction[vertical()] =
+            p.point_load[vertical()] / (width() * height());
+          add_solid_mesh(s, "cantilever", level).emplace_back(1, traction);
           s.setup_dofs();
-          s.prescribe_solid_boundary(0, 0);
+          if (!p.plane_solid)
+            on_solid(s, [&](const auto &mesh) {
+              s.prescribe_solid_boundary(mesh, 0);
+            });
+          else
+            {
+              // The root section x = x_min held along x, its centre also
+              // along y: the section may contract laterally (a full clamp
+              // of a plane-strain section with nu > 0 stiffens the root,
+              // an error of order h/L against the beam).
+              const auto &g    = p.solid_geometry;
+              const auto &mesh = *s.plane_solid_meshes[0];
+              s.prescribe_solid_boundary(mesh, 0, {true, false, false});
+              const double yc = 0.5 * (g.lower_corner[1] + g.upper_corner[1]);
+              if (s.prescribe_solid_box(mesh,
+                                        Point<3>(g.lower_corner[0], yc, -1.),
+                                        Point<3>(g.lower_corner[0], yc, 1.),
+                                        {false, true, false}) == 0)
+                InputFile::reject(S + "/Solid",
+                                  "subdivisions",
+                                  std::to_string(g.subdivisions[1]),
+                                  "the plane cantilever is held at the "
+                                  "centre of its root section, which must "
+                                  "be a node: use an even number of "
+                                  "subdivisions along y");
+            }
         }
 
         std::vector<Result>
@@ -2680,18 +2816,20 @@ namespace Talus
         {
           const auto  &g               = p.solid_geometry;
           const double L               = g.upper_corner[0] - g.lower_corner[0];
-          const double b               = g.upper_corner[1] - g.lower_corner[1];
-          const double h               = g.upper_corner[2] - g.lower_corner[2];
-          const double E               = p.solid.youngs_modulus;
-          const double nu              = p.solid.poissons_ratio;
-          const double P               = p.point_load[2];
+          const double b               = width();
+          const double h               = height();
+          const double E               = effective_modulus();
+          const double nu              = effective_poisson();
+          const double P               = p.point_load[vertical()];
           const double I               = b * h * h * h / 12.;
           const double G               = E / (2. * (1. + nu));
           const double kap             = 10. * (1. + nu) / (12. + 11. * nu);
           const double euler_bernoulli = P * L * L * L / (3. * E * I);
           const double timoshenko = euler_bernoulli + P * L / (kap * G * b * h);
           return {
-            {"tip deflection [m]", face_mean(s, u, 0, 1, 2), timoshenko},
+            {"tip deflection [m]",
+             solid_face_mean(s, u, 1, vertical()),
+             timoshenko},
             {"Euler-Bernoulli deflection [m]", euler_bernoulli, 0., false}};
         }
       };
@@ -2724,7 +2862,8 @@ namespace Talus
         std::string
         description() const override
         {
-          return "axial bar (continuum solid, FE_Q(" +
+          return std::string(p.plane_solid ? "plane-strain " : "") +
+                 "axial bar (continuum solid, FE_Q(" +
                  std::to_string(p.solid.degree) +
                  ")) on its symmetry planes, end traction" +
                  (p.dynamic ? " applied suddenly: first axial period" :
@@ -2734,23 +2873,22 @@ namespace Talus
         std::array<std::string, 3>
         support_parameter() const override
         {
-          return {{S, "model", p.model}};
+          return {{S, "model", p.model_text}};
         }
 
         void
         build(Structure &s, const unsigned int level) override
         {
-          const auto &g    = p.solid_geometry;
-          auto       &mesh = s.add_solid("bar", solid_component());
-          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
-          const double A0 = (g.upper_corner[1] - g.lower_corner[1]) *
-                            (g.upper_corner[2] - g.lower_corner[2]);
-          mesh.tractions.emplace_back(
-            1, Tensor<1, 3>({p.point_load[0] / A0, 0., 0.}));
+          const double A0 = width() * height();
+          add_solid_mesh(s, "bar", level)
+            .emplace_back(1, Tensor<1, 3>({p.point_load[0] / A0, 0., 0.}));
           s.setup_dofs();
-          s.prescribe_solid_boundary(0, 0, {true, false, false});
-          s.prescribe_solid_boundary(0, 2, {false, true, false});
-          s.prescribe_solid_boundary(0, 4, {false, false, true});
+          on_solid(s, [&](const auto &mesh) {
+            s.prescribe_solid_boundary(mesh, 0, {true, false, false});
+            s.prescribe_solid_boundary(mesh, 2, {false, true, false});
+            if (!p.plane_solid)
+              s.prescribe_solid_boundary(mesh, 4, {false, false, true});
+          });
         }
 
         std::vector<std::pair<std::string, double>>
@@ -2758,7 +2896,7 @@ namespace Talus
                 const Vector<double> &u,
                 const double          t) override
         {
-          const double tip = face_mean(s, u, 0, 1, 0);
+          const double tip = solid_face_mean(s, u, 1, 0);
           if (p.dynamic)
             {
               const double u_static = static_end_displacement();
@@ -2781,11 +2919,11 @@ namespace Talus
           const double u_static = static_end_displacement();
           if (!p.dynamic)
             return {
-              {"end displacement [m]", face_mean(s, u, 0, 1, 0), u_static}};
+              {"end displacement [m]", solid_face_mean(s, u, 1, 0), u_static}};
           const auto  &g = p.solid_geometry;
           const double L = g.upper_corner[0] - g.lower_corner[0];
           const double T1 =
-            4. * L / std::sqrt(p.solid.youngs_modulus / p.solid.density);
+            4. * L / std::sqrt(effective_modulus() / p.solid.density);
           std::vector<Result> r = {{"largest |end displacement| / static",
                                     largest / std::abs(u_static),
                                     2.,
@@ -2813,10 +2951,9 @@ namespace Talus
         {
           const auto  &g  = p.solid_geometry;
           const double L  = g.upper_corner[0] - g.lower_corner[0];
-          const double A0 = (g.upper_corner[1] - g.lower_corner[1]) *
-                            (g.upper_corner[2] - g.lower_corner[2]);
-          const double t = p.point_load[0] / A0;
-          const double E = p.solid.youngs_modulus;
+          const double A0 = width() * height();
+          const double t  = p.point_load[0] / A0;
+          const double E  = effective_modulus();
           const double lambda =
             bisect([&](
                      const double x) { return E * x * (x * x - 1.) / 2. - t; },
@@ -2852,9 +2989,15 @@ namespace Talus
         std::string
         description() const override
         {
-          return "block (continuum solid, FE_Q(" +
-                 std::to_string(p.solid.degree) +
-                 ")) hanging on a cable tied to the centre of its top face";
+          return p.plane_solid ?
+                   "plane-strain block (continuum solid, FE_Q(" +
+                     std::to_string(p.solid.degree) +
+                     ")) hanging on a 2D string tied to the centre of its "
+                     "top edge" :
+                   "block (continuum solid, FE_Q(" +
+                     std::to_string(p.solid.degree) +
+                     ")) hanging on a cable tied to the centre of its top "
+                     "face";
         }
 
         bool
@@ -2876,7 +3019,44 @@ namespace Talus
         void
         build(Structure &s, const unsigned int level) override
         {
-          const auto    &g = p.solid_geometry;
+          const auto  &g   = p.solid_geometry;
+          const double big = 1. + g.lower_corner.distance(g.upper_corner);
+          if (p.plane_solid)
+            {
+              // The block in the x-y plane on a 2D string along y.
+              attach_point =
+                Point<3>(0.5 * (g.lower_corner[0] + g.upper_corner[0]),
+                         g.upper_corner[1],
+                         0.);
+              anchor_point = attach_point + Point<3>(0., p.cable_length, 0.);
+              std::vector<Point<2>>    x(p.elements + 1);
+              std::vector<CellData<1>> cells(p.elements);
+              for (unsigned int k = 0; k <= p.elements; ++k)
+                x[k] =
+                  Point<2>(anchor_point[0],
+                           anchor_point[1] - p.cable_length * k / p.elements);
+              for (unsigned int k = 0; k < p.elements; ++k)
+                cells[k].vertices = {k, k + 1};
+              string.triangulation.create_triangulation(x,
+                                                        cells,
+                                                        SubCellData());
+              string.add_to(s, "cable", line_element());
+              add_solid_mesh(s, "block", level);
+              s.setup_dofs();
+              string.setup(s);
+              anchor = string.node(0);
+              string.fix(s, 0);
+              // Symmetry: u_x = 0 on the string and on the line x = x_c.
+              for (unsigned int k = 0; k <= p.elements; ++k)
+                s.prescribe(string.node(k), 0);
+              s.prescribe_solid_box(
+                *s.plane_solid_meshes[0],
+                Point<3>(attach_point[0], attach_point[1] - big, -big),
+                Point<3>(attach_point[0], attach_point[1] + big, big),
+                {true, false, false});
+              s.gravity = p.gravity;
+              return;
+            }
           const Point<3> top(0.5 * (g.lower_corner[0] + g.upper_corner[0]),
                              0.5 * (g.lower_corner[1] + g.upper_corner[1]),
                              g.upper_corner[2]);
@@ -2886,8 +3066,7 @@ namespace Talus
                     anchor_point,
                     top,
                     p.elements);
-          auto &mesh = s.add_solid("block", solid_component());
-          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
+          add_solid_mesh(s, "block", level);
           s.setup_dofs();
           anchor = node_at(s, anchor_point);
           for (unsigned int c = 0; c < 3; ++c)
@@ -2895,7 +3074,6 @@ namespace Talus
           for (const unsigned int k : s.line_vertex_nodes(0))
             for (unsigned int c = 0; c < 2; ++c)
               s.prescribe(k, c);
-          const double big = 1. + g.lower_corner.distance(g.upper_corner);
           s.prescribe_solid_box(0,
                                 Point<3>(top[0], top[1] - big, top[2] - big),
                                 Point<3>(top[0], top[1] + big, top[2] + big),
@@ -2910,16 +3088,17 @@ namespace Talus
         std::vector<Result>
         results(const Structure &s, const Vector<double> &u) override
         {
-          const auto  &g = p.solid_geometry;
-          const double V = (g.upper_corner[0] - g.lower_corner[0]) *
-                           (g.upper_corner[1] - g.lower_corner[1]) *
-                           (g.upper_corner[2] - g.lower_corner[2]);
-          const double gz   = -p.gravity[2];
-          const double W    = p.solid.density * gz * V;
-          const double w    = p.density * p.A * gz;
-          const double l    = p.cable_length / p.elements;
-          const double EA   = p.E * p.A;
-          double       drop = 0.;
+          const auto &g = p.solid_geometry;
+          // Volume: the box, or the rectangle times the thickness.
+          const double V =
+            (g.upper_corner[0] - g.lower_corner[0]) * width() * height();
+          const unsigned int up   = vertical();
+          const double       gz   = -p.gravity[up];
+          const double       W    = p.solid.density * gz * V;
+          const double       w    = p.density * p.A * gz;
+          const double       l    = p.cable_length / p.elements;
+          const double       EA   = p.E * p.A;
+          double             drop = 0.;
           for (unsigned int k = 0; k < p.elements; ++k)
             {
               const double N      = W + w * l * (k + 0.5);
@@ -2936,25 +3115,25 @@ namespace Talus
             if (cell->center().distance(attach_point) < 0.6 * l)
               N_bottom = cable.force[cell->active_cell_index()];
           const unsigned int attach = node_at(s, attach_point);
-          return {
-            {"anchor force [N]", s.reaction(anchor)[2], W + w * p.cable_length},
-            {"cable force at the block [N]", N_bottom, W + 0.5 * w * l},
-            {"drop of the attachment point [m]",
-             -s.node_displacement(u, attach)[2],
-             drop},
-            {"drop of the block's bottom centre [m]",
-             -s.node_displacement(u,
-                                  node_at(s,
-                                          Point<3>(attach_point[0],
-                                                   attach_point[1],
-                                                   g.lower_corner[2])))[2],
-             0.,
-             false}};
+          Point<3>           bottom = attach_point;
+          bottom[up]                = g.lower_corner[up];
+          return {{"anchor force [N]",
+                   s.reaction(anchor)[up],
+                   W + w * p.cable_length},
+                  {"cable force at the block [N]", N_bottom, W + 0.5 * w * l},
+                  {"drop of the attachment point [m]",
+                   -s.node_displacement(u, attach)[up],
+                   drop},
+                  {"drop of the block's bottom centre [m]",
+                   -s.node_displacement(u, node_at(s, bottom))[up],
+                   0.,
+                   false}};
         }
 
       private:
-        Point<3>     anchor_point, attach_point;
-        unsigned int anchor = 0;
+        Point<3>                      anchor_point, attach_point;
+        unsigned int                  anchor = 0;
+        Talus::Structure::PlaneString string; ///< the plane model's cable
       };
 
 
@@ -3023,7 +3202,15 @@ namespace Talus
       {
         Parameters p;
         prm.enter_subsection(S);
-        p.model = prm.get("model");
+        p.model      = prm.get("model");
+        p.model_text = p.model;
+        for (const std::string base :
+             {"solid", "cantilever", "axial bar", "hanging block"})
+          if (p.model == "plane " + base)
+            {
+              p.plane_solid = true;
+              p.model       = base;
+            }
 
         const std::string lm = S + "/Line members";
         prm.enter_subsection("Line members");
@@ -3092,6 +3279,7 @@ namespace Talus
         prm.enter_subsection("Solid");
         p.solid.parse_parameters(prm, solid_s);
         p.solid_geometry.parse_parameters(prm, solid_s);
+        p.solid_traction_text = prm.get("traction");
         prm.leave_subsection();
         if ((p.model == "cantilever" || p.model == "hanging block" ||
              p.model == "axial bar") &&
@@ -3167,7 +3355,7 @@ namespace Talus
                             "the sliding ring needs a non-zero load in the "
                             "x-z plane");
 
-        if (p.model == "cantilever" &&
+        if (p.model == "cantilever" && !p.plane_solid &&
             !(p.point_load[2] != 0. && p.point_load[0] == 0. &&
               p.point_load[1] == 0.))
           InputFile::reject(ls,
@@ -3175,6 +3363,26 @@ namespace Talus
                             point_load_text,
                             "the cantilever needs an end load 0, 0, P with "
                             "P != 0");
+        if (p.model == "cantilever" && p.plane_solid &&
+            !(p.point_load[1] != 0. && p.point_load[0] == 0. &&
+              p.point_load[2] == 0.))
+          InputFile::reject(ls,
+                            "point load",
+                            point_load_text,
+                            "the plane cantilever lies in the x-y plane and "
+                            "needs an end load 0, P, 0 with P != 0");
+        if (p.plane_solid && p.gravity[2] != 0.)
+          InputFile::reject(ls,
+                            "gravity",
+                            gravity_text,
+                            "a plane-strain solid lies in the x-y plane of "
+                            "a 2D problem: gravity must be g_x, g_y, 0");
+        if (p.plane_solid && p.solid_geometry.traction[2] != 0.)
+          InputFile::reject(S + "/Solid",
+                            "traction",
+                            p.solid_traction_text,
+                            "a plane-strain solid lies in the x-y plane of "
+                            "a 2D problem: its traction must be t_x, t_y, 0");
         if (p.model == "plastic bar" &&
             !(p.point_load[0] != 0. && p.point_load[1] == 0. &&
               p.point_load[2] == 0.))
@@ -3199,13 +3407,21 @@ namespace Talus
                             "F != 0");
         if (p.model == "hanging block")
           {
-            if (!(p.gravity[0] == 0. && p.gravity[1] == 0. &&
-                  p.gravity[2] < 0.))
+            if (!p.plane_solid && !(p.gravity[0] == 0. && p.gravity[1] == 0. &&
+                                    p.gravity[2] < 0.))
               InputFile::reject(ls,
                                 "gravity",
                                 gravity_text,
                                 "the hanging block needs gravity 0, 0, -g "
                                 "with g > 0");
+            if (p.plane_solid && !(p.gravity[0] == 0. && p.gravity[1] < 0. &&
+                                   p.gravity[2] == 0.))
+              InputFile::reject(ls,
+                                "gravity",
+                                gravity_text,
+                                "the plane hanging block needs gravity 0, "
+                                "-g, 0 with g > 0 (it hangs along -y in the "
+                                "x-y plane)");
             if (p.prestress != 0.)
               InputFile::reject(lm,
                                 "prestress",
@@ -3272,6 +3488,8 @@ namespace Talus
                             "square membrane|sheared membrane|vibrating string|"
                             "sliding ring|capstan|brake|mesh file|barrier|"
                             "solid|cantilever|hanging block|axial bar|"
+                            "plane solid|plane cantilever|plane axial bar|"
+                            "plane hanging block|"
                             "stretched membrane|plastic bar"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
@@ -3303,6 +3521,13 @@ namespace Talus
         "stretch by hand), 'axial bar' (the box on its symmetry planes "
         "pulled on x_max by 'point load' (F, 0, 0) as a traction: exact "
         "uniaxial stress, or with 'dynamic' the first axial period 4 L/c), "
+        "'plane solid', 'plane cantilever', 'plane axial bar', 'plane "
+        "hanging block' (the same four as plane-strain solids of a 2D "
+        "problem: the rectangle of the x, y coordinates of subsection Solid "
+        "as a Triangulation<2,2> in the x-y plane, 'thickness' t out of "
+        "plane, u_z = 0; the cantilever is loaded along y by 'point load' "
+        "(0, P, 0) against the plane-strain Timoshenko beam, the block "
+        "hangs on a 2D string (Triangulation<1,2>) under gravity 0, -g, 0), "
         "'stretched membrane' (square membrane, orthotropic or not, under "
         "the homogeneous biaxial stretch or uniaxial stress of 'stretch'), "
         "'plastic bar' (a straight truss of 'span' along x, fixed at x = 0, "
@@ -3668,7 +3893,7 @@ namespace Talus
                             "the directory cannot be created");
         }
 
-      std::cout << "Talus: barrier structure, model '" << p.model
+      std::cout << "Talus: barrier structure, model '" << p.model_text
                 << "': " << create_model(p)->description() << '\n';
       ConvergenceTable                 table;
       std::vector<std::vector<Result>> level_results;
@@ -3767,8 +3992,9 @@ namespace Talus
             n_cells += m->triangulation.n_active_cells();
           for (const auto &m : structure.membrane_meshes)
             n_cells += m->triangulation.n_active_cells();
-          for (const auto &m : structure.solid_meshes)
-            n_cells += m->triangulation.n_active_cells();
+          structure.for_each_solid_mesh([&](const auto &m) {
+            n_cells += m.triangulation.n_active_cells();
+          });
           std::cout << "Level " << level << ": " << structure.line_meshes.size()
                     << " line mesh(es), " << structure.membrane_meshes.size()
                     << " membrane mesh(es), "
@@ -3776,6 +4002,10 @@ namespace Talus
                           std::string() :
                           std::to_string(structure.solid_meshes.size()) +
                             " solid mesh(es), ")
+                    << (structure.plane_solid_meshes.empty() ?
+                          std::string() :
+                          std::to_string(structure.plane_solid_meshes.size()) +
+                            " plane-strain solid mesh(es), ")
                     << n_cells << " cells, " << structure.n_nodes()
                     << " nodes, " << structure.n_dofs() << " DoFs\n";
 

@@ -232,6 +232,19 @@ namespace Talus
                         "-1",
                         dealii::Patterns::Integer(-1, 255),
                         "Boundary id that carries 'traction'; -1: none [-].");
+      prm.declare_entry("thickness",
+                        "1",
+                        dealii::Patterns::Double(),
+                        "Out-of-plane thickness t of the plane-strain solid "
+                        "of the 'plane solid', 'plane cantilever', 'plane "
+                        "axial bar' and 'plane hanging block' models (a "
+                        "Triangulation<2,2> in the x-y plane of a 2D "
+                        "problem) [m], > 0: its forces, mass and reactions "
+                        "are those of a slice of thickness t. These models "
+                        "use the x and y coordinates of the corners and the "
+                        "first two subdivisions (boundary ids 0 to 3 on "
+                        "x_min, x_max, y_min, y_max); the z entries must "
+                        "still form a valid box and are not used.");
       prm.declare_entry("traction",
                         "0, 0, 0",
                         dealii::Patterns::List(dealii::Patterns::Double(),
@@ -322,6 +335,7 @@ namespace Talus
                                 text + ">)");
           support_boxes.push_back(box);
         }
+      thickness            = get_positive(prm, subsection, "thickness");
       traction_boundary_id = prm.get_integer("traction boundary id");
       const auto t         = get_point(prm, "traction");
       for (unsigned int d = 0; d < 3; ++d)
@@ -344,6 +358,31 @@ namespace Talus
         n[d] = subdivisions[d] << level;
       dealii::GridGenerator::subdivided_hyper_rectangle(
         tria, n, lower_corner, upper_corner, true);
+    }
+
+
+    void
+    SolidGeometry::create_triangulation(dealii::Triangulation<2> &tria,
+                                        const unsigned int        level,
+                                        const std::string &subsection) const
+    {
+      if (!mesh_file.empty())
+        InputFile::reject(subsection,
+                          "mesh file",
+                          mesh_file,
+                          "the plane-strain solid of the 'plane' models is "
+                          "the generated rectangle of 'lower corner', "
+                          "'upper corner' and 'subdivisions' (x, y); leave "
+                          "'mesh file' empty");
+      std::vector<unsigned int> n(2);
+      for (unsigned int d = 0; d < 2; ++d)
+        n[d] = subdivisions[d] << level;
+      dealii::GridGenerator::subdivided_hyper_rectangle(
+        tria,
+        n,
+        dealii::Point<2>(lower_corner[0], lower_corner[1]),
+        dealii::Point<2>(upper_corner[0], upper_corner[1]),
+        true);
     }
 
 

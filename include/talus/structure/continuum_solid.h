@@ -137,6 +137,9 @@ namespace Talus
       std::vector<SupportBox>   support_boxes;
       int                       traction_boundary_id = -1;
       dealii::Tensor<1, 3>      traction; ///< [Pa]
+      /** Out-of-plane thickness t of the plane-strain solid of the 'plane'
+       * models (2D problems) [m]. */
+      double thickness = 1.;
 
       /** The geometry entries of the current subsection (Structure/Solid). */
       static void
@@ -154,6 +157,18 @@ namespace Talus
        */
       void
       create_triangulation(dealii::Triangulation<3> &tria,
+                           const unsigned int        level,
+                           const std::string        &subsection) const;
+
+      /**
+       * The plane-strain solid of a 2D problem: the rectangle of the x and
+       * y coordinates of the corners with the first two 'subdivisions'
+       * times 2^@p level cells, colorized (boundary ids 0..3 on x_min,
+       * x_max, y_min, y_max). A 'mesh file' is rejected (named in
+       * @p subsection).
+       */
+      void
+      create_triangulation(dealii::Triangulation<2> &tria,
                            const unsigned int        level,
                            const std::string        &subsection) const;
     };
