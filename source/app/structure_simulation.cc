@@ -261,27 +261,28 @@ namespace Talus
       protected:
         const Parameters &p;
 
+        /** The line parameters every line element shares. */
+        template <typename Element>
+        std::shared_ptr<Element>
+        line_parameters() const
+        {
+          auto e                   = std::make_shared<Element>();
+          e->youngs_modulus        = p.E;
+          e->area                  = p.A;
+          e->prestress             = p.prestress;
+          e->density               = p.density;
+          e->slack_stiffness_ratio = p.slack_ratio;
+          return e;
+        }
+
         std::shared_ptr<Talus::Structure::LineElement>
         line_element() const
         {
           if (p.line_element == "cable")
-            {
-              auto c            = std::make_shared<Talus::Structure::Cable>();
-              c->youngs_modulus = p.E;
-              c->area           = p.A;
-              c->prestress      = p.prestress;
-              c->density        = p.density;
-              c->slack_stiffness_ratio = p.slack_ratio;
-              return c;
-            }
-          auto t            = std::make_shared<Talus::Structure::Truss>();
-          t->youngs_modulus = p.E;
-          t->area           = p.A;
-          t->prestress      = p.prestress;
-          t->density        = p.density;
-          t->yield_stress   = p.yield_stress;
-          t->hardening      = p.hardening;
-          t->slack_stiffness_ratio = p.slack_ratio;
+            return line_parameters<Talus::Structure::Cable>();
+          auto t          = line_parameters<Talus::Structure::Truss>();
+          t->yield_stress = p.yield_stress;
+          t->hardening    = p.hardening;
           return t;
         }
 
@@ -289,13 +290,7 @@ namespace Talus
         std::shared_ptr<Talus::Structure::SlidingCable>
         sliding_cable() const
         {
-          auto cable = std::make_shared<Talus::Structure::SlidingCable>();
-          cable->youngs_modulus        = p.E;
-          cable->area                  = p.A;
-          cable->prestress             = p.prestress;
-          cable->density               = p.density;
-          cable->slack_stiffness_ratio = p.slack_ratio;
-          return cable;
+          return line_parameters<Talus::Structure::SlidingCable>();
         }
 
         std::shared_ptr<Talus::Structure::Membrane>
@@ -1963,6 +1958,39 @@ namespace Talus
 
 
       /**
+       * A flat square membrane (side a, centred at the origin, in the x-y
+       * plane, 'refinements' + level times refined) loaded in its plane:
+       * u_z = 0 at every node (a flat membrane has no stiffness normal to
+       * itself before it is stressed); no pre-stress step.
+       */
+      class InPlaneSquareMembrane : public Model
+      {
+      public:
+        using Model::Model;
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+      protected:
+        /** The mesh, setup_dofs() and u_z = 0 everywhere. */
+        void
+        build_square(Structure &s, const unsigned int level) const
+        {
+          make_flat_mesh(s.add_membrane("membrane", membrane()).triangulation,
+                         false,
+                         p.side,
+                         p.refinements + level);
+          s.setup_dofs();
+          for (unsigned int n = 0; n < s.n_nodes(); ++n)
+            s.prescribe(n, 2);
+        }
+      };
+
+
+      /**
        * A square membrane (side a, isotropic, no pre-stress) in simple
        * shear, in its plane (u_z = 0 everywhere): every boundary node
        * displaced by u_x = lambda gamma (y + a/2).
@@ -1974,10 +2002,10 @@ namespace Talus
        * nodes with y > 0 (top edge; the side edges' normal tractions
        * cancel), F = tau t a, to first order in gamma.
        */
-      class ShearedMembrane : public Model
+      class ShearedMembrane : public InPlaneSquareMembrane
       {
       public:
-        using Model::Model;
+        using InPlaneSquareMembrane::InPlaneSquareMembrane;
 
         std::string
         description() const override
@@ -1989,11 +2017,7 @@ namespace Talus
         void
         build(Structure &s, const unsigned int level) override
         {
-          make_flat_mesh(s.add_membrane("membrane", membrane()).triangulation,
-                         false,
-                         p.side,
-                         p.refinements + level);
-          s.setup_dofs();
+          build_square(s, level);
           boundary = s.find_nodes([&](const Point<3> &x) {
             return std::max(std::abs(x[0]), std::abs(x[1])) >
                    0.5 * p.side * (1. - 1e-10);
@@ -2004,16 +2028,6 @@ namespace Talus
                 n, 0, p.shear_strain * (s.node_position(n)[1] + 0.5 * p.side));
               s.prescribe(n, 1);
             }
-          // In-plane problem: a flat membrane has no stiffness normal to
-          // itself before it is stressed.
-          for (unsigned int n = 0; n < s.n_nodes(); ++n)
-            s.prescribe(n, 2);
-        }
-
-        bool
-        prestress_step() const override
-        {
-          return false;
         }
 
         std::vector<Result>
@@ -2072,10 +2086,10 @@ namespace Talus
        * F_x = t a lambda_1 S_11 on x = a/2, F_y = t a lambda_2 S_22 on
        * y = a/2.
        */
-      class StretchedMembrane : public Model
+      class StretchedMembrane : public InPlaneSquareMembrane
       {
       public:
-        using Model::Model;
+        using InPlaneSquareMembrane::InPlaneSquareMembrane;
 
         std::string
         description() const override
@@ -2089,11 +2103,7 @@ namespace Talus
         void
         build(Structure &s, const unsigned int level) override
         {
-          make_flat_mesh(s.add_membrane("membrane", membrane()).triangulation,
-                         false,
-                         p.side,
-                         p.refinements + level);
-          s.setup_dofs();
+          build_square(s, level);
           const double h = 0.5 * p.side * (1. - 1e-10);
           x_edge = s.find_nodes([&](const Point<3> &x) { return x[0] > h; });
           y_edge = s.find_nodes([&](const Point<3> &x) { return x[1] > h; });
@@ -2108,15 +2118,7 @@ namespace Talus
                 s.prescribe(n, 1, p.uniaxial_stress ? 0. : p.stretch_y * X[1]);
               if (!p.uniaxial_stress && on_y && !on_x)
                 s.prescribe(n, 0, p.stretch_x * X[0]);
-              // In-plane problem (no stiffness normal to the flat sheet).
-              s.prescribe(n, 2);
             }
-        }
-
-        bool
-        prestress_step() const override
-        {
-          return false;
         }
 
         std::vector<Result>
@@ -3355,22 +3357,31 @@ namespace Talus
                             "the sliding ring needs a non-zero load in the "
                             "x-z plane");
 
-        if (p.model == "cantilever" && !p.plane_solid &&
-            !(p.point_load[2] != 0. && p.point_load[0] == 0. &&
-              p.point_load[1] == 0.))
-          InputFile::reject(ls,
-                            "point load",
-                            point_load_text,
-                            "the cantilever needs an end load 0, 0, P with "
-                            "P != 0");
-        if (p.model == "cantilever" && p.plane_solid &&
-            !(p.point_load[1] != 0. && p.point_load[0] == 0. &&
-              p.point_load[2] == 0.))
-          InputFile::reject(ls,
-                            "point load",
-                            point_load_text,
-                            "the plane cantilever lies in the x-y plane and "
-                            "needs an end load 0, P, 0 with P != 0");
+        // Models loaded by 'point load' along one axis c only.
+        const auto require_load_along = [&](const bool         applies,
+                                            const unsigned int c,
+                                            const std::string &what) {
+          if (applies &&
+              !(p.point_load[c] != 0. && p.point_load[(c + 1) % 3] == 0. &&
+                p.point_load[(c + 2) % 3] == 0.))
+            InputFile::reject(ls, "point load", point_load_text, what);
+        };
+        require_load_along(p.model == "cantilever" && !p.plane_solid,
+                           2,
+                           "the cantilever needs an end load 0, 0, P with "
+                           "P != 0");
+        require_load_along(p.model == "cantilever" && p.plane_solid,
+                           1,
+                           "the plane cantilever lies in the x-y plane and "
+                           "needs an end load 0, P, 0 with P != 0");
+        require_load_along(p.model == "plastic bar",
+                           0,
+                           "the plastic bar needs an end load F, 0, 0 with "
+                           "F != 0");
+        require_load_along(p.model == "axial bar",
+                           0,
+                           "the axial bar needs an end load F, 0, 0 with "
+                           "F != 0");
         if (p.plane_solid && p.gravity[2] != 0.)
           InputFile::reject(ls,
                             "gravity",
@@ -3383,28 +3394,12 @@ namespace Talus
                             p.solid_traction_text,
                             "a plane-strain solid lies in the x-y plane of "
                             "a 2D problem: its traction must be t_x, t_y, 0");
-        if (p.model == "plastic bar" &&
-            !(p.point_load[0] != 0. && p.point_load[1] == 0. &&
-              p.point_load[2] == 0.))
-          InputFile::reject(ls,
-                            "point load",
-                            point_load_text,
-                            "the plastic bar needs an end load F, 0, 0 with "
-                            "F != 0");
         if (p.model == "plastic bar" && p.line_element != "truss")
           InputFile::reject(lm,
                             "element",
                             p.line_element,
                             "the plastic bar is made of 'truss' elements "
                             "(a cable has no plasticity)");
-        if (p.model == "axial bar" &&
-            !(p.point_load[0] != 0. && p.point_load[1] == 0. &&
-              p.point_load[2] == 0.))
-          InputFile::reject(ls,
-                            "point load",
-                            point_load_text,
-                            "the axial bar needs an end load F, 0, 0 with "
-                            "F != 0");
         if (p.model == "hanging block")
           {
             if (!p.plane_solid && !(p.gravity[0] == 0. && p.gravity[1] == 0. &&

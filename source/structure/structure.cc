@@ -1017,6 +1017,34 @@ namespace Talus
     }
 
 
+    namespace
+    {
+      /** rho int N_i N_j dV of one cell (same components only) into
+       * @p Me, for @p fe_values reinitialised on it. */
+      template <int dim>
+      void
+      cell_mass_matrix(const dealii::FEValues<dim, 3> &fe_values,
+                       const double                    rho,
+                       dealii::FullMatrix<double>     &Me)
+      {
+        const auto        &fe = fe_values.get_fe();
+        const unsigned int n  = fe.n_dofs_per_cell();
+        Me.reinit(n, n);
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              const unsigned int ci = fe.system_to_component_index(i).first;
+              if (ci != fe.system_to_component_index(j).first)
+                continue;
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                Me(i, j) += rho * fe_values.shape_value_component(i, q, ci) *
+                            fe_values.shape_value_component(j, q, ci) *
+                            fe_values.JxW(q);
+            }
+      }
+    } // namespace
+
+
     void
     Structure::assemble_consistent_mass(dealii::SparseMatrix<double> &M) const
     {
@@ -1086,21 +1114,7 @@ namespace Talus
                   cell->get_dof_indices(indices);
                   for (auto &i : indices)
                     i += mesh->offset;
-                  Me = 0.;
-                  for (unsigned int i = 0; i < n; ++i)
-                    for (unsigned int j = 0; j < n; ++j)
-                      {
-                        const unsigned int ci =
-                          membrane_fe.system_to_component_index(i).first;
-                        if (ci !=
-                            membrane_fe.system_to_component_index(j).first)
-                          continue;
-                        for (unsigned int q = 0; q < quadrature.size(); ++q)
-                          Me(i, j) +=
-                            rho_t * fe_values.shape_value_component(i, q, ci) *
-                            fe_values.shape_value_component(j, q, ci) *
-                            fe_values.JxW(q);
-                      }
+                  cell_mass_matrix(fe_values, rho_t, Me);
                   constraints.distribute_local_to_global(Me, indices, M);
                 }
             }
@@ -1123,20 +1137,7 @@ namespace Talus
             cell->get_dof_indices(indices);
             for (auto &i : indices)
               i += mesh->offset;
-            Me = 0.;
-            for (unsigned int i = 0; i < n; ++i)
-              for (unsigned int j = 0; j < n; ++j)
-                {
-                  const unsigned int ci = fe.system_to_component_index(i).first;
-                  if (ci != fe.system_to_component_index(j).first)
-                    continue;
-                  for (const unsigned int q :
-                       fe_values.quadrature_point_indices())
-                    Me(i, j) += rho *
-                                fe_values.shape_value_component(i, q, ci) *
-                                fe_values.shape_value_component(j, q, ci) *
-                                fe_values.JxW(q);
-                }
+            cell_mass_matrix(fe_values, rho, Me);
             constraints.distribute_local_to_global(Me, indices, M);
           }
       });
@@ -1495,46 +1496,47 @@ namespace Talus
               dof_to_node[offset + cell->vertex_dof_index(v, 0)];
         return result;
       }
+
+      /** vertex_nodes() of mesh @p mesh of @p meshes. */
+      template <typename Mesh>
+      std::vector<unsigned int>
+      vertex_nodes(const std::vector<std::unique_ptr<Mesh>> &meshes,
+                   const unsigned int                        mesh,
+                   const std::vector<unsigned int>          &dof_to_node)
+      {
+        AssertIndexRange(mesh, meshes.size());
+        return vertex_nodes(meshes[mesh]->dof_handler,
+                            meshes[mesh]->offset,
+                            dof_to_node);
+      }
     } // namespace
 
 
     std::vector<unsigned int>
     Structure::membrane_vertex_nodes(const unsigned int mesh) const
     {
-      AssertIndexRange(mesh, membrane_meshes.size());
-      return vertex_nodes(membrane_meshes[mesh]->dof_handler,
-                          membrane_meshes[mesh]->offset,
-                          dof_to_node);
+      return vertex_nodes(membrane_meshes, mesh, dof_to_node);
     }
 
 
     std::vector<unsigned int>
     Structure::line_vertex_nodes(const unsigned int mesh) const
     {
-      AssertIndexRange(mesh, line_meshes.size());
-      return vertex_nodes(line_meshes[mesh]->dof_handler,
-                          line_meshes[mesh]->offset,
-                          dof_to_node);
+      return vertex_nodes(line_meshes, mesh, dof_to_node);
     }
 
 
     std::vector<unsigned int>
     Structure::solid_vertex_nodes(const unsigned int mesh) const
     {
-      AssertIndexRange(mesh, solid_meshes.size());
-      return vertex_nodes(solid_meshes[mesh]->dof_handler,
-                          solid_meshes[mesh]->offset,
-                          dof_to_node);
+      return vertex_nodes(solid_meshes, mesh, dof_to_node);
     }
 
 
     std::vector<unsigned int>
     Structure::plane_solid_vertex_nodes(const unsigned int mesh) const
     {
-      AssertIndexRange(mesh, plane_solid_meshes.size());
-      return vertex_nodes(plane_solid_meshes[mesh]->dof_handler,
-                          plane_solid_meshes[mesh]->offset,
-                          dof_to_node);
+      return vertex_nodes(plane_solid_meshes, mesh, dof_to_node);
     }
 
 

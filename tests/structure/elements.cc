@@ -73,6 +73,44 @@ namespace
       std::cout << what << " = " << value << std::endl;
   }
 
+  /**
+   * Central differences (step h [m]) of the nodal forces of a sliding
+   * cable at positions x; with old_lengths the stick-slip law from that
+   * committed history.
+   */
+  FullMatrix<double>
+  sliding_cable_fd_tangent(const SlidingCable              &cable,
+                           const std::vector<Tensor<1, 3>> &X,
+                           const std::vector<Tensor<1, 3>> &x,
+                           const double                     h,
+                           const std::vector<double> *old_lengths = nullptr)
+  {
+    const unsigned int n = 3 * x.size();
+    FullMatrix<double> K_fd(n, n);
+    for (unsigned int j = 0; j < n; ++j)
+      {
+        auto xp = x, xm = x;
+        xp[j / 3][j % 3] += h;
+        xm[j / 3][j % 3] -= h;
+        Vector<double>      fp, fm;
+        FullMatrix<double>  dummy;
+        std::vector<double> L;
+        if (old_lengths != nullptr)
+          {
+            cable.compute(X, xp, *old_lengths, fp, dummy, L);
+            cable.compute(X, xm, *old_lengths, fm, dummy, L);
+          }
+        else
+          {
+            cable.compute(X, xp, fp, dummy);
+            cable.compute(X, xm, fm, dummy);
+          }
+        for (unsigned int i = 0; i < n; ++i)
+          K_fd(i, j) = (fp[i] - fm[i]) / (2. * h);
+      }
+    return K_fd;
+  }
+
   /** Forces and central-difference tangent of a two-node element. */
   double
   line_tangent_error(const LineElement  &element,
@@ -439,22 +477,8 @@ main()
     const double end_force = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
     report("end node force |f_0| = N", std::abs(end_force - N) / N, 1e-13);
     // Sum of all forces = N (e_last - e_first): a free body check.
-    FullMatrix<double> K_fd(15, 15);
-    const double       h = 1e-6;
-    for (unsigned int j = 0; j < 15; ++j)
-      {
-        auto xp = x, xm = x;
-        xp[j / 3][j % 3] += h;
-        xm[j / 3][j % 3] -= h;
-        Vector<double>     fp, fm;
-        FullMatrix<double> dummy;
-        cable.compute(X, xp, fp, dummy);
-        cable.compute(X, xm, fm, dummy);
-        for (unsigned int i = 0; i < 15; ++i)
-          K_fd(i, j) = (fp[i] - fm[i]) / (2. * h);
-      }
     report("tangent vs central differences",
-           relative_difference(K, K_fd),
+           relative_difference(K, sliding_cable_fd_tangent(cable, X, x, 1e-6)),
            1e-6);
   }
 
@@ -527,30 +551,8 @@ main()
     const std::vector<double> old_lengths = {1. - 1e-4, 1. - 1e-4, 1. - 1e-4};
     const auto fd_tangent = [&](const std::vector<Tensor<1, 3>> &x,
                                 const bool                       with_history) {
-      FullMatrix<double> K_fd(12, 12);
-      const double       h = 1e-6;
-      for (unsigned int j = 0; j < 12; ++j)
-        {
-          auto xp = x, xm = x;
-          xp[j / 3][j % 3] += h;
-          xm[j / 3][j % 3] -= h;
-          Vector<double>      fp, fm;
-          FullMatrix<double>  dummy;
-          std::vector<double> L;
-          if (with_history)
-            {
-              cable.compute(X, xp, old_lengths, fp, dummy, L);
-              cable.compute(X, xm, old_lengths, fm, dummy, L);
-            }
-          else
-            {
-              cable.compute(X, xp, fp, dummy);
-              cable.compute(X, xm, fm, dummy);
-            }
-          for (unsigned int i = 0; i < 12; ++i)
-            K_fd(i, j) = (fp[i] - fm[i]) / (2. * h);
-        }
-      return K_fd;
+      return sliding_cable_fd_tangent(
+        cable, X, x, 1e-6, with_history ? &old_lengths : nullptr);
     };
     // h = 1e-6 m: the bisection of the return map leaves ~1e-15 relative
     // noise in the tensions, which smaller steps amplify (h = 1e-8 gives
