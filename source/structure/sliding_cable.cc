@@ -7,6 +7,24 @@ namespace Talus
 {
   namespace Structure
   {
+    namespace
+    {
+      /** Adds k to the entries (i, j) of segment s (nodes s and s + 1) in
+       * the pattern [[1, -1], [-1, 1]]. */
+      void
+      add_to_segment(dealii::FullMatrix<double> &K,
+                     const unsigned int          s,
+                     const unsigned int          i,
+                     const unsigned int          j,
+                     const double                k)
+      {
+        K(3 * s + i, 3 * s + j) += k;
+        K(3 * (s + 1) + i, 3 * (s + 1) + j) += k;
+        K(3 * s + i, 3 * (s + 1) + j) -= k;
+        K(3 * (s + 1) + i, 3 * s + j) -= k;
+      }
+    } // namespace
+
     double
     SlidingCable::compute(const std::vector<dealii::Tensor<1, 3>> &X,
                           const std::vector<dealii::Tensor<1, 3>> &x,
@@ -41,12 +59,7 @@ namespace Talus
                 slack_stiffness_ratio * youngs_modulus * area / L;
               for (unsigned int i = 0; i + 1 < n_nodes; ++i)
                 for (unsigned int d = 0; d < 3; ++d)
-                  {
-                    K(3 * i + d, 3 * i + d) += k;
-                    K(3 * (i + 1) + d, 3 * (i + 1) + d) += k;
-                    K(3 * i + d, 3 * (i + 1) + d) -= k;
-                    K(3 * (i + 1) + d, 3 * i + d) -= k;
-                  }
+                  add_to_segment(K, i, d, d, k);
             }
           if (energy != nullptr)
             *energy = 0.; // not defined with friction (dissipative)
@@ -81,12 +94,7 @@ namespace Talus
           const double k = slack_stiffness_ratio * youngs_modulus * area / L;
           for (unsigned int i = 0; i + 1 < n_nodes; ++i)
             for (unsigned int d = 0; d < 3; ++d)
-              {
-                K(3 * i + d, 3 * i + d) += k;
-                K(3 * (i + 1) + d, 3 * (i + 1) + d) += k;
-                K(3 * i + d, 3 * (i + 1) + d) -= k;
-                K(3 * (i + 1) + d, 3 * i + d) -= k;
-              }
+              add_to_segment(K, i, d, d, k);
           return 0.;
         }
       const double N = area * S * l / L;
@@ -113,10 +121,7 @@ namespace Talus
             {
               const double k =
                 N / li[s] * ((i == j ? 1. : 0.) - e[s][i] * e[s][j]);
-              K(3 * s + i, 3 * s + j) += k;
-              K(3 * (s + 1) + i, 3 * (s + 1) + j) += k;
-              K(3 * s + i, 3 * (s + 1) + j) -= k;
-              K(3 * (s + 1) + i, 3 * s + j) -= k;
+              add_to_segment(K, s, i, j, k);
             }
       return N;
     }
@@ -243,12 +248,7 @@ namespace Talus
             const double k =
               slack_stiffness_ratio * youngs_modulus * area / old_lengths[i];
             for (unsigned int d = 0; d < 3; ++d)
-              {
-                K(3 * i + d, 3 * i + d) += k;
-                K(3 * (i + 1) + d, 3 * (i + 1) + d) += k;
-                K(3 * i + d, 3 * (i + 1) + d) -= k;
-                K(3 * (i + 1) + d, 3 * i + d) -= k;
-              }
+              add_to_segment(K, i, d, d, k);
           }
       return N0;
     }
@@ -505,10 +505,7 @@ namespace Talus
               {
                 const double k =
                   N[i] / l[i] * ((d == c ? 1. : 0.) - e[i][d] * e[i][c]);
-                K(3 * i + d, 3 * i + c) += k;
-                K(3 * (i + 1) + d, 3 * (i + 1) + c) += k;
-                K(3 * i + d, 3 * (i + 1) + c) -= k;
-                K(3 * (i + 1) + d, 3 * i + c) -= k;
+                add_to_segment(K, i, d, c, k);
               }
           }
     }
