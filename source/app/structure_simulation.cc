@@ -2785,32 +2785,9 @@ namespace Talus
             p.point_load[vertical()] / (width() * height());
           add_solid_mesh(s, "cantilever", level).emplace_back(1, traction);
           s.setup_dofs();
-          if (!p.plane_solid)
-            on_solid(s, [&](const auto &mesh) {
-              s.prescribe_solid_boundary(mesh, 0);
-            });
-          else
-            {
-              // The root section x = x_min held along x, its centre also
-              // along y: the section may contract laterally (a full clamp
-              // of a plane-strain section with nu > 0 stiffens the root,
-              // an error of order h/L against the beam).
-              const auto &g    = p.solid_geometry;
-              const auto &mesh = *s.plane_solid_meshes[0];
-              s.prescribe_solid_boundary(mesh, 0, {true, false, false});
-              const double yc = 0.5 * (g.lower_corner[1] + g.upper_corner[1]);
-              if (s.prescribe_solid_box(mesh,
-                                        Point<3>(g.lower_corner[0], yc, -1.),
-                                        Point<3>(g.lower_corner[0], yc, 1.),
-                                        {false, true, false}) == 0)
-                InputFile::reject(S + "/Solid",
-                                  "subdivisions",
-                                  std::to_string(g.subdivisions[1]),
-                                  "the plane cantilever is held at the "
-                                  "centre of its root section, which must "
-                                  "be a node: use an even number of "
-                                  "subdivisions along y");
-            }
+          on_solid(s, [&](const auto &mesh) {
+            s.prescribe_solid_boundary(mesh, 0);
+          });
         }
 
         std::vector<Result>
