@@ -2755,7 +2755,11 @@ namespace Talus
        *   delta = P L^3/(3 E I) + P L/(kappa G b h),  I = b h^3/12,
        *   kappa = 10 (1 + nu)/(12 + 11 nu) (rectangle, Cowper 1966);
        * Euler-Bernoulli P L^3/(3 E I) is printed. The load must be small
-       * (delta << h) for the linear beam theories to apply.
+       * (delta << h) for the linear beam theories to apply. 'plane
+       * cantilever': the rectangle in the x-y plane (height h along y,
+       * width b = the thickness t), load 'point load' (0, P, 0), and the
+       * plane-strain beam: E' = E/(1 - nu^2) and nu' = nu/(1 - nu) in the
+       * formulas above.
        */
       class Cantilever : public SolidModel
       {
@@ -2831,7 +2835,10 @@ namespace Talus
        * higher modes of the finite elements moves the crossings slightly).
        * The period is measured from the crossings of the mean end
        * displacement (linear interpolation); the largest end displacement,
-       * 2 (lambda - 1) L for the exact rod, is printed.
+       * 2 (lambda - 1) L for the exact rod, is printed. 'plane axial bar':
+       * the rectangle in the x-y plane (A0 = h t), u_x = 0 on x_min, u_y =
+       * 0 on y_min, and E' = E/(1 - nu^2) in both references (uniaxial
+       * force in plane strain: S11 = E' E11).
        */
       class AxialBar : public SolidModel
       {
@@ -2958,7 +2965,10 @@ namespace Talus
        * carries N_k = W + w l (k + 1/2), w = rho_c A_c g, and stretches by
        * (lambda_k - 1) l with EA lambda (lambda^2 - 1)/2 = N_k (the
        * element's law); the attachment point drops by their sum and the
-       * anchor carries W + w L_c.
+       * anchor carries W + w L_c. 'plane hanging block': the rectangle in
+       * the x-y plane (V = its area times the thickness) on a 2D string
+       * (PlaneString) along y, gravity (0, -g, 0), u_x = 0 on the string
+       * and on the line x = x_c of the block.
        */
       class HangingBlock : public SolidModel
       {
