@@ -18,6 +18,7 @@
 #include <fstream>
 #include <map>
 #include <numeric>
+#include <set>
 #include <stdexcept>
 
 namespace Talus
@@ -346,11 +347,23 @@ namespace Talus
       external_forces.reinit(total_dofs);
       prescribed.clear();
       point_loads.clear();
-      // Plane-strain solids: no out-of-plane displacement.
+      // Plane-strain solids: no out-of-plane displacement (on the masters,
+      // each once; prescribe_dof() would search the list every time).
+      std::set<global_dof_index> fixed;
       for (const auto &mesh : plane_solid_meshes)
         for (global_dof_index i = 0; i < mesh->dof_handler.n_dofs(); ++i)
-          if (dof_component[mesh->offset + i] == 2)
-            prescribe_dof(mesh->offset + i);
+          {
+            const global_dof_index dof = mesh->offset + i;
+            if (dof_component[dof] != 2)
+              continue;
+            const unsigned int     node = dof_to_node[dof];
+            const global_dof_index master =
+              node == dealii::numbers::invalid_unsigned_int ?
+                dof :
+                nodes[node].dofs[2];
+            if (fixed.insert(master).second)
+              prescribed.emplace_back(master, 0.);
+          }
     }
 
 
