@@ -39,6 +39,7 @@ namespace Talus
     {
       using namespace dealii;
       using Talus::Structure::Structure;
+      using Talus::Structure::StructurePart;
 
       const std::string S = "Structure";
 
@@ -83,6 +84,12 @@ namespace Talus
       struct Parameters
       {
         std::string model;
+        /** The model as written in the file ('plane cantilever'); model
+         * holds the name without 'plane ' for the plane-strain solids. */
+        std::string model_text;
+        /** A 'plane' solid model: Triangulation<2,2> in the x-y plane. */
+        bool        plane_solid = false;
+        std::string solid_traction_text; ///< as written, for messages
         // Line members.
         std::string  line_element;
         double       E = 0., A = 0., prestress = 0., density = 0.;
@@ -117,6 +124,9 @@ namespace Talus
         double mass_damping = 0., stiffness_damping = 0.;
         bool   arc_length_control = false;
         double shear_strain       = 0.;
+        /** Model 'stretched membrane': engineering strains along x, y. */
+        double stretch_x = 0., stretch_y = 0.;
+        bool   uniaxial_stress = false;
         double friction = 0., wrap_angle = 180., drum_radius = 0.5;
         bool   stick_slip = false;
         double spring_EA = 0., spring_length = 1.;
@@ -199,7 +209,7 @@ namespace Talus
         virtual std::array<std::string, 3>
         support_parameter() const
         {
-          return {{S, "model", p.model}};
+          return {{S, "model", p.model_text}};
         }
 
         /** Solve the pre-stress equilibrium (lambda = 0) first. */
@@ -251,27 +261,28 @@ namespace Talus
       protected:
         const Parameters &p;
 
+        /** The line parameters every line element shares. */
+        template <typename Element>
+        std::shared_ptr<Element>
+        line_parameters() const
+        {
+          auto e                   = std::make_shared<Element>();
+          e->youngs_modulus        = p.E;
+          e->area                  = p.A;
+          e->prestress             = p.prestress;
+          e->density               = p.density;
+          e->slack_stiffness_ratio = p.slack_ratio;
+          return e;
+        }
+
         std::shared_ptr<Talus::Structure::LineElement>
         line_element() const
         {
           if (p.line_element == "cable")
-            {
-              auto c            = std::make_shared<Talus::Structure::Cable>();
-              c->youngs_modulus = p.E;
-              c->area           = p.A;
-              c->prestress      = p.prestress;
-              c->density        = p.density;
-              c->slack_stiffness_ratio = p.slack_ratio;
-              return c;
-            }
-          auto t            = std::make_shared<Talus::Structure::Truss>();
-          t->youngs_modulus = p.E;
-          t->area           = p.A;
-          t->prestress      = p.prestress;
-          t->density        = p.density;
-          t->yield_stress   = p.yield_stress;
-          t->hardening      = p.hardening;
-          t->slack_stiffness_ratio = p.slack_ratio;
+            return line_parameters<Talus::Structure::Cable>();
+          auto t          = line_parameters<Talus::Structure::Truss>();
+          t->yield_stress = p.yield_stress;
+          t->hardening    = p.hardening;
           return t;
         }
 
@@ -279,13 +290,7 @@ namespace Talus
         std::shared_ptr<Talus::Structure::SlidingCable>
         sliding_cable() const
         {
-          auto cable = std::make_shared<Talus::Structure::SlidingCable>();
-          cable->youngs_modulus        = p.E;
-          cable->area                  = p.A;
-          cable->prestress             = p.prestress;
-          cable->density               = p.density;
-          cable->slack_stiffness_ratio = p.slack_ratio;
-          return cable;
+          return line_parameters<Talus::Structure::SlidingCable>();
         }
 
         std::shared_ptr<Talus::Structure::Membrane>
@@ -1953,6 +1958,39 @@ namespace Talus
 
 
       /**
+       * A flat square membrane (side a, centred at the origin, in the x-y
+       * plane, 'refinements' + level times refined) loaded in its plane:
+       * u_z = 0 at every node (a flat membrane has no stiffness normal to
+       * itself before it is stressed); no pre-stress step.
+       */
+      class InPlaneSquareMembrane : public Model
+      {
+      public:
+        using Model::Model;
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+      protected:
+        /** The mesh, setup_dofs() and u_z = 0 everywhere. */
+        void
+        build_square(Structure &s, const unsigned int level) const
+        {
+          make_flat_mesh(s.add_membrane("membrane", membrane()).triangulation,
+                         false,
+                         p.side,
+                         p.refinements + level);
+          s.setup_dofs();
+          for (unsigned int n = 0; n < s.n_nodes(); ++n)
+            s.prescribe(n, 2);
+        }
+      };
+
+
+      /**
        * A square membrane (side a, isotropic, no pre-stress) in simple
        * shear, in its plane (u_z = 0 everywhere): every boundary node
        * displaced by u_x = lambda gamma (y + a/2).
@@ -1964,10 +2002,10 @@ namespace Talus
        * nodes with y > 0 (top edge; the side edges' normal tractions
        * cancel), F = tau t a, to first order in gamma.
        */
-      class ShearedMembrane : public Model
+      class ShearedMembrane : public InPlaneSquareMembrane
       {
       public:
-        using Model::Model;
+        using InPlaneSquareMembrane::InPlaneSquareMembrane;
 
         std::string
         description() const override
@@ -1979,11 +2017,7 @@ namespace Talus
         void
         build(Structure &s, const unsigned int level) override
         {
-          make_flat_mesh(s.add_membrane("membrane", membrane()).triangulation,
-                         false,
-                         p.side,
-                         p.refinements + level);
-          s.setup_dofs();
+          build_square(s, level);
           boundary = s.find_nodes([&](const Point<3> &x) {
             return std::max(std::abs(x[0]), std::abs(x[1])) >
                    0.5 * p.side * (1. - 1e-10);
@@ -1994,16 +2028,6 @@ namespace Talus
                 n, 0, p.shear_strain * (s.node_position(n)[1] + 0.5 * p.side));
               s.prescribe(n, 1);
             }
-          // In-plane problem: a flat membrane has no stiffness normal to
-          // itself before it is stressed.
-          for (unsigned int n = 0; n < s.n_nodes(); ++n)
-            s.prescribe(n, 2);
-        }
-
-        bool
-        prestress_step() const override
-        {
-          return false;
         }
 
         std::vector<Result>
@@ -2041,6 +2065,263 @@ namespace Talus
 
       private:
         std::vector<unsigned int> boundary;
+      };
+
+
+      /**
+       * A square membrane (side a, centred at the origin, in the x-y plane,
+       * u_z = 0) under a homogeneous stretch imposed on its boundary:
+       * biaxial, u_x = lambda e_x x and u_y = lambda e_y y on every boundary
+       * node, or uniaxial stress, u_x = lambda e_x x on the edges x = +-a/2,
+       * u_y = 0 on the line y = 0, the edges y = +-a/2 free. Material axis
+       * 1 is x (orthotropic or isotropic MembraneMaterial). Closed form
+       * with lambda_1 = 1 + e_x, E_11 = (lambda_1^2 - 1)/2 and (biaxial)
+       * lambda_2 = 1 + e_y, E_22 = (lambda_2^2 - 1)/2:
+       *   S = C E + S_0 (E_12 = 0), D = 1 - nu12^2 E2/E1,
+       *   S_11 = (E1 E_11 + nu12 E2 E_22)/D, S_22 = (nu12 E2 E_11 + E2
+       * E_22)/D; uniaxial stress: S_22 = 0, so E_22 = -nu12 E_11 (no
+       * pre-stress) and S_11 = E1 E_11. Cauchy stresses sigma_11 = lambda_1
+       * S_11 / lambda_2, sigma_22 = lambda_2 S_22 / lambda_1 (J = lambda_1
+       * lambda_2, thickness constant), and the edge forces (reactions)
+       * F_x = t a lambda_1 S_11 on x = a/2, F_y = t a lambda_2 S_22 on
+       * y = a/2.
+       */
+      class StretchedMembrane : public InPlaneSquareMembrane
+      {
+      public:
+        using InPlaneSquareMembrane::InPlaneSquareMembrane;
+
+        std::string
+        description() const override
+        {
+          return std::string("square ") +
+                 (p.orthotropic ? "orthotropic" : "isotropic") +
+                 " membrane under " +
+                 (p.uniaxial_stress ? "uniaxial stress" : "biaxial stretch");
+        }
+
+        void
+        build(Structure &s, const unsigned int level) override
+        {
+          build_square(s, level);
+          const double h = 0.5 * p.side * (1. - 1e-10);
+          x_edge = s.find_nodes([&](const Point<3> &x) { return x[0] > h; });
+          y_edge = s.find_nodes([&](const Point<3> &x) { return x[1] > h; });
+          for (unsigned int n = 0; n < s.n_nodes(); ++n)
+            {
+              const Point<3> X = s.node_position(n);
+              const bool on_x = std::abs(X[0]) > h, on_y = std::abs(X[1]) > h;
+              if (on_x)
+                s.prescribe(n, 0, p.stretch_x * X[0]);
+              if (p.uniaxial_stress ? std::abs(X[1]) < 1e-10 * p.side :
+                                      on_y || on_x)
+                s.prescribe(n, 1, p.uniaxial_stress ? 0. : p.stretch_y * X[1]);
+              if (!p.uniaxial_stress && on_y && !on_x)
+                s.prescribe(n, 0, p.stretch_x * X[0]);
+            }
+        }
+
+        std::vector<Result>
+        results(const Structure &s, const Vector<double> &) override
+        {
+          const auto  &m  = s.membrane_meshes[0]->membrane->material;
+          const double E1 = m.youngs_modulus_1, E2 = m.youngs_modulus_2,
+                       nu = m.poissons_ratio, t = m.thickness;
+          const double D  = 1. - nu * nu * E2 / E1;
+          const double l1 = 1. + p.stretch_x, E11 = 0.5 * (l1 * l1 - 1.);
+          double       l2 = 1. + p.stretch_y, E22 = 0.5 * (l2 * l2 - 1.);
+          if (p.uniaxial_stress)
+            {
+              E22 = -nu * E11;
+              l2  = std::sqrt(1. + 2. * E22);
+            }
+          const double S11     = p.uniaxial_stress ? E1 * E11 :
+                                                     (E1 * E11 + nu * E2 * E22) / D,
+                       S22     = p.uniaxial_stress ? 0. :
+                                                     (nu * E2 * E11 + E2 * E22) / D;
+          const double sigma11 = l1 * S11 / l2, sigma22 = l2 * S22 / l1;
+          double       Fx = 0., Fy = 0., smax = -1e300, smin = 1e300;
+          for (const unsigned int n : x_edge)
+            Fx += s.reaction(n)[0];
+          for (const unsigned int n : y_edge)
+            Fy += s.reaction(n)[1];
+          for (const auto &o : s.membrane_meshes[0]->cell_output)
+            {
+              smax = std::max(smax, o.max_principal);
+              smin = std::min(smin, o.min_principal);
+            }
+          // Principal values of the homogeneous state (no shear).
+          const double big      = std::max(sigma11, sigma22),
+                       small    = std::min(sigma11, sigma22);
+          std::vector<Result> r = {
+            {"edge force F_x on x = a/2 [N]", Fx, t * p.side * l1 * S11},
+            {"largest principal Cauchy stress [Pa]", smax, big}};
+          if (p.uniaxial_stress)
+            r.push_back({"|smallest principal stress| / largest (0)",
+                         std::abs(smin) / smax,
+                         0.,
+                         true,
+                         true});
+          else
+            {
+              r.push_back(
+                {"edge force F_y on y = a/2 [N]", Fy, t * p.side * l2 * S22});
+              r.push_back(
+                {"smallest principal Cauchy stress [Pa]", smin, small});
+            }
+          return r;
+        }
+
+      private:
+        std::vector<unsigned int> x_edge, y_edge;
+      };
+
+
+      /**
+       * A straight truss of length L ('span') along x in 'elements per
+       * member' elements, fixed at x = 0, u_y = u_z = 0 everywhere, its end
+       * loaded by F = lambda F_x ('point load' (F_x, 0, 0)) along the load
+       * path. Every element carries N = F, so the stretch lambda_s is
+       * uniform and solves (Truss: Green-Lagrange strain
+       * eps = (lambda_s^2 - 1)/2, S = E (eps - eps_p) + sigma_0,
+       * N = A S lambda_s, yield |S| <= sigma_y + H alpha)
+       *   elastic: A (E (eps - eps_p) + sigma_0) lambda_s = F,
+       *   on yield (loading): S = sign (sigma_y + H alpha),
+       *     alpha = alpha_old + Dgamma, eps_p = eps_p,old + sign Dgamma,
+       *     Dgamma = (|S_trial| - sigma_y - H alpha_old)/(E + H),
+       *   i.e. A S(lambda_s) lambda_s = F, a scalar monotone equation solved
+       *   here by bisection, the history (eps_p, alpha) carried from step to
+       *   step independently of the finite elements. The end displacement
+       *   is U = L (lambda_s - 1); after unloading to F = 0 (sigma_0 = 0)
+       *   the residual elongation is exactly L (sqrt(1 + 2 eps_p) - 1).
+       */
+      class PlasticBar : public Model
+      {
+      public:
+        using Model::Model;
+
+        std::string
+        description() const override
+        {
+          return "elasto-plastic bar with linear hardening, loaded along "
+                 "the load path";
+        }
+
+        void
+        build(Structure &s, const unsigned int) override
+        {
+          make_line(s.add_line_mesh("bar", line_element()).triangulation,
+                    Point<3>(),
+                    Point<3>(p.span, 0, 0),
+                    p.elements);
+          s.setup_dofs();
+          end = node_at(s, Point<3>(p.span, 0, 0));
+          for (unsigned int n = 0; n < s.n_nodes(); ++n)
+            {
+              s.prescribe(n, 1);
+              s.prescribe(n, 2);
+            }
+          s.prescribe(node_at(s, Point<3>()), 0);
+          s.add_point_load(end, p.point_load);
+        }
+
+        bool
+        prestress_step() const override
+        {
+          return false;
+        }
+
+        /** Return-mapped PK2 stress at stretch @p l from the history
+         * (eps_p, alpha); @p new_eps_p, @p new_alpha the updated one. */
+        double
+        stress(const double l, double &new_eps_p, double &new_alpha) const
+        {
+          const double eps = 0.5 * (l * l - 1.);
+          double       S   = p.E * (eps - eps_p) + p.prestress;
+          new_eps_p        = eps_p;
+          new_alpha        = alpha;
+          const double phi =
+            std::abs(S) - (p.yield_stress + p.hardening * alpha);
+          if (p.yield_stress > 0. && phi > 0.)
+            {
+              const double dgamma = phi / (p.E + p.hardening),
+                           sign   = S > 0. ? 1. : -1.;
+              new_eps_p += sign * dgamma;
+              new_alpha += dgamma;
+              S -= p.E * sign * dgamma;
+            }
+          return S;
+        }
+
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure      &s,
+                const Vector<double> &u,
+                const double          lambda) override
+        {
+          const double F = lambda * p.point_load[0];
+          double       e = 0., a = 0.;
+          const double l =
+            bisect([&](
+                     const double l) { return p.A * stress(l, e, a) * l - F; },
+                   0.5,
+                   2.);
+          stress(l, eps_p, alpha);
+          const auto  &mesh              = *s.line_meshes[0];
+          const double U                 = s.node_displacement(u, end)[0];
+          const double U_ex              = p.span * (l - 1.);
+          double       max_plastic_error = 0.;
+          for (const auto &state : mesh.state)
+            max_plastic_error =
+              std::max(max_plastic_error, std::abs(state.plastic - eps_p));
+          U_max       = std::max(U_max, std::abs(U_ex));
+          path_error  = std::max(path_error, std::abs(U - U_ex));
+          plastic_err = std::max(plastic_err, max_plastic_error);
+          F_last      = F;
+          U_last      = U;
+          rows.push_back({{F, U, U_ex, mesh.state[0].plastic, eps_p}});
+          return {{"force_F", F},
+                  {"end_displacement", U},
+                  {"end_displacement_reference", U_ex},
+                  {"plastic_strain", mesh.state[0].plastic},
+                  {"plastic_strain_reference", eps_p}};
+        }
+
+        std::vector<Result>
+        results(const Structure &, const Vector<double> &) override
+        {
+          std::cout << "  path (F [N], U and U_ref [m], eps_p and its "
+                       "closed form [-]):\n";
+          for (const auto &r : rows)
+            std::cout << "    F = " << std::setw(9) << std::setprecision(6)
+                      << r[0] << "  U = " << std::setw(12)
+                      << std::setprecision(8) << r[1]
+                      << "  U_ref = " << std::setw(12) << r[2]
+                      << "  eps_p = " << std::setw(12) << r[3]
+                      << "  ref = " << std::setw(12) << r[4] << '\n';
+          std::vector<Result> r = {
+            {"max over the path |U - U_ref| / max |U_ref|",
+             path_error / std::max(U_max, 1e-300),
+             0.,
+             true,
+             true},
+            {"max over the path |eps_p - eps_p,ref|",
+             plastic_err,
+             0.,
+             true,
+             true}};
+          if (F_last == 0. && p.prestress == 0.)
+            r.push_back({"residual elongation at F = 0 [m]",
+                         U_last,
+                         p.span * (std::sqrt(1. + 2. * eps_p) - 1.)});
+          return r;
+        }
+
+      private:
+        unsigned int end   = 0;
+        double       eps_p = 0., alpha = 0.;
+        double       U_max = 0., path_error = 0., plastic_err = 0., F_last = 0.,
+               U_last = 0.;
+        std::vector<std::array<double, 5>> rows;
       };
 
 
@@ -2219,24 +2500,24 @@ namespace Talus
       };
 
 
+
       // ------------------------------------------------------------------
       /**
        * Mean of displacement component @p c of solid mesh @p mesh over its
        * faces with boundary id @p id, int u_c dA0 / A0 (the work-conjugate
        * of a uniform traction along c) [m].
        */
+      template <int dim>
       double
-      face_mean(const Structure      &s,
-                const Vector<double> &u,
-                const unsigned int    mesh_index,
-                const unsigned int    id,
-                const unsigned int    c)
+      face_mean(const Talus::Structure::SolidMeshT<dim> &mesh,
+                const Vector<double>                    &u,
+                const unsigned int                       id,
+                const unsigned int                       c)
       {
-        const auto                      &mesh = *s.solid_meshes[mesh_index];
-        const QGauss<2>                  quadrature(mesh.fe->degree + 1);
-        FEFaceValues<3>                  fe_face_values(*mesh.fe,
-                                       quadrature,
-                                       update_values | update_JxW_values);
+        const QGauss<dim - 1>            quadrature(mesh.fe->degree + 1);
+        FEFaceValues<dim, 3>             fe_face_values(*mesh.fe,
+                                            quadrature,
+                                            update_values | update_JxW_values);
         const FEValuesExtractors::Scalar uc(c);
         Vector<double>                   local(mesh.dof_handler.n_dofs());
         for (unsigned int i = 0; i < local.size(); ++i)
@@ -2274,7 +2555,8 @@ namespace Talus
         std::string
         description() const override
         {
-          return "continuum solid (St. Venant-Kirchhoff, FE_Q(" +
+          return std::string(p.plane_solid ? "plane-strain " : "") +
+                 "continuum solid (St. Venant-Kirchhoff, FE_Q(" +
                  std::to_string(p.solid.degree) +
                  ")) with the supports and loads of subsection Solid";
         }
@@ -2302,36 +2584,43 @@ namespace Talus
         void
         build(Structure &s, const unsigned int level) override
         {
-          const std::string ss   = S + "/Solid";
-          auto             &mesh = s.add_solid("solid", solid_component());
-          p.solid_geometry.create_triangulation(mesh.triangulation, level, ss);
+          const std::string ss = S + "/Solid";
           if (p.solid_geometry.traction_boundary_id >= 0)
-            mesh.tractions.emplace_back(p.solid_geometry.traction_boundary_id,
-                                        p.solid_geometry.traction);
+            add_solid_mesh(s, "solid", level)
+              .emplace_back(p.solid_geometry.traction_boundary_id,
+                            p.solid_geometry.traction);
+          else
+            add_solid_mesh(s, "solid", level);
           s.setup_dofs();
-          for (const unsigned int id : p.solid_geometry.fixed_boundary_ids)
-            if (s.prescribe_solid_boundary(0, id) == 0)
-              InputFile::reject(ss,
-                                "fixed boundary ids",
-                                std::to_string(id),
-                                "every fixed boundary id must be the id of "
-                                "faces on the boundary of the solid (a "
-                                "generated box has ids 0 to 5), and boundary "
-                                "id " +
-                                  std::to_string(id) + " has none");
-          unsigned int k = 0;
-          for (const auto &box : p.solid_geometry.support_boxes)
-            {
-              ++k;
-              if (s.prescribe_solid_box(
-                    0, box.lower, box.upper, box.components) == 0)
+          on_solid(s, [&](const auto &mesh) {
+            for (const unsigned int id : p.solid_geometry.fixed_boundary_ids)
+              if (s.prescribe_solid_boundary(mesh, id) == 0)
                 InputFile::reject(ss,
-                                  "support boxes",
-                                  "box " + std::to_string(k),
-                                  "every support box must contain a node of "
-                                  "the solid, and box " +
-                                    std::to_string(k) + " contains none");
-            }
+                                  "fixed boundary ids",
+                                  std::to_string(id),
+                                  "every fixed boundary id must be the id of "
+                                  "faces on the boundary of the solid (a "
+                                  "generated box has ids 0 to 5, a plane "
+                                  "rectangle 0 to 3), and boundary id " +
+                                    std::to_string(id) + " has none");
+            unsigned int k = 0;
+            for (const auto &box : p.solid_geometry.support_boxes)
+              {
+                ++k;
+                if (s.prescribe_solid_box(
+                      mesh, box.lower, box.upper, box.components) == 0)
+                  InputFile::reject(
+                    ss,
+                    "support boxes",
+                    "box " + std::to_string(k),
+                    std::string("every support box must contain a node of "
+                                "the solid") +
+                      (p.plane_solid ? " (a plane solid lies at "
+                                       "z = 0)" :
+                                       "") +
+                      ", and box " + std::to_string(k) + " contains none");
+              }
+          });
           s.gravity = p.gravity;
         }
 
@@ -2353,6 +2642,105 @@ namespace Talus
         {
           return std::make_shared<Talus::Structure::ContinuumSolid<3>>(p.solid);
         }
+
+        /**
+         * Add the model's solid named @p name: the box of subsection Solid
+         * (Triangulation<3,3>), or for the plane models its rectangle in
+         * the x-y plane as a plane-strain solid of 'thickness' t. Returns
+         * its tractions (to fill before setup_dofs()).
+         */
+        std::vector<std::pair<unsigned int, Tensor<1, 3>>> &
+        add_solid_mesh(Structure         &s,
+                       const std::string &name,
+                       const unsigned int level) const
+        {
+          const auto &g = p.solid_geometry;
+          if (p.plane_solid)
+            {
+              Triangulation<2> plane;
+              g.create_triangulation(plane, level, S + "/Solid");
+              auto solid =
+                std::make_shared<Talus::Structure::ContinuumSolid<2>>();
+              solid->youngs_modulus = p.solid.youngs_modulus;
+              solid->poissons_ratio = p.solid.poissons_ratio;
+              solid->density        = p.solid.density;
+              solid->degree         = p.solid.degree;
+              return s.add_plane_solid(name, solid, g.thickness, plane)
+                .tractions;
+            }
+          auto &mesh = s.add_solid(name, solid_component());
+          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
+          return mesh.tractions;
+        }
+
+        /** Call @p f with the model's (last) solid mesh, 3D or plane. */
+        template <typename Function>
+        static void
+        on_solid(const Structure &s, const Function &f)
+        {
+          if (!s.plane_solid_meshes.empty())
+            f(*s.plane_solid_meshes.back());
+          else
+            f(*s.solid_meshes.back());
+        }
+
+        /** Mean of displacement component @p c over the faces of boundary
+         * id @p id of the model's solid (the work-conjugate of a uniform
+         * traction there) [m]. */
+        static double
+        solid_face_mean(const Structure      &s,
+                        const Vector<double> &u,
+                        const unsigned int    id,
+                        const unsigned int    c)
+        {
+          double mean = 0.;
+          on_solid(s,
+                   [&](const auto &mesh) { mean = face_mean(mesh, u, id, c); });
+          return mean;
+        }
+
+        /** Direction of the "vertical" (height, load, gravity): z, or y
+         * for a plane solid. */
+        unsigned int
+        vertical() const
+        {
+          return p.plane_solid ? 1 : 2;
+        }
+
+        /** Cross-section of the generated solid normal to x: width b
+         * (y extent, or the thickness t of a plane solid) and height h
+         * (z extent, or the y extent of a plane solid) [m]. */
+        double
+        width() const
+        {
+          const auto &g = p.solid_geometry;
+          return p.plane_solid ? g.thickness :
+                                 g.upper_corner[1] - g.lower_corner[1];
+        }
+
+        double
+        height() const
+        {
+          const auto &g = p.solid_geometry;
+          return g.upper_corner[vertical()] - g.lower_corner[vertical()];
+        }
+
+        /** Young's modulus and Poisson's ratio of the beam and bar
+         * formulas: E, nu, or for plane strain E/(1 - nu^2), nu/(1 - nu). */
+        double
+        effective_modulus() const
+        {
+          const double nu = p.solid.poissons_ratio;
+          return p.plane_solid ? p.solid.youngs_modulus / (1. - nu * nu) :
+                                 p.solid.youngs_modulus;
+        }
+
+        double
+        effective_poisson() const
+        {
+          const double nu = p.solid.poissons_ratio;
+          return p.plane_solid ? nu / (1. - nu) : nu;
+        }
       };
 
 
@@ -2367,7 +2755,11 @@ namespace Talus
        *   delta = P L^3/(3 E I) + P L/(kappa G b h),  I = b h^3/12,
        *   kappa = 10 (1 + nu)/(12 + 11 nu) (rectangle, Cowper 1966);
        * Euler-Bernoulli P L^3/(3 E I) is printed. The load must be small
-       * (delta << h) for the linear beam theories to apply.
+       * (delta << h) for the linear beam theories to apply. 'plane
+       * cantilever': the rectangle in the x-y plane (height h along y,
+       * width b = the thickness t), load 'point load' (0, P, 0), and the
+       * plane-strain beam: E' = E/(1 - nu^2) and nu' = nu/(1 - nu) in the
+       * formulas above.
        */
       class Cantilever : public SolidModel
       {
@@ -2377,7 +2769,8 @@ namespace Talus
         std::string
         description() const override
         {
-          return "cantilever: continuum solid (St. Venant-Kirchhoff, FE_Q(" +
+          return std::string(p.plane_solid ? "plane-strain " : "") +
+                 "cantilever: continuum solid (St. Venant-Kirchhoff, FE_Q(" +
                  std::to_string(p.solid.degree) +
                  ")) clamped at x_min, end shear load; Timoshenko beam";
         }
@@ -2391,15 +2784,14 @@ namespace Talus
         void
         build(Structure &s, const unsigned int level) override
         {
-          const auto &g    = p.solid_geometry;
-          auto       &mesh = s.add_solid("cantilever", solid_component());
-          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
-          const double b = g.upper_corner[1] - g.lower_corner[1];
-          const double h = g.upper_corner[2] - g.lower_corner[2];
-          mesh.tractions.emplace_back(
-            1, Tensor<1, 3>({0., 0., p.point_load[2] / (b * h)}));
+          Tensor<1, 3> traction;
+          traction[vertical()] =
+            p.point_load[vertical()] / (width() * height());
+          add_solid_mesh(s, "cantilever", level).emplace_back(1, traction);
           s.setup_dofs();
-          s.prescribe_solid_boundary(0, 0);
+          on_solid(s, [&](const auto &mesh) {
+            s.prescribe_solid_boundary(mesh, 0);
+          });
         }
 
         std::vector<Result>
@@ -2407,18 +2799,20 @@ namespace Talus
         {
           const auto  &g               = p.solid_geometry;
           const double L               = g.upper_corner[0] - g.lower_corner[0];
-          const double b               = g.upper_corner[1] - g.lower_corner[1];
-          const double h               = g.upper_corner[2] - g.lower_corner[2];
-          const double E               = p.solid.youngs_modulus;
-          const double nu              = p.solid.poissons_ratio;
-          const double P               = p.point_load[2];
+          const double b               = width();
+          const double h               = height();
+          const double E               = effective_modulus();
+          const double nu              = effective_poisson();
+          const double P               = p.point_load[vertical()];
           const double I               = b * h * h * h / 12.;
           const double G               = E / (2. * (1. + nu));
           const double kap             = 10. * (1. + nu) / (12. + 11. * nu);
           const double euler_bernoulli = P * L * L * L / (3. * E * I);
           const double timoshenko = euler_bernoulli + P * L / (kap * G * b * h);
           return {
-            {"tip deflection [m]", face_mean(s, u, 0, 1, 2), timoshenko},
+            {"tip deflection [m]",
+             solid_face_mean(s, u, 1, vertical()),
+             timoshenko},
             {"Euler-Bernoulli deflection [m]", euler_bernoulli, 0., false}};
         }
       };
@@ -2441,7 +2835,10 @@ namespace Talus
        * higher modes of the finite elements moves the crossings slightly).
        * The period is measured from the crossings of the mean end
        * displacement (linear interpolation); the largest end displacement,
-       * 2 (lambda - 1) L for the exact rod, is printed.
+       * 2 (lambda - 1) L for the exact rod, is printed. 'plane axial bar':
+       * the rectangle in the x-y plane (A0 = h t), u_x = 0 on x_min, u_y =
+       * 0 on y_min, and E' = E/(1 - nu^2) in both references (uniaxial
+       * force in plane strain: S11 = E' E11).
        */
       class AxialBar : public SolidModel
       {
@@ -2451,7 +2848,8 @@ namespace Talus
         std::string
         description() const override
         {
-          return "axial bar (continuum solid, FE_Q(" +
+          return std::string(p.plane_solid ? "plane-strain " : "") +
+                 "axial bar (continuum solid, FE_Q(" +
                  std::to_string(p.solid.degree) +
                  ")) on its symmetry planes, end traction" +
                  (p.dynamic ? " applied suddenly: first axial period" :
@@ -2461,23 +2859,22 @@ namespace Talus
         std::array<std::string, 3>
         support_parameter() const override
         {
-          return {{S, "model", p.model}};
+          return {{S, "model", p.model_text}};
         }
 
         void
         build(Structure &s, const unsigned int level) override
         {
-          const auto &g    = p.solid_geometry;
-          auto       &mesh = s.add_solid("bar", solid_component());
-          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
-          const double A0 = (g.upper_corner[1] - g.lower_corner[1]) *
-                            (g.upper_corner[2] - g.lower_corner[2]);
-          mesh.tractions.emplace_back(
-            1, Tensor<1, 3>({p.point_load[0] / A0, 0., 0.}));
+          const double A0 = width() * height();
+          add_solid_mesh(s, "bar", level)
+            .emplace_back(1, Tensor<1, 3>({p.point_load[0] / A0, 0., 0.}));
           s.setup_dofs();
-          s.prescribe_solid_boundary(0, 0, {true, false, false});
-          s.prescribe_solid_boundary(0, 2, {false, true, false});
-          s.prescribe_solid_boundary(0, 4, {false, false, true});
+          on_solid(s, [&](const auto &mesh) {
+            s.prescribe_solid_boundary(mesh, 0, {true, false, false});
+            s.prescribe_solid_boundary(mesh, 2, {false, true, false});
+            if (!p.plane_solid)
+              s.prescribe_solid_boundary(mesh, 4, {false, false, true});
+          });
         }
 
         std::vector<std::pair<std::string, double>>
@@ -2485,7 +2882,7 @@ namespace Talus
                 const Vector<double> &u,
                 const double          t) override
         {
-          const double tip = face_mean(s, u, 0, 1, 0);
+          const double tip = solid_face_mean(s, u, 1, 0);
           if (p.dynamic)
             {
               const double u_static = static_end_displacement();
@@ -2508,11 +2905,11 @@ namespace Talus
           const double u_static = static_end_displacement();
           if (!p.dynamic)
             return {
-              {"end displacement [m]", face_mean(s, u, 0, 1, 0), u_static}};
+              {"end displacement [m]", solid_face_mean(s, u, 1, 0), u_static}};
           const auto  &g = p.solid_geometry;
           const double L = g.upper_corner[0] - g.lower_corner[0];
           const double T1 =
-            4. * L / std::sqrt(p.solid.youngs_modulus / p.solid.density);
+            4. * L / std::sqrt(effective_modulus() / p.solid.density);
           std::vector<Result> r = {{"largest |end displacement| / static",
                                     largest / std::abs(u_static),
                                     2.,
@@ -2540,10 +2937,9 @@ namespace Talus
         {
           const auto  &g  = p.solid_geometry;
           const double L  = g.upper_corner[0] - g.lower_corner[0];
-          const double A0 = (g.upper_corner[1] - g.lower_corner[1]) *
-                            (g.upper_corner[2] - g.lower_corner[2]);
-          const double t = p.point_load[0] / A0;
-          const double E = p.solid.youngs_modulus;
+          const double A0 = width() * height();
+          const double t  = p.point_load[0] / A0;
+          const double E  = effective_modulus();
           const double lambda =
             bisect([&](
                      const double x) { return E * x * (x * x - 1.) / 2. - t; },
@@ -2569,7 +2965,10 @@ namespace Talus
        * carries N_k = W + w l (k + 1/2), w = rho_c A_c g, and stretches by
        * (lambda_k - 1) l with EA lambda (lambda^2 - 1)/2 = N_k (the
        * element's law); the attachment point drops by their sum and the
-       * anchor carries W + w L_c.
+       * anchor carries W + w L_c. 'plane hanging block': the rectangle in
+       * the x-y plane (V = its area times the thickness) on a 2D string
+       * (PlaneString) along y, gravity (0, -g, 0), u_x = 0 on the string
+       * and on the line x = x_c of the block.
        */
       class HangingBlock : public SolidModel
       {
@@ -2579,9 +2978,15 @@ namespace Talus
         std::string
         description() const override
         {
-          return "block (continuum solid, FE_Q(" +
-                 std::to_string(p.solid.degree) +
-                 ")) hanging on a cable tied to the centre of its top face";
+          return p.plane_solid ?
+                   "plane-strain block (continuum solid, FE_Q(" +
+                     std::to_string(p.solid.degree) +
+                     ")) hanging on a 2D string tied to the centre of its "
+                     "top edge" :
+                   "block (continuum solid, FE_Q(" +
+                     std::to_string(p.solid.degree) +
+                     ")) hanging on a cable tied to the centre of its top "
+                     "face";
         }
 
         bool
@@ -2603,7 +3008,44 @@ namespace Talus
         void
         build(Structure &s, const unsigned int level) override
         {
-          const auto    &g = p.solid_geometry;
+          const auto  &g   = p.solid_geometry;
+          const double big = 1. + g.lower_corner.distance(g.upper_corner);
+          if (p.plane_solid)
+            {
+              // The block in the x-y plane on a 2D string along y.
+              attach_point =
+                Point<3>(0.5 * (g.lower_corner[0] + g.upper_corner[0]),
+                         g.upper_corner[1],
+                         0.);
+              anchor_point = attach_point + Point<3>(0., p.cable_length, 0.);
+              std::vector<Point<2>>    x(p.elements + 1);
+              std::vector<CellData<1>> cells(p.elements);
+              for (unsigned int k = 0; k <= p.elements; ++k)
+                x[k] =
+                  Point<2>(anchor_point[0],
+                           anchor_point[1] - p.cable_length * k / p.elements);
+              for (unsigned int k = 0; k < p.elements; ++k)
+                cells[k].vertices = {k, k + 1};
+              string.triangulation.create_triangulation(x,
+                                                        cells,
+                                                        SubCellData());
+              string.add_to(s, "cable", line_element());
+              add_solid_mesh(s, "block", level);
+              s.setup_dofs();
+              string.setup(s);
+              anchor = string.node(0);
+              string.fix(s, 0);
+              // Symmetry: u_x = 0 on the string and on the line x = x_c.
+              for (unsigned int k = 0; k <= p.elements; ++k)
+                s.prescribe(string.node(k), 0);
+              s.prescribe_solid_box(
+                *s.plane_solid_meshes[0],
+                Point<3>(attach_point[0], attach_point[1] - big, -big),
+                Point<3>(attach_point[0], attach_point[1] + big, big),
+                {true, false, false});
+              s.gravity = p.gravity;
+              return;
+            }
           const Point<3> top(0.5 * (g.lower_corner[0] + g.upper_corner[0]),
                              0.5 * (g.lower_corner[1] + g.upper_corner[1]),
                              g.upper_corner[2]);
@@ -2613,8 +3055,7 @@ namespace Talus
                     anchor_point,
                     top,
                     p.elements);
-          auto &mesh = s.add_solid("block", solid_component());
-          g.create_triangulation(mesh.triangulation, level, S + "/Solid");
+          add_solid_mesh(s, "block", level);
           s.setup_dofs();
           anchor = node_at(s, anchor_point);
           for (unsigned int c = 0; c < 3; ++c)
@@ -2622,7 +3063,6 @@ namespace Talus
           for (const unsigned int k : s.line_vertex_nodes(0))
             for (unsigned int c = 0; c < 2; ++c)
               s.prescribe(k, c);
-          const double big = 1. + g.lower_corner.distance(g.upper_corner);
           s.prescribe_solid_box(0,
                                 Point<3>(top[0], top[1] - big, top[2] - big),
                                 Point<3>(top[0], top[1] + big, top[2] + big),
@@ -2637,16 +3077,17 @@ namespace Talus
         std::vector<Result>
         results(const Structure &s, const Vector<double> &u) override
         {
-          const auto  &g = p.solid_geometry;
-          const double V = (g.upper_corner[0] - g.lower_corner[0]) *
-                           (g.upper_corner[1] - g.lower_corner[1]) *
-                           (g.upper_corner[2] - g.lower_corner[2]);
-          const double gz   = -p.gravity[2];
-          const double W    = p.solid.density * gz * V;
-          const double w    = p.density * p.A * gz;
-          const double l    = p.cable_length / p.elements;
-          const double EA   = p.E * p.A;
-          double       drop = 0.;
+          const auto &g = p.solid_geometry;
+          // Volume: the box, or the rectangle times the thickness.
+          const double V =
+            (g.upper_corner[0] - g.lower_corner[0]) * width() * height();
+          const unsigned int up   = vertical();
+          const double       gz   = -p.gravity[up];
+          const double       W    = p.solid.density * gz * V;
+          const double       w    = p.density * p.A * gz;
+          const double       l    = p.cable_length / p.elements;
+          const double       EA   = p.E * p.A;
+          double             drop = 0.;
           for (unsigned int k = 0; k < p.elements; ++k)
             {
               const double N      = W + w * l * (k + 0.5);
@@ -2663,26 +3104,47 @@ namespace Talus
             if (cell->center().distance(attach_point) < 0.6 * l)
               N_bottom = cable.force[cell->active_cell_index()];
           const unsigned int attach = node_at(s, attach_point);
-          return {
-            {"anchor force [N]", s.reaction(anchor)[2], W + w * p.cable_length},
-            {"cable force at the block [N]", N_bottom, W + 0.5 * w * l},
-            {"drop of the attachment point [m]",
-             -s.node_displacement(u, attach)[2],
-             drop},
-            {"drop of the block's bottom centre [m]",
-             -s.node_displacement(u,
-                                  node_at(s,
-                                          Point<3>(attach_point[0],
-                                                   attach_point[1],
-                                                   g.lower_corner[2])))[2],
-             0.,
-             false}};
+          Point<3>           bottom = attach_point;
+          bottom[up]                = g.lower_corner[up];
+          return {{"anchor force [N]",
+                   s.reaction(anchor)[up],
+                   W + w * p.cable_length},
+                  {"cable force at the block [N]", N_bottom, W + 0.5 * w * l},
+                  {"drop of the attachment point [m]",
+                   -s.node_displacement(u, attach)[up],
+                   drop},
+                  {"drop of the block's bottom centre [m]",
+                   -s.node_displacement(u, node_at(s, bottom))[up],
+                   0.,
+                   false}};
         }
 
       private:
-        Point<3>     anchor_point, attach_point;
-        unsigned int anchor = 0;
+        Point<3>                      anchor_point, attach_point;
+        unsigned int                  anchor = 0;
+        Talus::Structure::PlaneString string; ///< the plane model's cable
       };
+
+
+      /**
+       * Whether the free rotation of @p part (Structure::parts(),
+       * can_rotate) is a mechanism to reject at set-up: in static runs
+       * always when the part has a membrane or a solid; a part of cables
+       * and trusses only when it is held at a single point (a cable held
+       * at its two ends may swing about their line, stabilised by its
+       * tension and load, e.g. the catenary). In dynamic runs a part with
+       * mass may move freely (as for the translations).
+       */
+      bool
+      rotation_is_mechanism(const Parameters    &p,
+                            const Model         &model,
+                            const StructurePart &part)
+      {
+        if (p.dynamic && !model.form_finding_before_dynamics() &&
+            part.mass > 0.)
+          return false;
+        return part.has_continuum || part.held_at_one_point;
+      }
 
 
       std::unique_ptr<Model>
@@ -2692,6 +3154,10 @@ namespace Talus
           return std::make_unique<VibratingString>(p);
         if (p.model == "sheared membrane")
           return std::make_unique<ShearedMembrane>(p);
+        if (p.model == "stretched membrane")
+          return std::make_unique<StretchedMembrane>(p);
+        if (p.model == "plastic bar")
+          return std::make_unique<PlasticBar>(p);
         if (p.model == "capstan")
           return std::make_unique<Capstan>(p);
         if (p.model == "barrier")
@@ -2725,7 +3191,15 @@ namespace Talus
       {
         Parameters p;
         prm.enter_subsection(S);
-        p.model = prm.get("model");
+        p.model      = prm.get("model");
+        p.model_text = p.model;
+        for (const std::string base :
+             {"solid", "cantilever", "axial bar", "hanging block"})
+          if (p.model == "plane " + base)
+            {
+              p.plane_solid = true;
+              p.model       = base;
+            }
 
         const std::string lm = S + "/Line members";
         prm.enter_subsection("Line members");
@@ -2772,6 +3246,13 @@ namespace Talus
         p.wrinkling          = prm.get_bool("wrinkling");
         p.initial_deflection = prm.get_double("initial deflection");
         p.shear_strain       = prm.get_double("shear strain");
+        {
+          const auto e = Utilities::string_to_double(
+            Utilities::split_string_list(prm.get("stretch")));
+          p.stretch_x = e[0];
+          p.stretch_y = e[1];
+        }
+        p.uniaxial_stress = prm.get_bool("uniaxial stress");
         prm.leave_subsection();
 
         const std::string bs = S + "/Brake";
@@ -2787,6 +3268,7 @@ namespace Talus
         prm.enter_subsection("Solid");
         p.solid.parse_parameters(prm, solid_s);
         p.solid_geometry.parse_parameters(prm, solid_s);
+        p.solid_traction_text = prm.get("traction");
         prm.leave_subsection();
         if ((p.model == "cantilever" || p.model == "hanging block" ||
              p.model == "axial bar") &&
@@ -2862,31 +3344,66 @@ namespace Talus
                             "the sliding ring needs a non-zero load in the "
                             "x-z plane");
 
-        if (p.model == "cantilever" &&
-            !(p.point_load[2] != 0. && p.point_load[0] == 0. &&
-              p.point_load[1] == 0.))
+        // Models loaded by 'point load' along one axis c only.
+        const auto require_load_along = [&](const bool         applies,
+                                            const unsigned int c,
+                                            const std::string &what) {
+          if (applies &&
+              !(p.point_load[c] != 0. && p.point_load[(c + 1) % 3] == 0. &&
+                p.point_load[(c + 2) % 3] == 0.))
+            InputFile::reject(ls, "point load", point_load_text, what);
+        };
+        require_load_along(p.model == "cantilever" && !p.plane_solid,
+                           2,
+                           "the cantilever needs an end load 0, 0, P with "
+                           "P != 0");
+        require_load_along(p.model == "cantilever" && p.plane_solid,
+                           1,
+                           "the plane cantilever lies in the x-y plane and "
+                           "needs an end load 0, P, 0 with P != 0");
+        require_load_along(p.model == "plastic bar",
+                           0,
+                           "the plastic bar needs an end load F, 0, 0 with "
+                           "F != 0");
+        require_load_along(p.model == "axial bar",
+                           0,
+                           "the axial bar needs an end load F, 0, 0 with "
+                           "F != 0");
+        if (p.plane_solid && p.gravity[2] != 0.)
           InputFile::reject(ls,
-                            "point load",
-                            point_load_text,
-                            "the cantilever needs an end load 0, 0, P with "
-                            "P != 0");
-        if (p.model == "axial bar" &&
-            !(p.point_load[0] != 0. && p.point_load[1] == 0. &&
-              p.point_load[2] == 0.))
-          InputFile::reject(ls,
-                            "point load",
-                            point_load_text,
-                            "the axial bar needs an end load F, 0, 0 with "
-                            "F != 0");
+                            "gravity",
+                            gravity_text,
+                            "a plane-strain solid lies in the x-y plane of "
+                            "a 2D problem: gravity must be g_x, g_y, 0");
+        if (p.plane_solid && p.solid_geometry.traction[2] != 0.)
+          InputFile::reject(S + "/Solid",
+                            "traction",
+                            p.solid_traction_text,
+                            "a plane-strain solid lies in the x-y plane of "
+                            "a 2D problem: its traction must be t_x, t_y, 0");
+        if (p.model == "plastic bar" && p.line_element != "truss")
+          InputFile::reject(lm,
+                            "element",
+                            p.line_element,
+                            "the plastic bar is made of 'truss' elements "
+                            "(a cable has no plasticity)");
         if (p.model == "hanging block")
           {
-            if (!(p.gravity[0] == 0. && p.gravity[1] == 0. &&
-                  p.gravity[2] < 0.))
+            if (!p.plane_solid && !(p.gravity[0] == 0. && p.gravity[1] == 0. &&
+                                    p.gravity[2] < 0.))
               InputFile::reject(ls,
                                 "gravity",
                                 gravity_text,
                                 "the hanging block needs gravity 0, 0, -g "
                                 "with g > 0");
+            if (p.plane_solid && !(p.gravity[0] == 0. && p.gravity[1] < 0. &&
+                                   p.gravity[2] == 0.))
+              InputFile::reject(ls,
+                                "gravity",
+                                gravity_text,
+                                "the plane hanging block needs gravity 0, "
+                                "-g, 0 with g > 0 (it hangs along -y in the "
+                                "x-y plane)");
             if (p.prestress != 0.)
               InputFile::reject(lm,
                                 "prestress",
@@ -2952,7 +3469,10 @@ namespace Talus
                             "circular membrane|"
                             "square membrane|sheared membrane|vibrating string|"
                             "sliding ring|capstan|brake|mesh file|barrier|"
-                            "solid|cantilever|hanging block|axial bar"),
+                            "solid|cantilever|hanging block|axial bar|"
+                            "plane solid|plane cantilever|plane axial bar|"
+                            "plane hanging block|"
+                            "stretched membrane|plastic bar"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
@@ -2982,7 +3502,20 @@ namespace Talus
         "length' tied to the centre of its top face: cable force and "
         "stretch by hand), 'axial bar' (the box on its symmetry planes "
         "pulled on x_max by 'point load' (F, 0, 0) as a traction: exact "
-        "uniaxial stress, or with 'dynamic' the first axial period 4 L/c). "
+        "uniaxial stress, or with 'dynamic' the first axial period 4 L/c), "
+        "'plane solid', 'plane cantilever', 'plane axial bar', 'plane "
+        "hanging block' (the same four as plane-strain solids of a 2D "
+        "problem: the rectangle of the x, y coordinates of subsection Solid "
+        "as a Triangulation<2,2> in the x-y plane, 'thickness' t out of "
+        "plane, u_z = 0; the cantilever is loaded along y by 'point load' "
+        "(0, P, 0) against the plane-strain Timoshenko beam, the block "
+        "hangs on a 2D string (Triangulation<1,2>) under gravity 0, -g, 0), "
+        "'stretched membrane' (square membrane, orthotropic or not, under "
+        "the homogeneous biaxial stretch or uniaxial stress of 'stretch'), "
+        "'plastic bar' (a straight truss of 'span' along x, fixed at x = 0, "
+        "its end loaded by the x component of 'point load' along 'load "
+        "path': elasto-plastic with linear hardening, loading, unloading "
+        "and residual elongation in closed form). "
         "Each model with a closed "
         "form reports and checks it.");
 
@@ -3099,6 +3632,22 @@ namespace Talus
                         "Model 'sheared membrane': engineering shear strain "
                         "gamma imposed on the boundary (u_x = gamma (y + "
                         "a/2)) at load factor 1 [-].");
+      prm.declare_entry("stretch",
+                        "0.01, 0.005",
+                        Patterns::List(Patterns::Double(), 2, 2),
+                        "Model 'stretched membrane': engineering strains "
+                        "lambda_1 - 1, lambda_2 - 1 along x and y imposed on "
+                        "the boundary (u_x = e_x x, u_y = e_y y) at load "
+                        "factor 1 [-]; with 'uniaxial stress' only e_x is "
+                        "used.");
+      prm.declare_entry("uniaxial stress",
+                        "false",
+                        Patterns::Bool(),
+                        "Model 'stretched membrane': prescribe u_x = e_x x "
+                        "on the edges x = +-a/2 only and hold u_y on the "
+                        "line y = 0 (lateral edges free: uniaxial stress) "
+                        "instead of the biaxial stretch of the whole "
+                        "boundary.");
       prm.declare_entry("initial deflection",
                         "0",
                         Patterns::Double(),
@@ -3326,7 +3875,7 @@ namespace Talus
                             "the directory cannot be created");
         }
 
-      std::cout << "Talus: barrier structure, model '" << p.model
+      std::cout << "Talus: barrier structure, model '" << p.model_text
                 << "': " << create_model(p)->description() << '\n';
       ConvergenceTable                 table;
       std::vector<std::vector<Result>> level_results;
@@ -3372,6 +3921,47 @@ namespace Talus
                 const auto what = model->support_parameter();
                 InputFile::reject(what[0], what[1], what[2], msg.str());
               }
+          // A part held in x, y and z whose supports lie at one point or on
+          // one line can still rotate about that line (a rigid-body
+          // mechanism: Newton would fail on a singular matrix later).
+          for (const auto &part : structure.parts())
+            if (part.can_rotate && rotation_is_mechanism(p, *model, part))
+              {
+                std::ostringstream names, msg;
+                for (unsigned int k = 0; k < part.meshes.size(); ++k)
+                  names << (k > 0 ? ", " : "") << part.meshes[k];
+                // Round-off of the eigenvectors: print 0 for |v| < 1e-9.
+                const auto clean = [](const double v) {
+                  return std::abs(v) < 1e-9 ? 0. : v;
+                };
+                const auto point = [&](const Tensor<1, 3> &v) {
+                  std::ostringstream o;
+                  o << '(' << clean(v[0]) << ", " << clean(v[1]) << ", "
+                    << clean(v[2]) << ')';
+                  return o.str();
+                };
+                msg << "the part made of mesh <" << names.str() << "> ("
+                    << part.n_nodes << " nodes, one at " << point(part.a_node)
+                    << ") is held in x, y and z, but ";
+                if (part.held_at_one_point)
+                  msg << "all its supports are at one point, "
+                      << point(part.axis_point)
+                      << ", so it can rotate freely about that point";
+                else
+                  msg << "all its supports lie on the line through "
+                      << point(part.axis_point) << " along "
+                      << point(part.rotation_axis)
+                      << ", so it can rotate freely about that line";
+                msg << " (a rigid-body mechanism: its static stiffness "
+                       "would be singular). "
+                    << (part.held_at_one_point ?
+                          "Hold it at three or more points that are not on "
+                          "one line (e.g. a face)" :
+                          "Hold it also at a point off that line (e.g. a "
+                          "face)");
+                const auto what = model->support_parameter();
+                InputFile::reject(what[0], what[1], what[2], msg.str());
+              }
           Talus::Structure::StaticSolver solver(structure);
           prm.enter_subsection(S);
           solver.parse_parameters(prm);
@@ -3384,8 +3974,9 @@ namespace Talus
             n_cells += m->triangulation.n_active_cells();
           for (const auto &m : structure.membrane_meshes)
             n_cells += m->triangulation.n_active_cells();
-          for (const auto &m : structure.solid_meshes)
-            n_cells += m->triangulation.n_active_cells();
+          structure.for_each_solid_mesh([&](const auto &m) {
+            n_cells += m.triangulation.n_active_cells();
+          });
           std::cout << "Level " << level << ": " << structure.line_meshes.size()
                     << " line mesh(es), " << structure.membrane_meshes.size()
                     << " membrane mesh(es), "
@@ -3393,6 +3984,10 @@ namespace Talus
                           std::string() :
                           std::to_string(structure.solid_meshes.size()) +
                             " solid mesh(es), ")
+                    << (structure.plane_solid_meshes.empty() ?
+                          std::string() :
+                          std::to_string(structure.plane_solid_meshes.size()) +
+                            " plane-strain solid mesh(es), ")
                     << n_cells << " cells, " << structure.n_nodes()
                     << " nodes, " << structure.n_dofs() << " DoFs\n";
 

@@ -95,12 +95,14 @@ namespace Talus
 
 
     template <int dim>
+    template <int spacedim>
     void
-    ContinuumSolid<dim>::compute(const dealii::FEValues<dim> &fe_values,
-                                 const std::vector<double>   &u,
-                                 dealii::Vector<double>      &r,
-                                 dealii::FullMatrix<double>  &K,
-                                 SolidCellOutput             *output) const
+    ContinuumSolid<dim>::compute(
+      const dealii::FEValues<dim, spacedim> &fe_values,
+      const std::vector<double>             &u,
+      dealii::Vector<double>                &r,
+      dealii::FullMatrix<double>            &K,
+      SolidCellOutput                       *output) const
     {
       const unsigned int n = fe_values.get_fe().n_dofs_per_cell();
       r.reinit(n);
@@ -119,7 +121,11 @@ namespace Talus
           dealii::Tensor<2, dim> H;
           for (unsigned int i = 0; i < n; ++i)
             {
-              grad_phi[i] = fe_values[displacement].gradient(i, q);
+              // The in-plane block (all of it for spacedim = dim).
+              const auto g = fe_values[displacement].gradient(i, q);
+              for (unsigned int a = 0; a < dim; ++a)
+                for (unsigned int b = 0; b < dim; ++b)
+                  grad_phi[i][a][b] = g[a][b];
               H += u[i] * grad_phi[i];
             }
           const dealii::Tensor<2, dim> F =
@@ -153,9 +159,16 @@ namespace Talus
               const double                          J = dealii::determinant(F);
               const dealii::SymmetricTensor<2, dim> sigma =
                 dealii::symmetrize(P * dealii::transpose(F)) / J;
-              const dealii::SymmetricTensor<2, dim> s = dealii::deviator(sigma);
+              // Plane strain (dim = 2): F_33 = 1, sigma_33 = lambda tr E/J.
+              dealii::SymmetricTensor<2, 3> sigma3;
+              for (unsigned int a = 0; a < dim; ++a)
+                for (unsigned int b = a; b < dim; ++b)
+                  sigma3[a][b] = sigma[a][b];
+              if (dim == 2)
+                sigma3[2][2] = lambda * dealii::trace(E) / J;
+              const dealii::SymmetricTensor<2, 3> s = dealii::deviator(sigma3);
               von_mises += std::sqrt(1.5 * (s * s)) * JxW;
-              mean += dealii::trace(sigma) / 3. * JxW;
+              mean += dealii::trace(sigma3) / 3. * JxW;
             }
         }
       if (output != nullptr)
@@ -219,6 +232,19 @@ namespace Talus
                         "-1",
                         dealii::Patterns::Integer(-1, 255),
                         "Boundary id that carries 'traction'; -1: none [-].");
+      prm.declare_entry("thickness",
+                        "1",
+                        dealii::Patterns::Double(),
+                        "Out-of-plane thickness t of the plane-strain solid "
+                        "of the 'plane solid', 'plane cantilever', 'plane "
+                        "axial bar' and 'plane hanging block' models (a "
+                        "Triangulation<2,2> in the x-y plane of a 2D "
+                        "problem) [m], > 0: its forces, mass and reactions "
+                        "are those of a slice of thickness t. These models "
+                        "use the x and y coordinates of the corners and the "
+                        "first two subdivisions (boundary ids 0 to 3 on "
+                        "x_min, x_max, y_min, y_max); the z entries must "
+                        "still form a valid box and are not used.");
       prm.declare_entry("traction",
                         "0, 0, 0",
                         dealii::Patterns::List(dealii::Patterns::Double(),
@@ -309,6 +335,7 @@ namespace Talus
                                 text + ">)");
           support_boxes.push_back(box);
         }
+      thickness            = get_positive(prm, subsection, "thickness");
       traction_boundary_id = prm.get_integer("traction boundary id");
       const auto t         = get_point(prm, "traction");
       for (unsigned int d = 0; d < 3; ++d)
@@ -334,7 +361,50 @@ namespace Talus
     }
 
 
+    void
+    SolidGeometry::create_triangulation(dealii::Triangulation<2> &tria,
+                                        const unsigned int        level,
+                                        const std::string &subsection) const
+    {
+      if (!mesh_file.empty())
+        InputFile::reject(subsection,
+                          "mesh file",
+                          mesh_file,
+                          "the plane-strain solid of the 'plane' models is "
+                          "the generated rectangle of 'lower corner', "
+                          "'upper corner' and 'subdivisions' (x, y); leave "
+                          "'mesh file' empty");
+      std::vector<unsigned int> n(2);
+      for (unsigned int d = 0; d < 2; ++d)
+        n[d] = subdivisions[d] << level;
+      dealii::GridGenerator::subdivided_hyper_rectangle(
+        tria,
+        n,
+        dealii::Point<2>(lower_corner[0], lower_corner[1]),
+        dealii::Point<2>(upper_corner[0], upper_corner[1]),
+        true);
+    }
+
+
     template class ContinuumSolid<2>;
     template class ContinuumSolid<3>;
+    template void
+    ContinuumSolid<2>::compute(const dealii::FEValues<2, 2> &,
+                               const std::vector<double> &,
+                               dealii::Vector<double> &,
+                               dealii::FullMatrix<double> &,
+                               SolidCellOutput *) const;
+    template void
+    ContinuumSolid<2>::compute(const dealii::FEValues<2, 3> &,
+                               const std::vector<double> &,
+                               dealii::Vector<double> &,
+                               dealii::FullMatrix<double> &,
+                               SolidCellOutput *) const;
+    template void
+    ContinuumSolid<3>::compute(const dealii::FEValues<3, 3> &,
+                               const std::vector<double> &,
+                               dealii::Vector<double> &,
+                               dealii::FullMatrix<double> &,
+                               SolidCellOutput *) const;
   } // namespace Structure
 } // namespace Talus

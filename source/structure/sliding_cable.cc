@@ -7,6 +7,24 @@ namespace Talus
 {
   namespace Structure
   {
+    namespace
+    {
+      /** Adds k to the entries (i, j) of segment s (nodes s and s + 1) in
+       * the pattern [[1, -1], [-1, 1]]. */
+      void
+      add_to_segment(dealii::FullMatrix<double> &K,
+                     const unsigned int          s,
+                     const unsigned int          i,
+                     const unsigned int          j,
+                     const double                k)
+      {
+        K(3 * s + i, 3 * s + j) += k;
+        K(3 * (s + 1) + i, 3 * (s + 1) + j) += k;
+        K(3 * s + i, 3 * (s + 1) + j) -= k;
+        K(3 * (s + 1) + i, 3 * s + j) -= k;
+      }
+    } // namespace
+
     double
     SlidingCable::compute(const std::vector<dealii::Tensor<1, 3>> &X,
                           const std::vector<dealii::Tensor<1, 3>> &x,
@@ -20,25 +38,17 @@ namespace Talus
       if (friction_coefficient > 0.)
         {
           K.reinit(3 * n_nodes, 3 * n_nodes);
-          const double N0     = friction_forces(X, x, f);
-          double       l_mean = 0.;
-          for (unsigned int i = 0; i + 1 < n_nodes; ++i)
-            l_mean += (x[i + 1] - x[i]).norm() / (n_nodes - 1);
-          const double h = 1e-7 * l_mean;
-          // Central differences of the forces.
-          const std::vector<double> saved = segment_forces;
-          dealii::Vector<double>    fp, fm;
-          for (unsigned int j = 0; j < 3 * n_nodes; ++j)
+          const double N0 = friction_forces(X, x, f);
+          if (N0 > 0.)
             {
-              auto xp = x, xm = x;
-              xp[j / 3][j % 3] += h;
-              xm[j / 3][j % 3] -= h;
-              friction_forces(X, xp, fp);
-              friction_forces(X, xm, fm);
-              for (unsigned int i = 0; i < 3 * n_nodes; ++i)
-                K(i, j) = (fp[i] - fm[i]) / (2. * h);
+              // One run through all nodes, every node slipping towards the
+              // last one; material lengths L_i = l_i / lambda(N_i).
+              std::vector<double> L(n_nodes - 1);
+              for (unsigned int i = 0; i + 1 < n_nodes; ++i)
+                L[i] = (x[i + 1] - x[i]).norm() / stretch(segment_forces[i]);
+              const std::vector<int> slip(n_nodes - 1, +1);
+              add_tension_tangent(x, L, segment_forces, slip, K);
             }
-          segment_forces = saved;
           if (N0 == 0.)
             {
               // Slack: regularising stiffness only.
@@ -49,12 +59,7 @@ namespace Talus
                 slack_stiffness_ratio * youngs_modulus * area / L;
               for (unsigned int i = 0; i + 1 < n_nodes; ++i)
                 for (unsigned int d = 0; d < 3; ++d)
-                  {
-                    K(3 * i + d, 3 * i + d) += k;
-                    K(3 * (i + 1) + d, 3 * (i + 1) + d) += k;
-                    K(3 * i + d, 3 * (i + 1) + d) -= k;
-                    K(3 * (i + 1) + d, 3 * i + d) -= k;
-                  }
+                  add_to_segment(K, i, d, d, k);
             }
           if (energy != nullptr)
             *energy = 0.; // not defined with friction (dissipative)
@@ -89,12 +94,7 @@ namespace Talus
           const double k = slack_stiffness_ratio * youngs_modulus * area / L;
           for (unsigned int i = 0; i + 1 < n_nodes; ++i)
             for (unsigned int d = 0; d < 3; ++d)
-              {
-                K(3 * i + d, 3 * i + d) += k;
-                K(3 * (i + 1) + d, 3 * (i + 1) + d) += k;
-                K(3 * i + d, 3 * (i + 1) + d) -= k;
-                K(3 * (i + 1) + d, 3 * i + d) -= k;
-              }
+              add_to_segment(K, i, d, d, k);
           return 0.;
         }
       const double N = area * S * l / L;
@@ -121,10 +121,7 @@ namespace Talus
             {
               const double k =
                 N / li[s] * ((i == j ? 1. : 0.) - e[s][i] * e[s][j]);
-              K(3 * s + i, 3 * s + j) += k;
-              K(3 * (s + 1) + i, 3 * (s + 1) + j) += k;
-              K(3 * s + i, 3 * (s + 1) + j) -= k;
-              K(3 * (s + 1) + i, 3 * s + j) -= k;
+              add_to_segment(K, s, i, j, k);
             }
       return N;
     }
@@ -238,26 +235,12 @@ namespace Talus
       if (n_nodes < 2 || x.size() != n_nodes ||
           old_lengths.size() != n_nodes - 1)
         throw std::runtime_error("A sliding cable needs at least 2 nodes.");
-      const double N0 = stick_slip_forces(x, old_lengths, f, new_lengths);
+      std::vector<int> slip;
+      const double     N0 =
+        stick_slip_forces(x, old_lengths, f, new_lengths, &slip);
       const std::vector<double> saved = segment_forces;
       K.reinit(3 * n_nodes, 3 * n_nodes);
-      double l_mean = 0.;
-      for (unsigned int i = 0; i + 1 < n_nodes; ++i)
-        l_mean += (x[i + 1] - x[i]).norm() / (n_nodes - 1);
-      const double           h = 1e-7 * l_mean;
-      dealii::Vector<double> fp, fm;
-      std::vector<double>    dummy;
-      for (unsigned int j = 0; j < 3 * n_nodes; ++j)
-        {
-          auto xp = x, xm = x;
-          xp[j / 3][j % 3] += h;
-          xm[j / 3][j % 3] -= h;
-          stick_slip_forces(xp, old_lengths, fp, dummy);
-          stick_slip_forces(xm, old_lengths, fm, dummy);
-          for (unsigned int i = 0; i < 3 * n_nodes; ++i)
-            K(i, j) = (fp[i] - fm[i]) / (2. * h);
-        }
-      segment_forces = saved;
+      add_tension_tangent(x, new_lengths, saved, slip, K);
       // Slack segments: regularising stiffness only.
       for (unsigned int i = 0; i + 1 < n_nodes; ++i)
         if (saved[i] == 0.)
@@ -265,12 +248,7 @@ namespace Talus
             const double k =
               slack_stiffness_ratio * youngs_modulus * area / old_lengths[i];
             for (unsigned int d = 0; d < 3; ++d)
-              {
-                K(3 * i + d, 3 * i + d) += k;
-                K(3 * (i + 1) + d, 3 * (i + 1) + d) += k;
-                K(3 * i + d, 3 * (i + 1) + d) -= k;
-                K(3 * (i + 1) + d, 3 * i + d) -= k;
-              }
+              add_to_segment(K, i, d, d, k);
           }
       return N0;
     }
@@ -280,7 +258,8 @@ namespace Talus
     SlidingCable::stick_slip_forces(const std::vector<dealii::Tensor<1, 3>> &x,
                                     const std::vector<double> &old_lengths,
                                     dealii::Vector<double>    &f,
-                                    std::vector<double>       &L) const
+                                    std::vector<double>       &L,
+                                    std::vector<int>          *slip) const
     {
       const unsigned int n_seg = x.size() - 1;
       f.reinit(3 * (n_seg + 1));
@@ -313,10 +292,13 @@ namespace Talus
       for (const double Li : old_lengths)
         M_total += Li;
       L = old_lengths;
+      // Per segment: in a run whose material was redistributed.
+      std::vector<bool> solved(n_seg, false);
       for (unsigned int iteration = 0; iteration < 4 * n_seg + 10; ++iteration)
         {
           // Runs of segments [a, b) joined by slipping nodes.
           L = old_lengths;
+          solved.assign(n_seg, false);
           for (unsigned int a = 0; a < n_seg;)
             {
               unsigned int b = a + 1;
@@ -360,7 +342,10 @@ namespace Talus
                       for (unsigned int i = a; i < b; ++i)
                         m += L[i];
                       for (unsigned int i = a; i < b; ++i)
-                        L[i] *= M / m;
+                        {
+                          L[i] *= M / m;
+                          solved[i] = true;
+                        }
                     }
                 }
               a = b;
@@ -390,6 +375,15 @@ namespace Talus
             break;
         }
       segment_forces = N;
+      if (slip != nullptr)
+        {
+          // Nodes inside a redistributed run keep their slip direction;
+          // the segments of a slack run behave as stuck ones.
+          slip->assign(n_seg, 0);
+          for (unsigned int k = 1; k < n_seg; ++k)
+            if (state[k] != 0 && solved[k])
+              (*slip)[k] = state[k];
+        }
       for (unsigned int i = 0; i < n_seg; ++i)
         for (unsigned int d = 0; d < 3; ++d)
           {
@@ -397,6 +391,123 @@ namespace Talus
             f[3 * (i + 1) + d] += N[i] * e[i][d];
           }
       return N[0];
+    }
+
+
+    void
+    SlidingCable::add_tension_tangent(
+      const std::vector<dealii::Tensor<1, 3>> &x,
+      const std::vector<double>               &L,
+      const std::vector<double>               &N,
+      const std::vector<int>                  &slip,
+      dealii::FullMatrix<double>              &K) const
+    {
+      const unsigned int  n_seg = x.size() - 1;
+      const unsigned int  n     = 3 * (n_seg + 1);
+      const double        EA = youngs_modulus * area, As0 = area * prestress;
+      std::vector<double> l(n_seg), lambda(n_seg), w(n_seg);
+      std::vector<dealii::Tensor<1, 3>> e(n_seg);
+      for (unsigned int i = 0; i < n_seg; ++i)
+        {
+          l[i]      = (x[i + 1] - x[i]).norm();
+          e[i]      = (x[i + 1] - x[i]) / l[i];
+          lambda[i] = l[i] / L[i];
+          // dN/dlambda of N = A (E (lambda^2 - 1)/2 + sigma_0) lambda
+          const double dN = 0.5 * EA * (3. * lambda[i] * lambda[i] - 1.) + As0;
+          // w_i = -dL_i/dN_i at fixed l_i = L_i / (lambda_i dN/dlambda)
+          w[i] = L[i] / (lambda[i] * dN);
+        }
+      // Gradient of the segment length l_i (dense row of length n).
+      const auto add_dl = [&](const unsigned int      i,
+                              const double            factor,
+                              dealii::Vector<double> &g) {
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            g[3 * i + d] -= factor * e[i][d];
+            g[3 * (i + 1) + d] += factor * e[i][d];
+          }
+      };
+      // Gradient of mu theta_k, theta_k the deviation angle at node k:
+      // d theta = -u.(dx_k - dx_{k-1})/l_{k-1} - v.(dx_{k+1} - dx_k)/l_k,
+      // u = (e_k - cos e_{k-1})/sin, v = (e_{k-1} - cos e_k)/sin; zero for
+      // a straight node (theta = |angle| has no derivative there; its
+      // central difference vanishes).
+      const auto add_dmu_theta = [&](const unsigned int      k,
+                                     const double            factor,
+                                     dealii::Vector<double> &g) {
+        const double c = e[k - 1] * e[k];
+        const double s = dealii::cross_product_3d(e[k - 1], e[k]).norm();
+        if (!(s > 1e-12))
+          return;
+        const dealii::Tensor<1, 3> u = (e[k] - c * e[k - 1]) / s,
+                                   v = (e[k - 1] - c * e[k]) / s;
+        const double a               = factor * friction_coefficient;
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            g[3 * (k - 1) + d] += a * u[d] / l[k - 1];
+            g[3 * k + d] -= a * u[d] / l[k - 1];
+            g[3 * k + d] += a * v[d] / l[k];
+            g[3 * (k + 1) + d] -= a * v[d] / l[k];
+          }
+      };
+      // dN_i for every segment.
+      std::vector<dealii::Vector<double>> dN(n_seg, dealii::Vector<double>(n));
+      for (unsigned int a = 0; a < n_seg;)
+        {
+          unsigned int b = a + 1;
+          while (b < n_seg && slip[b] != 0)
+            ++b;
+          if (b == a + 1)
+            {
+              // Stuck segment: N_a = N(l_a / L_a) with L_a fixed.
+              if (N[a] > 0.)
+                add_dl(a, 1. / (lambda[a] * w[a]), dN[a]);
+            }
+          else
+            {
+              // Run: N_i = N_a c_i, c_i = prod_{a<k<=i} exp(s_k mu theta_k),
+              // sum_i l_i / lambda(N_i) fixed, so
+              //   dN_a sum w_i c_i = sum dl_i / lambda_i - N_a sum w_i dc_i,
+              //   dc_i = c_i sum_{a<k<=i} s_k d(mu theta_k).
+              std::vector<dealii::Vector<double>> dc(b - a,
+                                                     dealii::Vector<double>(n));
+              dealii::Vector<double>              rhs(n), dtheta(n);
+              double                              denominator = 0.;
+              for (unsigned int i = a; i < b; ++i)
+                {
+                  const double c_i = N[i] / N[a];
+                  if (i > a)
+                    add_dmu_theta(i, slip[i], dtheta);
+                  dc[i - a].add(c_i, dtheta);
+                  add_dl(i, 1. / lambda[i], rhs);
+                  rhs.add(-N[a] * w[i], dc[i - a]);
+                  denominator += w[i] * c_i;
+                }
+              dN[a].add(1. / denominator, rhs);
+              for (unsigned int i = a + 1; i < b; ++i)
+                {
+                  dN[i].add(N[i] / N[a], dN[a]);
+                  dN[i].add(N[a], dc[i - a]);
+                }
+            }
+          a = b;
+        }
+      // f_i -= N_i e_i, f_{i+1} += N_i e_i: material and geometric parts.
+      for (unsigned int i = 0; i < n_seg; ++i)
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            for (unsigned int j = 0; j < n; ++j)
+              {
+                K(3 * i + d, j) -= e[i][d] * dN[i][j];
+                K(3 * (i + 1) + d, j) += e[i][d] * dN[i][j];
+              }
+            for (unsigned int c = 0; c < 3; ++c)
+              {
+                const double k =
+                  N[i] / l[i] * ((d == c ? 1. : 0.) - e[i][d] * e[i][c]);
+                add_to_segment(K, i, d, c, k);
+              }
+          }
     }
   } // namespace Structure
 } // namespace Talus

@@ -7,12 +7,39 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace Talus
 {
   namespace Structure
   {
+    namespace
+    {
+      double
+      round_off_floor(const dealii::SparseMatrix<double>      &K,
+                      const dealii::AffineConstraints<double> &constraints,
+                      const dealii::Vector<double>            &u)
+      {
+        // |r| cannot fall below the change of r caused by representing u
+        // itself: each u_j is known to eps |u_j|, so r_i to about
+        // eps sum_j |K_ij| |u_j| (the componentwise bound of Oettli and
+        // Prager). doc/theory.md, "Round-off floor of the Newton test".
+        double s = 0.;
+        for (unsigned int i = 0; i < K.m(); ++i)
+          if (!constraints.is_constrained(i))
+            {
+              double row = 0.;
+              for (auto it = K.begin(i); it != K.end(i); ++it)
+                row += std::abs(it->value()) * std::abs(u[it->column()]);
+              s += row * row;
+            }
+        return StaticSolver::round_off_factor *
+               std::numeric_limits<double>::epsilon() * std::sqrt(s);
+      }
+    } // namespace
+
+
     StaticSolver::StaticSolver(Structure &structure)
       : structure(structure)
     {}
@@ -53,7 +80,9 @@ namespace Talus
                         "1e-10",
                         Double(0),
                         "Newton converges when |r| <= tolerance * max(|f_int|, "
-                        "|f_ext|) (Euclidean norms over the free DoFs) [-].");
+                        "|f_ext|) (Euclidean norms over the free DoFs), or "
+                        "when |r| reaches the round-off floor 10 eps "
+                        "| |K| |u| | (doc/theory.md) [-].");
       prm.declare_entry("control",
                         "load",
                         dealii::Patterns::Selection("load|arc length"),
@@ -202,7 +231,11 @@ namespace Talus
           if (std::getenv("TALUS_DEBUG"))
             {
               std::cerr << "    it " << it << " |r| " << norm << " ref "
-                        << reference << " mu " << mu << " slack:";
+                        << reference << " round-off floor "
+                        << round_off_floor(matrix,
+                                           structure.get_constraints(),
+                                           displacement)
+                        << " mu " << mu << " slack:";
               for (const auto &m : structure.line_meshes)
                 {
                   unsigned int n = 0;
@@ -225,7 +258,9 @@ namespace Talus
               status.failure = "the residual is not finite";
               return status;
             }
-          if (norm <= tolerance * reference)
+          const double floor =
+            round_off_floor(matrix, structure.get_constraints(), displacement);
+          if (norm <= std::max(tolerance * reference, floor))
             {
               status.converged = true;
               if (commit)
@@ -425,7 +460,9 @@ namespace Talus
                 std::max({force_scale, nodal_force_norm(), 1e-300});
               status.iterations = it;
               status.residual   = norm;
-              if (norm <= tolerance * reference)
+              if (norm <=
+                  std::max(tolerance * reference,
+                           round_off_floor(matrix, constraints, displacement)))
                 {
                   status.converged = true;
                   structure.commit_state();

@@ -3,6 +3,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 
 #include <deal.II/grid/grid_tools.h>
 
@@ -17,6 +18,7 @@
 #include <fstream>
 #include <map>
 #include <numeric>
+#include <set>
 #include <stdexcept>
 
 namespace Talus
@@ -70,6 +72,51 @@ namespace Talus
         std::make_unique<dealii::FESystem<3>>(dealii::FE_Q<3>(solid->degree),
                                               3);
       return *solid_meshes.back();
+    }
+
+
+    PlaneSolidMesh &
+    Structure::add_plane_solid(
+      const std::string                              &name,
+      const std::shared_ptr<const ContinuumSolid<2>> &solid,
+      const double                                    thickness,
+      const dealii::Triangulation<2>                 &plane)
+    {
+      plane_solid_meshes.push_back(std::make_unique<PlaneSolidMesh>());
+      auto &mesh     = *plane_solid_meshes.back();
+      mesh.name      = name;
+      mesh.solid     = solid;
+      mesh.thickness = thickness;
+      mesh.fe        = std::make_unique<dealii::FESystem<2, 3>>(
+        dealii::FE_Q<2, 3>(solid->degree), 3);
+      // The cells of the plane in order, at z = 0, with their boundary ids
+      // (GridGenerator::flatten_triangulation keeps neither the order of
+      // refined meshes nor all ids reliably).
+      std::vector<dealii::Point<3>> vertices(plane.n_vertices());
+      for (unsigned int v = 0; v < plane.n_vertices(); ++v)
+        vertices[v] = dealii::Point<3>(plane.get_vertices()[v][0],
+                                       plane.get_vertices()[v][1],
+                                       0.);
+      std::vector<dealii::CellData<2>> cells;
+      dealii::SubCellData              boundary;
+      for (const auto &cell : plane.active_cell_iterators())
+        {
+          dealii::CellData<2> c;
+          for (const unsigned int v : cell->vertex_indices())
+            c.vertices[v] = cell->vertex_index(v);
+          cells.push_back(c);
+          for (const unsigned int f : cell->face_indices())
+            if (cell->at_boundary(f) && cell->face(f)->boundary_id() != 0)
+              {
+                dealii::CellData<1> line;
+                line.vertices    = {cell->face(f)->vertex_index(0),
+                                    cell->face(f)->vertex_index(1)};
+                line.boundary_id = cell->face(f)->boundary_id();
+                boundary.boundary_lines.push_back(line);
+              }
+        }
+      mesh.triangulation.create_triangulation(vertices, cells, boundary);
+      return mesh;
     }
 
 
@@ -163,26 +210,26 @@ namespace Talus
                                    MembraneCellOutput());
           collect_vertices(mesh->dof_handler, mesh->offset, entries);
         }
-      for (auto &mesh : solid_meshes)
-        {
-          if (mesh->triangulation.n_active_cells() == 0)
-            throw std::runtime_error("The solid mesh <" + mesh->name +
-                                     "> has no cells.");
-          mesh->dof_handler.reinit(mesh->triangulation);
-          mesh->dof_handler.distribute_dofs(*mesh->fe);
-          mesh->offset = total_dofs;
-          total_dofs += mesh->dof_handler.n_dofs();
-          mesh->cell_output.assign(mesh->triangulation.n_active_cells(),
-                                   SolidCellOutput());
-          collect_vertices(mesh->dof_handler, mesh->offset, entries);
-        }
+      for_each_solid_mesh([&](auto &mesh) {
+        if (mesh.triangulation.n_active_cells() == 0)
+          throw std::runtime_error("The solid mesh <" + mesh.name +
+                                   "> has no cells.");
+        mesh.dof_handler.reinit(mesh.triangulation);
+        mesh.dof_handler.distribute_dofs(*mesh.fe);
+        mesh.offset = total_dofs;
+        total_dofs += mesh.dof_handler.n_dofs();
+        mesh.cell_output.assign(mesh.triangulation.n_active_cells(),
+                                SolidCellOutput());
+        collect_vertices(mesh.dof_handler, mesh.offset, entries);
+      });
       dof_component.assign(total_dofs, 0);
       for (const auto &mesh : line_meshes)
         record_components(mesh->dof_handler, mesh->offset, dof_component);
       for (const auto &mesh : membrane_meshes)
         record_components(mesh->dof_handler, mesh->offset, dof_component);
-      for (const auto &mesh : solid_meshes)
-        record_components(mesh->dof_handler, mesh->offset, dof_component);
+      for_each_solid_mesh([&](const auto &mesh) {
+        record_components(mesh.dof_handler, mesh.offset, dof_component);
+      });
 
       // Merge coincident vertices (sweep over x).
       dealii::Point<3> lo = entries[0].X, hi = entries[0].X;
@@ -300,6 +347,23 @@ namespace Talus
       external_forces.reinit(total_dofs);
       prescribed.clear();
       point_loads.clear();
+      // Plane-strain solids: no out-of-plane displacement (on the masters,
+      // each once; prescribe_dof() would search the list every time).
+      std::set<global_dof_index> fixed;
+      for (const auto &mesh : plane_solid_meshes)
+        for (global_dof_index i = 0; i < mesh->dof_handler.n_dofs(); ++i)
+          {
+            const global_dof_index dof = mesh->offset + i;
+            if (dof_component[dof] != 2)
+              continue;
+            const unsigned int     node = dof_to_node[dof];
+            const global_dof_index master =
+              node == dealii::numbers::invalid_unsigned_int ?
+                dof :
+                nodes[node].dofs[2];
+            if (fixed.insert(master).second)
+              prescribed.emplace_back(master, 0.);
+          }
     }
 
 
@@ -396,7 +460,18 @@ namespace Talus
                                         const std::vector<bool> &components)
     {
       AssertIndexRange(mesh, solid_meshes.size());
-      const SolidMesh              &m  = *solid_meshes[mesh];
+      return prescribe_solid_boundary(*solid_meshes[mesh],
+                                      boundary_id,
+                                      components);
+    }
+
+
+    template <int dim>
+    unsigned int
+    Structure::prescribe_solid_boundary(const SolidMeshT<dim>   &m,
+                                        const unsigned int       boundary_id,
+                                        const std::vector<bool> &components)
+    {
       const auto                   &fe = *m.fe;
       std::vector<global_dof_index> face_dofs(fe.n_dofs_per_face());
       std::vector<bool>             done(m.dof_handler.n_dofs(), false);
@@ -427,9 +502,19 @@ namespace Talus
                                    const std::vector<bool> &components)
     {
       AssertIndexRange(mesh, solid_meshes.size());
-      const SolidMesh              &m = *solid_meshes[mesh];
+      return prescribe_solid_box(*solid_meshes[mesh], lower, upper, components);
+    }
+
+
+    template <int dim>
+    unsigned int
+    Structure::prescribe_solid_box(const SolidMeshT<dim>   &m,
+                                   const dealii::Point<3>  &lower,
+                                   const dealii::Point<3>  &upper,
+                                   const std::vector<bool> &components)
+    {
       std::vector<dealii::Point<3>> support(m.dof_handler.n_dofs());
-      dealii::DoFTools::map_dofs_to_support_points(dealii::MappingQ1<3>(),
+      dealii::DoFTools::map_dofs_to_support_points(dealii::MappingQ1<dim, 3>(),
                                                    m.dof_handler,
                                                    support);
       const double tol =
@@ -450,6 +535,26 @@ namespace Talus
         }
       return count;
     }
+
+
+    template unsigned int
+    Structure::prescribe_solid_boundary(const SolidMeshT<2> &,
+                                        const unsigned int,
+                                        const std::vector<bool> &);
+    template unsigned int
+    Structure::prescribe_solid_boundary(const SolidMeshT<3> &,
+                                        const unsigned int,
+                                        const std::vector<bool> &);
+    template unsigned int
+    Structure::prescribe_solid_box(const SolidMeshT<2> &,
+                                   const dealii::Point<3> &,
+                                   const dealii::Point<3> &,
+                                   const std::vector<bool> &);
+    template unsigned int
+    Structure::prescribe_solid_box(const SolidMeshT<3> &,
+                                   const dealii::Point<3> &,
+                                   const dealii::Point<3> &,
+                                   const std::vector<bool> &);
 
 
     std::vector<StructurePart>
@@ -491,8 +596,8 @@ namespace Talus
           join_mesh(mesh->dof_handler, mesh->offset);
       for (const auto &mesh : membrane_meshes)
         join_mesh(mesh->dof_handler, mesh->offset);
-      for (const auto &mesh : solid_meshes)
-        join_mesh(mesh->dof_handler, mesh->offset);
+      for_each_solid_mesh(
+        [&](const auto &mesh) { join_mesh(mesh.dof_handler, mesh.offset); });
       for (const auto &node : nodes)
         for (const auto &slave : node.slaves)
           for (unsigned int c = 0; c < 3; ++c)
@@ -525,8 +630,9 @@ namespace Talus
         add_mesh(mesh->name, mesh->offset, mesh->dof_handler.n_dofs());
       for (const auto &mesh : membrane_meshes)
         add_mesh(mesh->name, mesh->offset, mesh->dof_handler.n_dofs());
-      for (const auto &mesh : solid_meshes)
-        add_mesh(mesh->name, mesh->offset, mesh->dof_handler.n_dofs());
+      for_each_solid_mesh([&](const auto &mesh) {
+        add_mesh(mesh.name, mesh.offset, mesh.dof_handler.n_dofs());
+      });
       for (const auto &node : nodes)
         {
           auto &part = part_of(node.dofs[0]);
@@ -539,7 +645,173 @@ namespace Talus
       for (global_dof_index i = 0; i < total_dofs; ++i)
         if (dof_component[i] == 0 && i < mass.size())
           part_of(i).mass += mass[i];
+      for (const auto &mesh : membrane_meshes)
+        if (mesh->dof_handler.n_dofs() > 0)
+          part_of(mesh->offset).has_continuum = true;
+      for_each_solid_mesh([&](const auto &mesh) {
+        if (mesh.dof_handler.n_dofs() > 0)
+          part_of(mesh.offset).has_continuum = true;
+      });
+      find_rotation_mechanisms(result,
+                               [&](const global_dof_index dof) -> unsigned int {
+                                 return root_to_part.at(find_root(parent, dof));
+                               });
       return result;
+    }
+
+
+    void
+    Structure::find_rotation_mechanisms(
+      std::vector<StructurePart>                          &parts,
+      const std::function<unsigned int(global_dof_index)> &part_index) const
+    {
+      // Position of every prescribed DoF: its node, or for DoFs of solids
+      // that are not at a vertex their support point.
+      std::map<global_dof_index, dealii::Point<3>> position;
+      for (const auto &p : prescribed)
+        if (dof_to_node[p.first] != dealii::numbers::invalid_unsigned_int)
+          position[p.first] = nodes[dof_to_node[p.first]].X;
+      for_each_solid_mesh([&](const auto &mesh) {
+        constexpr int dim = std::decay_t<decltype(mesh)>::dimension;
+        std::vector<dealii::Point<3>> support(mesh.dof_handler.n_dofs());
+        dealii::DoFTools::map_dofs_to_support_points(
+          dealii::MappingQ1<dim, 3>(), mesh.dof_handler, support);
+        for (const auto &p : prescribed)
+          if (p.first >= mesh.offset &&
+              p.first < mesh.offset + mesh.dof_handler.n_dofs() &&
+              position.find(p.first) == position.end())
+            position[p.first] = support[p.first - mesh.offset];
+      });
+      // Centroid and size of each part (from its nodes).
+      const unsigned int            n_parts = parts.size();
+      std::vector<dealii::Point<3>> centre(n_parts);
+      std::vector<double>           size(n_parts, 0.);
+      std::vector<unsigned int>     count(n_parts, 0);
+      std::vector<unsigned int>     node_part(nodes.size());
+      for (unsigned int n = 0; n < nodes.size(); ++n)
+        {
+          node_part[n] = part_index(nodes[n].dofs[0]);
+          centre[node_part[n]] += nodes[n].X;
+          ++count[node_part[n]];
+        }
+      for (unsigned int k = 0; k < n_parts; ++k)
+        if (count[k] > 0)
+          centre[k] /= count[k];
+      for (unsigned int n = 0; n < nodes.size(); ++n)
+        size[node_part[n]] =
+          std::max(size[node_part[n]],
+                   (nodes[n].X - centre[node_part[n]]).norm());
+      // Gram matrices A^T A of the rigid-body modes (translations, and
+      // rotations about the centroid divided by the size) evaluated at the
+      // nodes (3 rows each) and at the prescribed DoFs (1 row each).
+      using Gram = std::array<std::array<double, 6>, 6>;
+      std::vector<Gram> all(n_parts), held(n_parts);
+      const auto        add_row = [&](Gram                   &G,
+                               const unsigned int      k,
+                               const dealii::Point<3> &x,
+                               const unsigned int      c) {
+        std::array<double, 6> row{};
+        row[c] = 1.;
+        const dealii::Tensor<1, 3> r =
+          (x - centre[k]) / std::max(size[k], 1e-300);
+        for (unsigned int a = 0; a < 3; ++a)
+          {
+            dealii::Tensor<1, 3> axis;
+            axis[a]    = 1.;
+            row[3 + a] = dealii::cross_product_3d(axis, r)[c];
+          }
+        for (unsigned int i = 0; i < 6; ++i)
+          for (unsigned int j = 0; j < 6; ++j)
+            G[i][j] += row[i] * row[j];
+      };
+      for (unsigned int n = 0; n < nodes.size(); ++n)
+        for (unsigned int c = 0; c < 3; ++c)
+          add_row(all[node_part[n]], node_part[n], nodes[n].X, c);
+      for (const auto &p : prescribed)
+        {
+          const unsigned int k = part_index(p.first);
+          add_row(held[k], k, position.at(p.first), dof_component[p.first]);
+        }
+      std::vector<double>           spread(n_parts, 0.);
+      std::vector<bool>             first_seen(n_parts, false);
+      std::vector<dealii::Point<3>> first(n_parts);
+      for (const auto &p : prescribed)
+        {
+          const unsigned int k = part_index(p.first);
+          if (!first_seen[k])
+            {
+              first_seen[k] = true;
+              first[k]      = position.at(p.first);
+            }
+          spread[k] =
+            std::max(spread[k], (position.at(p.first) - first[k]).norm());
+        }
+      for (unsigned int k = 0; k < n_parts; ++k)
+        {
+          parts[k].held_at_one_point =
+            first_seen[k] && spread[k] <= 1e-8 * std::max(size[k], 1e-300);
+          if (!(parts[k].held[0] && parts[k].held[1] && parts[k].held[2]))
+            continue;
+          // Null space of the held modes, then the largest motion of the
+          // nodes within it.
+          dealii::LAPACKFullMatrix<double> G(6, 6);
+          double                           trace = 0.;
+          for (unsigned int i = 0; i < 6; ++i)
+            {
+              trace += held[k][i][i];
+              for (unsigned int j = 0; j < 6; ++j)
+                G(i, j) = held[k][i][j];
+            }
+          dealii::Vector<double>     values;
+          dealii::FullMatrix<double> vectors;
+          G.compute_eigenvalues_symmetric(
+            -1., 2. * trace + 1., 1e-14 * trace, values, vectors);
+          std::vector<unsigned int> null;
+          for (unsigned int i = 0; i < values.size(); ++i)
+            if (values[i] < 1e-10 * trace)
+              null.push_back(i);
+          if (null.empty())
+            continue;
+          double total = 0.;
+          for (unsigned int i = 0; i < 6; ++i)
+            total += all[k][i][i];
+          dealii::LAPACKFullMatrix<double> M(null.size(), null.size());
+          for (unsigned int a = 0; a < null.size(); ++a)
+            for (unsigned int b = 0; b < null.size(); ++b)
+              {
+                double m = 0.;
+                for (unsigned int i = 0; i < 6; ++i)
+                  for (unsigned int j = 0; j < 6; ++j)
+                    m +=
+                      vectors(i, null[a]) * all[k][i][j] * vectors(j, null[b]);
+                M(a, b) = m;
+              }
+          dealii::Vector<double>     moved;
+          dealii::FullMatrix<double> directions;
+          M.compute_eigenvalues_symmetric(
+            -1., 2. * total + 1., 1e-14 * total, moved, directions);
+          if (moved.size() == 0 || !(moved[moved.size() - 1] > 1e-8 * total))
+            continue;
+          // The motion t + omega x (x - c)/size: axis along omega, through
+          // c + size omega x t / |omega|^2.
+          dealii::Tensor<1, 3> t, omega;
+          for (unsigned int a = 0; a < null.size(); ++a)
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                const double w = directions(a, moved.size() - 1);
+                t[i] += w * vectors(i, null[a]);
+                omega[i] += w * vectors(3 + i, null[a]);
+              }
+          if (!(omega.norm() > 1e-8))
+            continue;
+          parts[k].can_rotate    = true;
+          parts[k].rotation_axis = omega / omega.norm();
+          parts[k].axis_point =
+            parts[k].held_at_one_point ?
+              first[k] :
+              centre[k] + size[k] * dealii::cross_product_3d(omega, t) /
+                            omega.norm_square();
+        }
     }
 
 
@@ -619,17 +891,19 @@ namespace Talus
               i += mesh->offset;
             constraints.add_entries_local_to_global(indices, dsp, false);
           }
-      for (const auto &mesh : solid_meshes)
-        {
-          indices.resize(mesh->fe->n_dofs_per_cell());
-          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
-            {
-              cell->get_dof_indices(indices);
-              for (auto &i : indices)
-                i += mesh->offset;
-              constraints.add_entries_local_to_global(indices, dsp, false);
-            }
-        }
+      for_each_solid_mesh([&](auto &solid_mesh) {
+        auto *const   mesh = &solid_mesh;
+        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+
+        indices.resize(mesh->fe->n_dofs_per_cell());
+        for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+          {
+            cell->get_dof_indices(indices);
+            for (auto &i : indices)
+              i += mesh->offset;
+            constraints.add_entries_local_to_global(indices, dsp, false);
+          }
+      });
       // Diagonal entries for every DoF (constrained rows too).
       for (global_dof_index i = 0; i < total_dofs; ++i)
         dsp.add(i, i);
@@ -696,52 +970,53 @@ namespace Talus
         }
       // Solids: row sums rho int N_I dV0; tractions int N_I t dA0.
       traction_forces.reinit(total_dofs);
-      for (const auto &mesh : solid_meshes)
-        {
-          const auto             &fe = *mesh->fe;
-          const dealii::QGauss<3> quadrature(fe.degree + 1);
-          dealii::FEValues<3>     fe_values(
-            fe, quadrature, dealii::update_values | dealii::update_JxW_values);
-          const dealii::QGauss<2>       face_quadrature(fe.degree + 1);
-          dealii::FEFaceValues<3>       fe_face_values(fe,
-                                                 face_quadrature,
-                                                 dealii::update_values |
-                                                   dealii::update_JxW_values);
-          std::vector<global_dof_index> indices(fe.n_dofs_per_cell());
-          const double                  rho = mesh->solid->density;
-          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
-            {
-              fe_values.reinit(cell);
-              cell->get_dof_indices(indices);
-              for (unsigned int i = 0; i < indices.size(); ++i)
-                {
-                  const unsigned int c = fe.system_to_component_index(i).first;
-                  for (const unsigned int q :
-                       fe_values.quadrature_point_indices())
-                    raw_mass[mesh->offset + indices[i]] +=
-                      rho * fe_values.shape_value_component(i, q, c) *
-                      fe_values.JxW(q);
-                }
-              for (const auto &[id, t] : mesh->tractions)
-                for (const unsigned int f : cell->face_indices())
-                  if (cell->at_boundary(f) &&
-                      cell->face(f)->boundary_id() == id)
-                    {
-                      fe_face_values.reinit(cell, f);
-                      for (unsigned int i = 0; i < indices.size(); ++i)
-                        {
-                          const unsigned int c =
-                            fe.system_to_component_index(i).first;
-                          for (const unsigned int q :
-                               fe_face_values.quadrature_point_indices())
-                            traction_forces[mesh->offset + indices[i]] +=
-                              t[c] *
-                              fe_face_values.shape_value_component(i, q, c) *
-                              fe_face_values.JxW(q);
-                        }
-                    }
-            }
-        }
+      for_each_solid_mesh([&](auto &solid_mesh) {
+        auto *const   mesh = &solid_mesh;
+        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+
+        const auto               &fe = *mesh->fe;
+        const dealii::QGauss<dim> quadrature(fe.degree + 1);
+        dealii::FEValues<dim, 3>  fe_values(
+          fe, quadrature, dealii::update_values | dealii::update_JxW_values);
+        const dealii::QGauss<dim - 1> face_quadrature(fe.degree + 1);
+        dealii::FEFaceValues<dim, 3>  fe_face_values(
+          fe,
+          face_quadrature,
+          dealii::update_values | dealii::update_JxW_values);
+        std::vector<global_dof_index> indices(fe.n_dofs_per_cell());
+        const double rho = mesh->solid->density * mesh->thickness;
+        for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+          {
+            fe_values.reinit(cell);
+            cell->get_dof_indices(indices);
+            for (unsigned int i = 0; i < indices.size(); ++i)
+              {
+                const unsigned int c = fe.system_to_component_index(i).first;
+                for (const unsigned int q :
+                     fe_values.quadrature_point_indices())
+                  raw_mass[mesh->offset + indices[i]] +=
+                    rho * fe_values.shape_value_component(i, q, c) *
+                    fe_values.JxW(q);
+              }
+            for (const auto &[id, t] : mesh->tractions)
+              for (const unsigned int f : cell->face_indices())
+                if (cell->at_boundary(f) && cell->face(f)->boundary_id() == id)
+                  {
+                    fe_face_values.reinit(cell, f);
+                    for (unsigned int i = 0; i < indices.size(); ++i)
+                      {
+                        const unsigned int c =
+                          fe.system_to_component_index(i).first;
+                        for (const unsigned int q :
+                             fe_face_values.quadrature_point_indices())
+                          traction_forces[mesh->offset + indices[i]] +=
+                            mesh->thickness * t[c] *
+                            fe_face_values.shape_value_component(i, q, c) *
+                            fe_face_values.JxW(q);
+                      }
+                  }
+          }
+      });
       // Onto the master DoFs (DoFs of solids that are not at a vertex are
       // their own masters).
       mass = raw_mass;
@@ -753,6 +1028,34 @@ namespace Talus
               mass[slave[c]] = 0.;
             }
     }
+
+
+    namespace
+    {
+      /** rho int N_i N_j dV of one cell (same components only) into
+       * @p Me, for @p fe_values reinitialised on it. */
+      template <int dim>
+      void
+      cell_mass_matrix(const dealii::FEValues<dim, 3> &fe_values,
+                       const double                    rho,
+                       dealii::FullMatrix<double>     &Me)
+      {
+        const auto        &fe = fe_values.get_fe();
+        const unsigned int n  = fe.n_dofs_per_cell();
+        Me.reinit(n, n);
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              const unsigned int ci = fe.system_to_component_index(i).first;
+              if (ci != fe.system_to_component_index(j).first)
+                continue;
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                Me(i, j) += rho * fe_values.shape_value_component(i, q, ci) *
+                            fe_values.shape_value_component(j, q, ci) *
+                            fe_values.JxW(q);
+            }
+      }
+    } // namespace
 
 
     void
@@ -824,59 +1127,33 @@ namespace Talus
                   cell->get_dof_indices(indices);
                   for (auto &i : indices)
                     i += mesh->offset;
-                  Me = 0.;
-                  for (unsigned int i = 0; i < n; ++i)
-                    for (unsigned int j = 0; j < n; ++j)
-                      {
-                        const unsigned int ci =
-                          membrane_fe.system_to_component_index(i).first;
-                        if (ci !=
-                            membrane_fe.system_to_component_index(j).first)
-                          continue;
-                        for (unsigned int q = 0; q < quadrature.size(); ++q)
-                          Me(i, j) +=
-                            rho_t * fe_values.shape_value_component(i, q, ci) *
-                            fe_values.shape_value_component(j, q, ci) *
-                            fe_values.JxW(q);
-                      }
+                  cell_mass_matrix(fe_values, rho_t, Me);
                   constraints.distribute_local_to_global(Me, indices, M);
                 }
             }
         }
-      for (const auto &mesh : solid_meshes)
-        {
-          const auto             &fe = *mesh->fe;
-          const dealii::QGauss<3> quadrature(fe.degree + 1);
-          dealii::FEValues<3>     fe_values(
-            fe, quadrature, dealii::update_values | dealii::update_JxW_values);
-          const unsigned int n   = fe.n_dofs_per_cell();
-          const double       rho = mesh->solid->density;
-          indices.resize(n);
-          Me.reinit(n, n);
-          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
-            {
-              fe_values.reinit(cell);
-              cell->get_dof_indices(indices);
-              for (auto &i : indices)
-                i += mesh->offset;
-              Me = 0.;
-              for (unsigned int i = 0; i < n; ++i)
-                for (unsigned int j = 0; j < n; ++j)
-                  {
-                    const unsigned int ci =
-                      fe.system_to_component_index(i).first;
-                    if (ci != fe.system_to_component_index(j).first)
-                      continue;
-                    for (const unsigned int q :
-                         fe_values.quadrature_point_indices())
-                      Me(i, j) += rho *
-                                  fe_values.shape_value_component(i, q, ci) *
-                                  fe_values.shape_value_component(j, q, ci) *
-                                  fe_values.JxW(q);
-                  }
-              constraints.distribute_local_to_global(Me, indices, M);
-            }
-        }
+      for_each_solid_mesh([&](auto &solid_mesh) {
+        auto *const   mesh = &solid_mesh;
+        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+
+        const auto               &fe = *mesh->fe;
+        const dealii::QGauss<dim> quadrature(fe.degree + 1);
+        dealii::FEValues<dim, 3>  fe_values(
+          fe, quadrature, dealii::update_values | dealii::update_JxW_values);
+        const unsigned int n   = fe.n_dofs_per_cell();
+        const double       rho = mesh->solid->density * mesh->thickness;
+        indices.resize(n);
+        Me.reinit(n, n);
+        for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+          {
+            fe_values.reinit(cell);
+            cell->get_dof_indices(indices);
+            for (auto &i : indices)
+              i += mesh->offset;
+            cell_mass_matrix(fe_values, rho, Me);
+            constraints.distribute_local_to_global(Me, indices, M);
+          }
+      });
     }
 
 
@@ -1091,46 +1368,55 @@ namespace Talus
         }
 
       // Solids: internal forces, gravity and tractions.
-      for (auto &mesh : solid_meshes)
-        {
-          const auto                   &fe = *mesh->fe;
-          const dealii::QGauss<3>       quadrature(fe.degree + 1);
-          dealii::FEValues<3>           fe_values(fe,
-                                        quadrature,
-                                        dealii::update_values |
-                                          dealii::update_gradients |
-                                          dealii::update_JxW_values);
-          const unsigned int            n   = fe.n_dofs_per_cell();
-          const double                  rho = mesh->solid->density;
-          std::vector<global_dof_index> sindices(n);
-          std::vector<double>           ue(n);
-          dealii::Vector<double>        re;
-          dealii::FullMatrix<double>    Ke;
-          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
-            {
-              fe_values.reinit(cell);
-              cell->get_dof_indices(sindices);
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  sindices[i] += mesh->offset;
-                  ue[i] = u[sindices[i]];
-                }
-              auto &output = mesh->cell_output[cell->active_cell_index()];
-              mesh->solid->compute(fe_values, ue, re, Ke, &output);
-              last_strain_energy += output.strain_energy;
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  const unsigned int c = fe.system_to_component_index(i).first;
-                  if (rho != 0. && g[c] != 0.)
-                    for (const unsigned int q :
-                         fe_values.quadrature_point_indices())
-                      re[i] -= rho * g[c] *
-                               fe_values.shape_value_component(i, q, c) *
-                               fe_values.JxW(q);
-                }
-              add(Ke, re, sindices);
-            }
-        }
+      for_each_solid_mesh([&](auto &solid_mesh) {
+        auto *const   mesh = &solid_mesh;
+        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+
+        const auto               &fe = *mesh->fe;
+        const dealii::QGauss<dim> quadrature(fe.degree + 1);
+        dealii::FEValues<dim, 3>  fe_values(fe,
+                                           quadrature,
+                                           dealii::update_values |
+                                             dealii::update_gradients |
+                                             dealii::update_JxW_values);
+        const unsigned int        n   = fe.n_dofs_per_cell();
+        const double              rho = mesh->solid->density * mesh->thickness;
+        std::vector<global_dof_index> sindices(n);
+        std::vector<double>           ue(n);
+        dealii::Vector<double>        re;
+        dealii::FullMatrix<double>    Ke;
+        for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+          {
+            fe_values.reinit(cell);
+            cell->get_dof_indices(sindices);
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                sindices[i] += mesh->offset;
+                ue[i] = u[sindices[i]];
+              }
+            auto &output = mesh->cell_output[cell->active_cell_index()];
+            mesh->solid->compute(fe_values, ue, re, Ke, &output);
+            if (mesh->thickness != 1.)
+              {
+                // Plane strain: per unit thickness times t.
+                re *= mesh->thickness;
+                Ke *= mesh->thickness;
+                output.strain_energy *= mesh->thickness;
+              }
+            last_strain_energy += output.strain_energy;
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const unsigned int c = fe.system_to_component_index(i).first;
+                if (rho != 0. && g[c] != 0.)
+                  for (const unsigned int q :
+                       fe_values.quadrature_point_indices())
+                    re[i] -= rho * g[c] *
+                             fe_values.shape_value_component(i, q, c) *
+                             fe_values.JxW(q);
+              }
+            add(Ke, re, sindices);
+          }
+      });
 
       // Point loads and external forces.
       {
@@ -1223,36 +1509,47 @@ namespace Talus
               dof_to_node[offset + cell->vertex_dof_index(v, 0)];
         return result;
       }
+
+      /** vertex_nodes() of mesh @p mesh of @p meshes. */
+      template <typename Mesh>
+      std::vector<unsigned int>
+      vertex_nodes(const std::vector<std::unique_ptr<Mesh>> &meshes,
+                   const unsigned int                        mesh,
+                   const std::vector<unsigned int>          &dof_to_node)
+      {
+        AssertIndexRange(mesh, meshes.size());
+        return vertex_nodes(meshes[mesh]->dof_handler,
+                            meshes[mesh]->offset,
+                            dof_to_node);
+      }
     } // namespace
 
 
     std::vector<unsigned int>
     Structure::membrane_vertex_nodes(const unsigned int mesh) const
     {
-      AssertIndexRange(mesh, membrane_meshes.size());
-      return vertex_nodes(membrane_meshes[mesh]->dof_handler,
-                          membrane_meshes[mesh]->offset,
-                          dof_to_node);
+      return vertex_nodes(membrane_meshes, mesh, dof_to_node);
     }
 
 
     std::vector<unsigned int>
     Structure::line_vertex_nodes(const unsigned int mesh) const
     {
-      AssertIndexRange(mesh, line_meshes.size());
-      return vertex_nodes(line_meshes[mesh]->dof_handler,
-                          line_meshes[mesh]->offset,
-                          dof_to_node);
+      return vertex_nodes(line_meshes, mesh, dof_to_node);
     }
 
 
     std::vector<unsigned int>
     Structure::solid_vertex_nodes(const unsigned int mesh) const
     {
-      AssertIndexRange(mesh, solid_meshes.size());
-      return vertex_nodes(solid_meshes[mesh]->dof_handler,
-                          solid_meshes[mesh]->offset,
-                          dof_to_node);
+      return vertex_nodes(solid_meshes, mesh, dof_to_node);
+    }
+
+
+    std::vector<unsigned int>
+    Structure::plane_solid_vertex_nodes(const unsigned int mesh) const
+    {
+      return vertex_nodes(plane_solid_meshes, mesh, dof_to_node);
     }
 
 
@@ -1380,26 +1677,28 @@ namespace Talus
                      directory + "/" + mesh->name + suffix);
           write_pvd(mesh->name);
         }
-      for (const auto &mesh : solid_meshes)
-        {
-          const unsigned int     n = mesh->cell_output.size();
-          dealii::Vector<double> von_mises(n), mean(n), energy(n);
-          for (unsigned int k = 0; k < n; ++k)
-            {
-              von_mises[k] = mesh->cell_output[k].von_mises;
-              mean[k]      = mesh->cell_output[k].mean_stress;
-              energy[k]    = mesh->cell_output[k].strain_energy;
-            }
-          write_mesh(mesh->dof_handler,
-                     mesh->offset,
-                     u,
-                     {{"von_mises_stress", von_mises},
-                      {"mean_stress", mean},
-                      {"strain_energy", energy}},
-                     directory + "/" + mesh->name + suffix,
-                     mesh->fe->degree);
-          write_pvd(mesh->name);
-        }
+      for_each_solid_mesh([&](auto &solid_mesh) {
+        auto *const   mesh = &solid_mesh;
+        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+
+        const unsigned int     n = mesh->cell_output.size();
+        dealii::Vector<double> von_mises(n), mean(n), energy(n);
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            von_mises[k] = mesh->cell_output[k].von_mises;
+            mean[k]      = mesh->cell_output[k].mean_stress;
+            energy[k]    = mesh->cell_output[k].strain_energy;
+          }
+        write_mesh(mesh->dof_handler,
+                   mesh->offset,
+                   u,
+                   {{"von_mises_stress", von_mises},
+                    {"mean_stress", mean},
+                    {"strain_energy", energy}},
+                   directory + "/" + mesh->name + suffix,
+                   mesh->fe->degree);
+        write_pvd(mesh->name);
+      });
     }
 
 

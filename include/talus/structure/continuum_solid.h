@@ -37,7 +37,8 @@ namespace Talus
      * obstacles, verification): geometrically nonlinear, total-Lagrangian
      * St. Venant-Kirchhoff elasticity on a Triangulation<dim,dim> with
      * FESystem(FE_Q(degree), dim); dim = 3 in the Structure, dim = 2 (plane
-     * strain) for element checks. With F = I + Grad u,
+     * strain) in 2D problems (the Structure's PlaneSolidMesh) and element
+     * checks. With F = I + Grad u,
      *   E = (F^T F - I)/2,  S = lambda tr(E) I + 2 mu E,  P = F S,
      *   W(E) = lambda/2 tr(E)^2 + mu E:E,
      *   f_i = int P : Grad phi_i dV0,
@@ -91,14 +92,21 @@ namespace Talus
        * Internal forces r = f_int and their derivative K of the cell on
        * which @p fe_values (update_values, gradients, JxW) was reinitialised
        * in the reference configuration, at the displacements @p u of its
-       * dofs (FESystem order).
+       * dofs (FESystem order). spacedim = dim: FESystem(FE_Q, dim).
+       * spacedim = 3 > dim = 2: the plane-strain solid of a 2D problem on a
+       * flat Triangulation<2,3> in the x-y plane with FESystem(FE_Q, 3)
+       * (the Structure's layout); only the in-plane components and
+       * derivatives enter, the rows and columns of u_z stay zero. Plane
+       * strain (E_33 = 0) per unit thickness; the output adds sigma_33 =
+       * lambda tr(E)/J to the von Mises and mean stresses.
        */
+      template <int spacedim>
       void
-      compute(const dealii::FEValues<dim> &fe_values,
-              const std::vector<double>   &u,
-              dealii::Vector<double>      &r,
-              dealii::FullMatrix<double>  &K,
-              SolidCellOutput             *output = nullptr) const;
+      compute(const dealii::FEValues<dim, spacedim> &fe_values,
+              const std::vector<double>             &u,
+              dealii::Vector<double>                &r,
+              dealii::FullMatrix<double>            &K,
+              SolidCellOutput                       *output = nullptr) const;
     };
 
 
@@ -129,6 +137,9 @@ namespace Talus
       std::vector<SupportBox>   support_boxes;
       int                       traction_boundary_id = -1;
       dealii::Tensor<1, 3>      traction; ///< [Pa]
+      /** Out-of-plane thickness t of the plane-strain solid of the 'plane'
+       * models (2D problems) [m]. */
+      double thickness = 1.;
 
       /** The geometry entries of the current subsection (Structure/Solid). */
       static void
@@ -146,6 +157,18 @@ namespace Talus
        */
       void
       create_triangulation(dealii::Triangulation<3> &tria,
+                           const unsigned int        level,
+                           const std::string        &subsection) const;
+
+      /**
+       * The plane-strain solid of a 2D problem: the rectangle of the x and
+       * y coordinates of the corners with the first two 'subdivisions'
+       * times 2^@p level cells, colorized (boundary ids 0..3 on x_min,
+       * x_max, y_min, y_max). A 'mesh file' is rejected (named in
+       * @p subsection).
+       */
+      void
+      create_triangulation(dealii::Triangulation<2> &tria,
                            const unsigned int        level,
                            const std::string        &subsection) const;
     };

@@ -42,7 +42,8 @@ namespace Talus
        * the deviation angle at node k, and N_0 follows from the length of
        * cable material, sum_i l_i / lambda(N_i) = L, with lambda(N) the
        * stretch of the law N = A (E (lambda^2 - 1)/2 + sigma_0) lambda
-       * (per segment). The tangent is computed by central differences.
+       * (per segment). The tangent is the analytic derivative of this
+       * map (add_tension_tangent()).
        * With stick_slip, the law with stick below (history dependent).
        */
       double friction_coefficient = 0.;
@@ -60,7 +61,8 @@ namespace Talus
        * shares its material, N_i = N_a prod exp(+-mu theta), N_a from
        * sum l_i / lambda(N_i) = sum L_i^old (bisection); a slipping node
        * whose material moved against its slip direction sticks again.
-       * Tangent by central differences from the same committed history.
+       * Tangent: the exact derivative of the return for the final active
+       * set (add_tension_tangent()), from the same committed history.
        * false: the cable slides towards its last node at every node (no
        * history).
        */
@@ -108,7 +110,26 @@ namespace Talus
       stick_slip_forces(const std::vector<dealii::Tensor<1, 3>> &x,
                         const std::vector<double>               &old_lengths,
                         dealii::Vector<double>                  &f,
-                        std::vector<double> &new_lengths) const;
+                        std::vector<double>                     &new_lengths,
+                        std::vector<int> *slip = nullptr) const;
+
+      /**
+       * Adds the consistent tangent of the segment tensions @p N with
+       * material lengths @p L to @p K (doc/theory.md, "Capstan friction:
+       * consistent tangent"). @p slip[k] (k >= 1) is the slip direction
+       * +-1 of interior node k, or 0 where it sticks: runs of segments
+       * joined by slipping nodes share their material,
+       *   N_i = N_a c_i,  c_i = prod_{a<k<=i} exp(s_k mu theta_k),
+       *   sum_i l_i / lambda(N_i) = sum_i L_i (fixed),
+       * and a stuck segment has N_i = N(l_i / L_i) with L_i fixed. The
+       * derivative of the constraint gives dN_a, the chain rule dN_i.
+       */
+      void
+      add_tension_tangent(const std::vector<dealii::Tensor<1, 3>> &x,
+                          const std::vector<double>               &L,
+                          const std::vector<double>               &N,
+                          const std::vector<int>                  &slip,
+                          dealii::FullMatrix<double>              &K) const;
 
       /** Stretch lambda of a segment under tension N >= 0 [-]. */
       double

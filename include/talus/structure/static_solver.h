@@ -110,9 +110,16 @@ namespace Talus
       /** Start of each increment of solve_with_cuts(): "constant" (the
        * last converged displacement) or "secant" (extrapolated linearly in
        * the load factor from the last two converged states). */
-      std::string predictor   = "constant";
-      double      tolerance   = 1e-10;
-      bool        line_search = true;
+      std::string predictor = "constant";
+      double      tolerance = 1e-10;
+      /**
+       * Newton also stops when |r| <= round_off_factor eps | |K| |u| |
+       * (free rows; eps the machine epsilon): the residual cannot be
+       * computed more accurately than the representation of u allows
+       * (doc/theory.md, "Round-off floor of the Newton test") [-].
+       */
+      static constexpr double round_off_factor = 10.;
+      bool                    line_search      = true;
       /** Largest displacement change of one Newton iteration [m]; 0: no
        * limit. Longer steps are scaled down (a trust region for structures
        * that start far from equilibrium). */

@@ -69,22 +69,36 @@ namespace Talus
 
 
     /**
-     * A continuum solid mesh (Triangulation<3,3>, serial) with
-     * FESystem(FE_Q(degree),3), one ContinuumSolid, and dead tractions on
-     * boundary ids (scaled by the load factor).
+     * A continuum solid mesh (serial) with FESystem(FE_Q(degree),3), one
+     * ContinuumSolid<dim>, and dead tractions on boundary ids (scaled by
+     * the load factor). dim = 3: a Triangulation<3,3>. dim = 2: a
+     * plane-strain solid of a 2D problem, the Triangulation<2,2> of the
+     * x-y plane embedded as Triangulation<2,3> at z = 0 (as the 2D string),
+     * u_z = 0 on all its DoFs, forces and masses of a slice of thickness
+     * @p thickness.
      */
-    struct SolidMesh
+    template <int dim>
+    struct SolidMeshT
     {
-      std::string                                                name;
-      dealii::Triangulation<3>                                   triangulation;
-      dealii::DoFHandler<3>                                      dof_handler;
-      std::shared_ptr<const ContinuumSolid<3>>                   solid;
-      std::unique_ptr<dealii::FESystem<3>>                       fe;
-      dealii::types::global_dof_index                            offset = 0;
+      static constexpr int                       dimension = dim;
+      std::string                                name;
+      dealii::Triangulation<dim, 3>              triangulation;
+      dealii::DoFHandler<dim, 3>                 dof_handler;
+      std::shared_ptr<const ContinuumSolid<dim>> solid;
+      std::unique_ptr<dealii::FESystem<dim, 3>>  fe;
+      dealii::types::global_dof_index            offset = 0;
       std::vector<std::pair<unsigned int, dealii::Tensor<1, 3>>> tractions;
+      /** Out-of-plane thickness t of a plane-strain solid (dim = 2) [m];
+       * 1 for dim = 3. */
+      double thickness = 1.;
       /** Results per active cell after the last assembly. */
       std::vector<SolidCellOutput> cell_output;
     };
+
+    /** A three-dimensional solid mesh. */
+    using SolidMesh = SolidMeshT<3>;
+    /** A plane-strain solid mesh of a 2D problem. */
+    using PlaneSolidMesh = SolidMeshT<2>;
 
 
     /**
@@ -100,6 +114,22 @@ namespace Talus
        * translation along d is a zero-energy mode of the stiffness. */
       std::array<bool, 3> held = {{false, false, false}};
       double              mass = 0.; ///< lumped, one direction [kg]
+      /**
+       * A rigid motion with a rotation moves nodes of the part but no
+       * prescribed DoF (the supports lie at one point or on one line, the
+       * rotation axis): the rank of the six rigid-body modes evaluated at
+       * the prescribed DoFs is smaller than at all the part's nodes. Only
+       * meaningful when the part is held in x, y and z.
+       */
+      bool can_rotate = false;
+      /** Axis of that rotation (unit) and a point on it [m]. */
+      dealii::Tensor<1, 3> rotation_axis;
+      dealii::Point<3>     axis_point;
+      /** The part has a continuum solid or a membrane mesh (elements that
+       * resist in-plane shear, unlike cables and trusses). */
+      bool has_continuum = false;
+      /** All prescribed DoFs of the part are at one point. */
+      bool held_at_one_point = false;
     };
 
 
@@ -139,6 +169,18 @@ namespace Talus
       SolidMesh &
       add_solid(const std::string                              &name,
                 const std::shared_ptr<const ContinuumSolid<3>> &solid);
+
+      /**
+       * A plane-strain solid of a 2D problem: @p plane (cells in the x-y
+       * plane) is copied to the mesh's Triangulation<2,3> at z = 0; the
+       * element is @p solid per unit thickness times @p thickness [m].
+       * setup_dofs() fixes u_z of all its DoFs.
+       */
+      PlaneSolidMesh &
+      add_plane_solid(const std::string                              &name,
+                      const std::shared_ptr<const ContinuumSolid<2>> &solid,
+                      const double                                    thickness,
+                      const dealii::Triangulation<2>                 &plane);
 
       /**
        * Distribute the DoFs of every mesh, number them globally and find
@@ -206,6 +248,24 @@ namespace Talus
        */
       unsigned int
       prescribe_solid_box(const unsigned int       mesh,
+                          const dealii::Point<3>  &lower,
+                          const dealii::Point<3>  &upper,
+                          const std::vector<bool> &components);
+
+      /** As prescribe_solid_boundary() and prescribe_solid_box() for the
+       * solid @p mesh of any dimension (a SolidMesh or PlaneSolidMesh of
+       * this structure). */
+      template <int dim>
+      unsigned int
+      prescribe_solid_boundary(const SolidMeshT<dim>   &mesh,
+                               const unsigned int       boundary_id,
+                               const std::vector<bool> &components = {true,
+                                                                      true,
+                                                                      true});
+
+      template <int dim>
+      unsigned int
+      prescribe_solid_box(const SolidMeshT<dim>   &mesh,
                           const dealii::Point<3>  &lower,
                           const dealii::Point<3>  &upper,
                           const std::vector<bool> &components);
@@ -342,6 +402,12 @@ namespace Talus
       std::vector<unsigned int>
       solid_vertex_nodes(const unsigned int mesh) const;
 
+      /** As membrane_vertex_nodes() for plane solid mesh @p mesh (vertex
+       * indices of its Triangulation<2,3>, those of the plane mesh given
+       * to add_plane_solid()). */
+      std::vector<unsigned int>
+      plane_solid_vertex_nodes(const unsigned int mesh) const;
+
       /** Set the external force on @p node to @p F [N] (replacing the
        * previous one; not scaled by the load factor). */
       void
@@ -373,13 +439,33 @@ namespace Talus
       const dealii::SparsityPattern &
       get_sparsity_pattern() const;
 
-      std::vector<std::unique_ptr<LineMesh>>     line_meshes;
-      std::vector<std::unique_ptr<MembraneMesh>> membrane_meshes;
-      std::vector<std::unique_ptr<SolidMesh>>    solid_meshes;
+      std::vector<std::unique_ptr<LineMesh>>       line_meshes;
+      std::vector<std::unique_ptr<MembraneMesh>>   membrane_meshes;
+      std::vector<std::unique_ptr<SolidMesh>>      solid_meshes;
+      std::vector<std::unique_ptr<PlaneSolidMesh>> plane_solid_meshes;
+
+      /** Call @p f on every solid mesh, three-dimensional then plane. */
+      template <typename Function>
+      void
+      for_each_solid_mesh(const Function &f) const
+      {
+        for (const auto &mesh : solid_meshes)
+          f(*mesh);
+        for (const auto &mesh : plane_solid_meshes)
+          f(*mesh);
+      }
 
     private:
       dealii::FESystem<1, 3> line_fe{dealii::FE_Q<1, 3>(1), 3};
       dealii::FESystem<2, 3> membrane_fe{dealii::FE_Q<2, 3>(1), 3};
+
+      /** Sets StructurePart::can_rotate and its axis (parts()); @p
+       * part_index maps a global DoF to its part. */
+      void
+      find_rotation_mechanisms(
+        std::vector<StructurePart> &parts,
+        const std::function<unsigned int(dealii::types::global_dof_index)>
+          &part_index) const;
 
       struct Node
       {
