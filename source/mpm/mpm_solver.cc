@@ -481,6 +481,7 @@ namespace Talus
       const auto comm     = grid.mpi_communicator;
       for (auto *v : {&nodal_mass,
                       &velocity_n,
+                      &velocity_p2g,
                       &acceleration_n,
                       &displacement,
                       &acceleration_new})
@@ -721,6 +722,7 @@ namespace Talus
       mass_acc.compress(dealii::VectorOperation::insert);
       nodal_mass     = mass;
       velocity_n     = momentum;
+      velocity_p2g   = momentum;
       acceleration_n = mass_acc;
     }
 
@@ -2101,6 +2103,21 @@ namespace Talus
         grid.locally_relevant_dofs,
         grid.mpi_communicator);
       dv_ghosted = dv;
+      // FLIP increment v_I^{n+1} - v_I^{P2G}: where the constraints set the
+      // start velocity of a node with mass to zero (fixed, slip, stick),
+      // the increment includes that change, so that the points lose the
+      // velocity the boundary removes (with dv alone they kept it and
+      // handed it back to the free nodes of their cell at every P2G).
+      // Elsewhere v_P2G = v_n exactly and the increment is dv.
+      dealii::TrilinosWrappers::MPI::Vector dv_flip(dv_ghosted);
+      if (!quasi_static)
+        {
+          for (const auto i : grid.locally_owned_dofs)
+            if (nodal_mass(i) > 0.)
+              dv(i) -= velocity_p2g(i) - velocity_n(i);
+          dv.compress(dealii::VectorOperation::insert);
+          dv_flip = dv;
+        }
 
       // Contact forces and friction work of the friction boundaries (from
       // the unconstrained residual of the converged iterate).
@@ -2146,8 +2163,8 @@ namespace Talus
             {
               du_local[i] = displacement(c.dofs[i]);
               a_local[i]  = acceleration_new(c.dofs[i]);
-              dv_local[i] = dv_ghosted(c.dofs[i]);
-              v_local[i]  = velocity_n(c.dofs[i]) + dv_local[i];
+              dv_local[i] = dv_flip(c.dofs[i]);
+              v_local[i]  = velocity_n(c.dofs[i]) + dv_ghosted(c.dofs[i]);
             }
           cell_deformation_gradients(c, du_local, F_cell);
           for (unsigned int q = 0; q < c.n; ++q)

@@ -544,8 +544,10 @@ namespace Talus
        */
       unsigned int reversed_boundary_points = 0;
 
-      dealii::TrilinosWrappers::MPI::Vector nodal_mass;       // ghosted
-      dealii::TrilinosWrappers::MPI::Vector velocity_n;       // ghosted
+      dealii::TrilinosWrappers::MPI::Vector nodal_mass; // ghosted
+      dealii::TrilinosWrappers::MPI::Vector velocity_n; // ghosted
+      /** The projected velocity before the constraints (FLIP). */
+      dealii::TrilinosWrappers::MPI::Vector velocity_p2g;     // ghosted
       dealii::TrilinosWrappers::MPI::Vector acceleration_n;   // ghosted
       dealii::TrilinosWrappers::MPI::Vector external_force;   // owned
       dealii::TrilinosWrappers::MPI::Vector residual;         // owned
