@@ -2,12 +2,16 @@
 """Write the Bui et al. 2008 granular column collapse inputs (one per cell size).
 
 usage: make_bui_inputs.py [-o benchmarks/granular_collapse] [--cells 0.02 0.01 0.005]
+                          [--floor friction|no-slip|both]
 
 Column 0.2 m long x 0.1 m high against a smooth wall at x = 0 (slip), on a
 floor with Coulomb friction, rho = 2650 kg/m^3, E = 0.84 MPa, nu = 0.3,
 phi = 19.8 deg, c = 0, psi = 0, plane strain, 2 x 2 points per cell, t = 1 s.
 The final surface is compared with data/bui2008_final_surface.csv and the
 toe with 0.43 m (subsection "Deposit profile"). Run from the repository top.
+--floor no-slip writes bui2008_<cell>_noslip.prm with a fixed floor instead,
+the floor of Bui's own SPH model and of Kratos' validation example
+(doc/verification.md, "Update 2026-11-30").
 """
 
 import argparse
@@ -17,7 +21,7 @@ TEMPLATE = """\
 # Granular column collapse after Bui et al. 2008 (IJNAMG 32:1537), plane
 # strain, cells {cell_mm:g} mm, 2 x 2 points per cell ({n_points} points).
 # Column 0.2 m long x 0.1 m high (a = 0.5) against a smooth wall at x = 0,
-# released at t = 0 onto a floor with Coulomb friction; rho = 2650 kg/m^3,
+# released at t = 0 onto the floor (see below); rho = 2650 kg/m^3,
 # E = 0.84 MPa, nu = 0.3, phi = 19.8 deg, c = 0, psi = 0 (aluminium rods).
 # Reference (data/bui2008_final_surface.csv, ../shared/VERIFICATION.md 2.2):
 # final surface within 10 % of H0 = 1 cm at x = 0..0.40 m, toe at
@@ -34,9 +38,7 @@ subsection Background grid
   set upper corner = 0.6, 0.12
   set subdivisions = {nx}, {ny}
   set slip boundaries = 0
-  # Coulomb friction on the floor, mu = tan(phi) (basal friction angle =
-  # internal friction angle; not calibrated).
-  set friction boundaries = 2: 0.36
+{floor}
 end
 subsection Body
   set geometry = box
@@ -98,11 +100,14 @@ def main():
     parser.add_argument("--cells", type=float, nargs="+",
                         default=[0.02, 0.01, 0.005],
                         help="cell sizes [m] (default 20, 10, 5 mm)")
+    parser.add_argument("--floor", choices=["friction", "no-slip", "both"],
+                        default="both")
     args = parser.parse_args()
+    floors = ["friction", "no-slip"] if args.floor == "both" else [args.floor]
     os.makedirs(args.directory, exist_ok=True)
-    for cell in args.cells:
+    for cell, floor in [(c, f) for f in floors for c in args.cells]:
         mm = cell * 1000.
-        name = "bui2008_%gmm" % mm
+        name = "bui2008_%gmm" % mm + ("_noslip" if floor == "no-slip" else "")
         path = os.path.join(args.directory, name.replace(".", "p") + ".prm")
         nx, ny = round(0.6 / cell), round(0.12 / cell)
         # Implicit steps: dt [s] = cell size [m], i.e. a front at 1 m/s
@@ -111,6 +116,11 @@ def main():
         # needs it.
         dt = cell
         text = TEMPLATE.format(
+            floor=("  # Coulomb friction on the floor, mu = tan(phi) (basal friction "
+                   "angle =\n  # internal friction angle; not calibrated).\n"
+                   "  set friction boundaries = 2: 0.36" if floor == "friction"
+                   else "  # No-slip floor (Bui's SPH model, Kratos' validation "
+                   "example).\n  set fixed boundaries = 2"),
             cell_mm=mm, n_points=4 * round(0.2 / cell) * round(0.1 / cell),
             path=path, nx=nx, ny=ny, dt=dt, name=name.replace(".", "p"),
             bin=cell, series=max(1, round(0.01 / dt)),
