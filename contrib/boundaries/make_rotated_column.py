@@ -23,17 +23,21 @@ RHO, G, E, L, W, H = 80., 10., 1e7, 10., 1., 0.25
 
 def write(path, rho_deg, clip=True, ghost=0., stress_norm="max",
           stress_tolerance=0.01, displacement_tolerance=2e-5,
-          name=None):
+          name=None, extend=0.3):
     r = math.radians(rho_deg)
     a = (-math.sin(r), math.cos(r))   # axis
     t = (math.cos(r), math.sin(r))    # across
     o = (1.0 + L * math.sin(r) + 0.013, 0.5 + 0.017)  # base left corner
     P = lambda s, y: (o[0] + s * t[0] + y * a[0], o[1] + s * t[1] + y * a[1])
     corners = [P(0, 0), P(W, 0), P(W, L), P(0, L)]
-    # walls a little longer than the column
-    base = [P(-0.3, 0), P(W + 0.3, 0)]
-    left = [P(0, L + 0.5), P(0, -0.3)]     # material on the left of travel
-    right = [P(W, -0.3), P(W, L + 0.5)]
+    # base and walls run on by 'extend' beyond the corners (0: a closed
+    # box corner); the boundary particles beyond a corner lie outside the
+    # material but act on the cut corner cells, and the corner points'
+    # stress depends on it (doc/verification.md); above the column the
+    # walls run on by 0.5 m
+    base = [P(-extend, 0), P(W + extend, 0)]
+    left = [P(0, L + 0.5), P(0, -extend)]  # material on the left of travel
+    right = [P(W, -extend), P(W, L + 0.5)]
     xs = [p[0] for p in corners + base + left + right]
     ys = [p[1] for p in corners + base + left + right]
     upper = (math.ceil((max(xs) + 0.5) / H) * H, math.ceil((max(ys) + 0.5) / H) * H)
@@ -115,13 +119,13 @@ TESTS = {
     # grid-aligned walls 0.013 / 0.017 m off the grid lines (h = 0.25 m),
     # points clipped to the column: every point within 1 %
     "column_rotated_0": dict(rho_deg=0, h=0.25, clip=True,
-                             displacement_tolerance=5e-6),
-    # walls rotated by 30 degrees (h = 0.125 m), clipped points and the
-    # ghost penalty: volume-weighted RMS within 1 % (a few points in the
-    # corners of base and walls are not, doc/verification.md)
+                             displacement_tolerance=5e-6, extend=0.3),
+    # walls rotated by 30 degrees (h = 0.125 m), closed corners, clipped
+    # points and the ghost penalty: volume-weighted RMS within 1 % (the
+    # largest point error is 2.2 %, in the corner cells, doc/verification.md)
     "column_rotated_30": dict(rho_deg=30, h=0.125, clip=True, ghost=1.,
                               stress_norm="RMS",
-                              displacement_tolerance=2e-6),
+                              displacement_tolerance=2e-6, extend=0.),
 }
 
 
