@@ -451,12 +451,14 @@ namespace Talus
                 {
                   // (the point stresses of the comparison, for
                   // contrib/boundaries/column_ghost_study.py)
-                  std::cout << std::setprecision(10) << "DBGSTRESS " << X << ' '
-                            << p.get_location();
+                  std::ostringstream line;
+                  line << std::setprecision(10) << "DBGSTRESS " << X << ' '
+                       << p.get_location();
                   for (unsigned int c = 0; c < map.size(); ++c)
-                    std::cout << ' ' << props[Properties::stress + map[c]]
-                              << ' ' << exact_stress.value(X, c);
-                  std::cout << ' ' << V0 << '\n';
+                    line << ' ' << props[Properties::stress + map[c]] << ' '
+                         << exact_stress.value(X, c);
+                  line << ' ' << V0 << '\n';
+                  std::cout << line.str();
                 }
             }
         }
