@@ -126,6 +126,19 @@ if __name__ == "__main__":
           max_penetration=1e-5 * H)
     write(f"{out}/incline_rotated_45_mu0_augmented.prm", 45, 0.0, "contact",
           method_lines=al)
+    # Lagrange multipliers as Newton unknowns (saddle-point solve; the
+    # multipliers are cell-wise constant by default): the gap holds to the
+    # multiplier tolerance whatever the factor, which only enters the
+    # trial force of the contact decisions
+    lm = "    set method = Lagrange multiplier\n"
+    write(f"{out}/incline_rotated_30_stick_lagrange_factor1.prm", 30, 0.7,
+          "friction", method_lines=lm + "    set penalty factor = 1\n",
+          max_penetration=1e-5 * H)
+    write(f"{out}/incline_rotated_30_mu01_lagrange.prm", 30, 0.1,
+          "friction", method_lines=lm, max_penetration=1e-5 * H)
+    write(f"{out}/incline_rotated_45_mu0_lagrange_factor1000.prm", 45, 0.0,
+          "contact", method_lines=lm + "    set penalty factor = 1000\n",
+          max_penetration=1e-5 * H)
     # Nitsche's method (symmetric, default stabilisation factor 100)
     ni = "    set method = Nitsche\n"
     write(f"{out}/incline_rotated_45_mu0_nitsche.prm", 45, 0.0, "contact",

@@ -371,7 +371,9 @@ namespace Talus
                             return o.str();
                           }(desc.friction_coefficient))
                   << (desc.augmented ? ", augmented Lagrangian, penalty" :
-                      desc.nitsche   ? ", Nitsche (theta = " +
+                      desc.lagrange_multiplier ?
+                                       ", Lagrange multipliers, trial-force" :
+                      desc.nitsche ? ", Nitsche (theta = " +
                                        [](const double theta) {
                                          std::ostringstream o;
                                          o << theta;
@@ -710,6 +712,12 @@ namespace Talus
         if (boundaries.any_augmented())
           pcout << "  multiplier updates: " << total_multiplier_updates
                 << " in " << time_control.step << " steps, largest gap left "
+                << std::setprecision(2) << std::scientific << max_constraint_gap
+                << std::defaultfloat << std::setprecision(6) << " m (tolerance "
+                << boundaries.multiplier_tolerance() << " m)\n";
+        if (boundaries.any_lagrange_multiplier())
+          pcout << "  Lagrange multipliers: largest constraint residual at "
+                   "convergence "
                 << std::setprecision(2) << std::scientific << max_constraint_gap
                 << std::defaultfloat << std::setprecision(6) << " m (tolerance "
                 << boundaries.multiplier_tolerance() << " m)\n";

@@ -95,7 +95,9 @@ namespace Talus
         "of a step stop when no active boundary particle has a gap larger "
         "than this times the smallest background cell size (normal gap for "
         "contact and slip, the whole relative displacement of the step for "
-        "fixed and sticking particles) [-].");
+        "fixed and sticking particles); 'Lagrange multiplier' boundaries: "
+        "Newton converges only when the constraint residual "
+        "(lambda - f) / (beta w) of every multiplier is below it [-].");
       prm.declare_entry(
         "maximum multiplier updates",
         "20",
@@ -193,7 +195,8 @@ namespace Talus
           prm.declare_entry(
             "method",
             "penalty",
-            Selection("penalty|augmented Lagrangian|Nitsche"),
+            Selection(
+              "penalty|augmented Lagrangian|Lagrange multiplier|Nitsche"),
             "How the condition is imposed: 'penalty' (Chandra et al. 2021: "
             "a spring of stiffness beta per unit surface on the "
             "accumulated gap; the gap scales with 1/beta), or 'augmented "
@@ -202,7 +205,15 @@ namespace Talus
             "and updated by Uzawa iterations after each converged Newton "
             "solve until the gap is below 'multiplier tolerance': the "
             "constraint holds independently of beta, at the cost of more "
-            "Newton solves per step), or 'Nitsche' (the traction of the "
+            "Newton solves per step), or 'Lagrange multiplier' (the "
+            "multipliers, per particle or per cell with constraint = per "
+            "cell, are unknowns of the Newton iteration next to the "
+            "displacements: the saddle-point system of each iteration is "
+            "solved through its Schur complement on the multipliers with "
+            "GMRES, the constraint holds to 'multiplier tolerance' at "
+            "convergence whatever beta, which only sets the Alart-Curnier "
+            "trial force lambda - beta w g of the contact and friction "
+            "decisions), or 'Nitsche' (the traction of the "
             "material at the boundary particle, -S n from the mean nominal "
             "stress of the material points of its cell, plus the penalty "
             "beta (the stabilisation, beta = factor M / h) on the gap and "
@@ -231,15 +242,17 @@ namespace Talus
             "sigma h / (factor M) [-].");
           prm.declare_entry(
             "constraint",
-            "per particle",
-            Selection("per particle|per cell"),
+            "default",
+            Selection("default|per particle|per cell"),
             "Where the condition holds: 'per particle' (at every boundary "
             "particle) or 'per cell' (for the weighted mean gap of the "
             "particles of one boundary in one background cell: one "
             "constraint per cell, the penalty form of cell-wise constant "
             "Lagrange multipliers, Singer et al. 2024; avoids the "
             "over-constraint of bilinear fields by many points on a "
-            "boundary inclined to the grid) [-].");
+            "boundary inclined to the grid); 'default' is per cell for "
+            "method = Lagrange multiplier (which does not allow per "
+            "particle) and per particle for the other methods [-].");
           prm.declare_entry("penalty parameter",
                             "0",
                             Double(0.),
@@ -316,21 +329,37 @@ namespace Talus
                               prm.get("friction coefficient"),
                               "a positive number for condition = friction "
                               "(use 'contact' for frictionless contact)");
-          b.method            = prm.get("method");
-          b.augmented         = b.method == "augmented Lagrangian";
-          b.nitsche           = b.method == "Nitsche";
-          b.nitsche_theta     = prm.get_double("Nitsche symmetry");
-          b.penalty_factor    = prm.get_double("penalty factor");
-          b.penalty_parameter = prm.get_double("penalty parameter");
+          b.method              = prm.get("method");
+          b.augmented           = b.method == "augmented Lagrangian";
+          b.lagrange_multiplier = b.method == "Lagrange multiplier";
+          b.nitsche             = b.method == "Nitsche";
+          b.nitsche_theta       = prm.get_double("Nitsche symmetry");
+          b.penalty_factor      = prm.get_double("penalty factor");
+          b.penalty_parameter   = prm.get_double("penalty parameter");
           if (!(b.penalty_factor > 0.))
             InputFile::reject(sub,
                               "penalty factor",
                               prm.get("penalty factor"),
                               "a positive number");
           b.particles_per_cell = prm.get_integer("particles per cell");
-          b.cellwise           = prm.get("constraint") == "per cell";
-          b.flip_normals       = prm.get_bool("flip normals");
-          b.material_inside    = prm.get("material side") == "inside";
+          // Lagrange multipliers are cell-wise constant: one multiplier per
+          // boundary particle over-determines the bilinear field of a cut
+          // cell (two constraints on a cell with one massive node), and
+          // the saddle-point system becomes singular.
+          if (b.lagrange_multiplier && prm.get("constraint") == "per particle")
+            InputFile::reject(
+              sub,
+              "constraint",
+              prm.get("constraint"),
+              "method = Lagrange multiplier needs 'per cell' or 'default' "
+              "(cell-wise constant multipliers, Singer et al. 2024: one per "
+              "boundary particle makes the saddle-point system singular in "
+              "cut cells)");
+          b.cellwise =
+            prm.get("constraint") == "per cell" ||
+            (prm.get("constraint") == "default" && b.lagrange_multiplier);
+          b.flip_normals    = prm.get_bool("flip normals");
+          b.material_inside = prm.get("material side") == "inside";
 
           if (b.geometry == "line" || b.geometry == "plane")
             {

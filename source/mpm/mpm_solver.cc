@@ -30,6 +30,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -813,7 +814,8 @@ namespace Talus
           matrix                   = 0.;
           reversed_boundary_points = 0;
         }
-      residual = 0.;
+      residual            = 0.;
+      multiplier_residual = 0.;
       if (!grid.friction_boundaries.empty())
         raw_residual = 0.;
 
@@ -1055,8 +1057,28 @@ namespace Talus
                   else
                     bp.last_slip = slip;
                 }
+              if (with_matrix && bp.monolithic && bp.frozen < 0 &&
+                  bp.last_state >= 0 && bf.state != bp.last_state &&
+                  ++bp.switches >= 6)
+                {
+                  // cycling: hold the point closed (or sticking) if one of
+                  // the two states was, closed and sliding otherwise
+                  bp.frozen = (bf.state == 1 || bp.last_state == 1) ? 1 : 3;
+                  bf        = boundary_force(bp, du_b);
+                }
               if (with_matrix)
                 bp.last_state = bf.state;
+              if (bp.monolithic)
+                {
+                  // the multiplier's equation (lambda - f) / k = 0 and
+                  // D = df/dF for the saddle-point solve
+                  const double k = bp.beta * bp.weight;
+                  bp.lm_force    = bf.force;
+                  bp.lm_D        = -bf.dforce_du / k;
+                  multiplier_residual =
+                    std::max(multiplier_residual,
+                             (bp.lambda - bf.force).norm() / k);
+                }
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const double Ni = bp.N[node[i]];
@@ -1704,12 +1726,29 @@ namespace Talus
     MPMSolver<dim>::solve_linear(dealii::TrilinosWrappers::MPI::Vector &x)
     {
       dealii::TimerOutput::Scope scope(timer, "linear solver");
+      if (with_lagrange_multipliers)
+        return solve_saddle_point(x);
+      return solve_with_tangent(x, residual);
+    }
+
+
+    template <int dim>
+    unsigned int
+    MPMSolver<dim>::solve_with_tangent(
+      dealii::TrilinosWrappers::MPI::Vector       &x,
+      const dealii::TrilinosWrappers::MPI::Vector &b)
+    {
       x = 0.;
       if (linear_solver_type == "direct")
         {
-          dealii::SolverControl                  control(1, 0.);
-          dealii::TrilinosWrappers::SolverDirect solver(control);
-          solver.solve(matrix, x, residual);
+          if (factorisation)
+            factorisation->solve(x, b);
+          else
+            {
+              dealii::SolverControl                  control(1, 0.);
+              dealii::TrilinosWrappers::SolverDirect solver(control);
+              solver.solve(matrix, x, b);
+            }
           constraints.distribute(x);
           return 1;
         }
@@ -1780,17 +1819,17 @@ namespace Talus
           {
             dealii::SolverCG<dealii::TrilinosWrappers::MPI::Vector> solver(
               control);
-            solver.solve(matrix, x, residual, *amg);
+            solver.solve(matrix, x, b, *amg);
           }
         else
           {
             dealii::SolverGMRES<dealii::TrilinosWrappers::MPI::Vector> solver(
               control);
-            solver.solve(matrix, x, residual, *amg);
+            solver.solve(matrix, x, b, *amg);
           }
       };
       dealii::SolverControl control(max_linear_iterations,
-                                    linear_tolerance * residual.l2_norm());
+                                    linear_tolerance * b.l2_norm());
       try
         {
           krylov(control);
@@ -1804,6 +1843,192 @@ namespace Talus
         }
       constraints.distribute(x);
       return control.last_step();
+    }
+
+
+    template <int dim>
+    unsigned int
+    MPMSolver<dim>::solve_saddle_point(dealii::TrilinosWrappers::MPI::Vector &x)
+    {
+      using Vector                     = dealii::TrilinosWrappers::MPI::Vector;
+      const auto        &fe            = grid.fe;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      const MPI_Comm     comm          = grid.mpi_communicator;
+
+      // the multiplier points of this rank and their cells' dofs
+      std::vector<BoundaryPoint *>                                      lm;
+      std::vector<const std::vector<dealii::types::global_dof_index> *> dofs;
+      for (const auto &c : boundary_cells)
+        for (unsigned int b = 0; b < c.n_boundary; ++b)
+          if (boundary_points[c.first_boundary + b].monolithic)
+            {
+              lm.push_back(&boundary_points[c.first_boundary + b]);
+              dofs.push_back(&c.dofs);
+            }
+      const dealii::IndexSet owned =
+        dealii::Utilities::MPI::create_ascending_partitioning(
+          comm,
+          lm.size() * dim)[dealii::Utilities::MPI::this_mpi_process(comm)];
+      std::vector<unsigned int> comp(dofs_per_cell), node(dofs_per_cell);
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          comp[i] = fe.system_to_component_index(i).first;
+          node[i] = fe.system_to_component_index(i).second;
+        }
+
+      // N z at the multiplier points for an owned grid vector z
+      Vector     z_ghosted(grid.locally_owned_dofs,
+                       grid.locally_relevant_dofs,
+                       comm);
+      const auto interpolate = [&](const Vector &z) {
+        z_ghosted = z;
+        std::vector<dealii::Tensor<1, dim>> values(lm.size());
+        for (unsigned int p = 0; p < lm.size(); ++p)
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            values[p][comp[i]] += lm[p]->N[node[i]] * z_ghosted((*dofs[p])[i]);
+        return values;
+      };
+      // N^T D y on the grid for a multiplier vector y
+      dealii::Vector<double> r_local(dofs_per_cell);
+      const auto             spread = [&](const Vector &y, Vector &t) {
+        t = 0.;
+        for (unsigned int p = 0; p < lm.size(); ++p)
+          {
+            dealii::Tensor<1, dim> yp;
+            for (unsigned int d = 0; d < dim; ++d)
+              yp[d] = y.begin()[p * dim + d];
+            const dealii::Tensor<1, dim> f = lm[p]->lm_D * yp;
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              r_local[i] = lm[p]->N[node[i]] * f[comp[i]];
+            constraints.distribute_local_to_global(r_local, *dofs[p], t);
+          }
+        t.compress(dealii::VectorOperation::add);
+      };
+
+      unsigned int n_iterations = 0;
+      Vector       t(grid.locally_owned_dofs, comm), z(t);
+      // the Schur complement S y = E y + D N A^-1 N^T D y
+      struct Operator
+      {
+        std::function<void(Vector &, const Vector &)> apply;
+        void
+        vmult(Vector &dst, const Vector &src) const
+        {
+          apply(dst, src);
+        }
+      };
+      const Operator schur{[&](Vector &dst, const Vector &src) {
+        spread(src, t);
+        n_iterations += solve_with_tangent(z, t);
+        const auto Nz = interpolate(z);
+        for (unsigned int p = 0; p < lm.size(); ++p)
+          {
+            const double           k = lm[p]->beta * lm[p]->weight;
+            dealii::Tensor<1, dim> yp;
+            for (unsigned int d = 0; d < dim; ++d)
+              yp[d] = src.begin()[p * dim + d];
+            const dealii::Tensor<1, dim> Sy =
+              (yp - lm[p]->lm_D * yp) / k + lm[p]->lm_D * Nz[p];
+            for (unsigned int d = 0; d < dim; ++d)
+              dst.begin()[p * dim + d] = Sy[d];
+          }
+      }};
+      // Preconditioner: S with A replaced by its diagonal and only the
+      // point's own block, P = (I - D) / k + D C D with
+      // C = diag_c(sum_i N_i^2 / A_ii,c), inverted point by point.
+      std::vector<dealii::Tensor<2, dim>> P_inverse(lm.size());
+      {
+        Vector diagonal(grid.locally_owned_dofs, comm);
+        for (const auto i : grid.locally_owned_dofs)
+          diagonal(i) = matrix.diag_element(i);
+        diagonal.compress(dealii::VectorOperation::insert);
+        z_ghosted = diagonal;
+        for (unsigned int p = 0; p < lm.size(); ++p)
+          {
+            const double           k = lm[p]->beta * lm[p]->weight;
+            dealii::Tensor<2, dim> C;
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              {
+                const double a_ii = z_ghosted((*dofs[p])[i]);
+                if (a_ii > 0. && !constraints.is_constrained((*dofs[p])[i]))
+                  C[comp[i]][comp[i]] +=
+                    lm[p]->N[node[i]] * lm[p]->N[node[i]] / a_ii;
+              }
+            const dealii::Tensor<2, dim> &D = lm[p]->lm_D;
+            const dealii::Tensor<2, dim>  P =
+              (dealii::unit_symmetric_tensor<dim>() - D) / k + D * C * D;
+            const double det = dealii::determinant(P);
+            P_inverse[p]     = std::abs(det) > 1e-12 * std::pow(1. / k, dim) ?
+                                 dealii::invert(P) :
+                                 dealii::Tensor<2, dim>(
+                               k * dealii::unit_symmetric_tensor<dim>());
+          }
+      }
+      const Operator preconditioner{[&](Vector &dst, const Vector &src) {
+        for (unsigned int p = 0; p < lm.size(); ++p)
+          {
+            dealii::Tensor<1, dim> yp;
+            for (unsigned int d = 0; d < dim; ++d)
+              yp[d] = src.begin()[p * dim + d];
+            const dealii::Tensor<1, dim> q = P_inverse[p] * yp;
+            for (unsigned int d = 0; d < dim; ++d)
+              dst.begin()[p * dim + d] = q[d];
+          }
+      }};
+
+      dealii::SolverControl factorisation_control(1, 0.);
+      if (linear_solver_type == "direct")
+        {
+          factorisation =
+            std::make_unique<dealii::TrilinosWrappers::SolverDirect>(
+              factorisation_control);
+          dealii::TimerOutput::Scope s(timer, "factorisation");
+          factorisation->initialize(matrix);
+        }
+      try
+        {
+          // x0 = A^-1 r and the right-hand side s - D N x0
+          n_iterations += solve_with_tangent(x, residual);
+          const auto Nx0 = interpolate(x);
+          Vector     y(owned, comm), rhs(owned, comm);
+          for (unsigned int p = 0; p < lm.size(); ++p)
+            {
+              const double                 k = lm[p]->beta * lm[p]->weight;
+              const dealii::Tensor<1, dim> s =
+                (lm[p]->lm_force - lm[p]->lambda) / k - lm[p]->lm_D * Nx0[p];
+              for (unsigned int d = 0; d < dim; ++d)
+                rhs.begin()[p * dim + d] = s[d];
+            }
+          dealii::SolverControl       control(max_linear_iterations,
+                                        linear_tolerance * rhs.l2_norm());
+          dealii::SolverGMRES<Vector> gmres(
+            control, dealii::SolverGMRES<Vector>::AdditionalData(100));
+          gmres.solve(schur, y, rhs, preconditioner);
+          // x = x0 + A^-1 N^T D y
+          spread(y, t);
+          n_iterations += solve_with_tangent(z, t);
+          x += z;
+          if (std::getenv("TALUS_DEBUG_NEWTON"))
+            {
+              const double r_norm = rhs.l2_norm(), y_norm = y.l2_norm(),
+                           x_norm = x.l2_norm();
+              if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+                std::cerr << "    saddle point: " << y.size()
+                          << " multipliers, |s - D N x0| " << r_norm
+                          << ", GMRES " << control.last_step() << ", |dlambda| "
+                          << y_norm << ", |du| " << x_norm << std::endl;
+            }
+          for (unsigned int p = 0; p < lm.size(); ++p)
+            for (unsigned int d = 0; d < dim; ++d)
+              lm[p]->dlambda[d] = y.begin()[p * dim + d];
+        }
+      catch (...)
+        {
+          factorisation.reset();
+          throw;
+        }
+      factorisation.reset();
+      return n_iterations;
     }
 
 
@@ -1868,7 +2093,12 @@ namespace Talus
                                  NewtonResult &result)
     {
       for (auto &bp : boundary_points)
-        bp.last_state = -1;
+        {
+          bp.last_state = -1;
+          bp.switches   = 0;
+          if (bp.monolithic)
+            bp.frozen = -1;
+        }
       displacement          = du;
       double last_increment = 0.;
       // contact states are updated only from a solution of the current
@@ -1934,10 +2164,108 @@ namespace Talus
             boundary_particles == nullptr ||
             dealii::Utilities::MPI::sum(reversed_boundary_points,
                                         grid.mpi_communicator) == 0;
-          if (residual_ok && states_ok &&
+          // Lagrange multipliers: their equations (the gaps) converged too
+          bool multipliers_ok = true;
+          if (with_lagrange_multipliers)
+            {
+              result.constraint_gap =
+                dealii::Utilities::MPI::max(multiplier_residual,
+                                            grid.mpi_communicator);
+              multipliers_ok = result.constraint_gap <=
+                               boundary_particles->multiplier_tolerance();
+              if (std::getenv("TALUS_DEBUG_NEWTON"))
+                {
+                  unsigned int n_frozen = 0, n_states[3] = {0, 0, 0};
+                  for (const auto &bp : boundary_points)
+                    if (bp.monolithic)
+                      {
+                        n_frozen += bp.frozen >= 0 ? 1 : 0;
+                        if (bp.last_state >= 0)
+                          ++n_states[bp.last_state];
+                      }
+                  std::cerr << "    multiplier residual "
+                            << result.constraint_gap << " m, open/stick/slip "
+                            << n_states[0] << '/' << n_states[1] << '/'
+                            << n_states[2] << ", held " << n_frozen
+                            << ", reversed " << reversed_boundary_points
+                            << std::endl;
+                }
+            }
+          if (residual_ok && states_ok && multipliers_ok &&
               (it == 0 ? r <= absolute_residual_tolerance || reference == 0. :
                          increment_ok))
             {
+              // a point held in a state (cycling) must satisfy it at the
+              // solution, otherwise the step is not accepted
+              if (with_lagrange_multipliers)
+                {
+                  unsigned int violated = 0, moved = 0;
+                  for (const auto &c : boundary_cells)
+                    for (unsigned int b = 0; b < c.n_boundary; ++b)
+                      {
+                        BoundaryPoint &bp =
+                          boundary_points[c.first_boundary + b];
+                        if (!bp.monolithic || bp.frozen < 0)
+                          continue;
+                        BoundaryPoint free = bp;
+                        free.frozen        = -1;
+                        dealii::Tensor<1, dim> du_b;
+                        for (unsigned int i = 0; i < grid.fe.dofs_per_cell; ++i)
+                          {
+                            const auto ci =
+                              grid.fe.system_to_component_index(i);
+                            du_b[ci.first] +=
+                              bp.N[ci.second] * displacement(c.dofs[i]);
+                          }
+                        // admissible if the free evaluation gives the
+                        // state, or (at the kink between the two states)
+                        // a force within k times the gap tolerance
+                        const BoundaryForce held_force =
+                          boundary_force(bp, du_b);
+                        const BoundaryForce free_force =
+                          boundary_force(free, du_b);
+                        const int state = free_force.state;
+                        if (state == held_force.state ||
+                            (held_force.force - free_force.force).norm() <=
+                              bp.beta * bp.weight *
+                                boundary_particles->multiplier_tolerance())
+                          continue;
+                        // held once in the wrong state: hold it in the
+                        // state the solution asks for and iterate on
+                        if (bp.switches < 100)
+                          {
+                            bp.frozen   = state == 2 ? 3 : state;
+                            bp.switches = 100;
+                            ++moved;
+                          }
+                        else
+                          ++violated;
+                      }
+                  violated = dealii::Utilities::MPI::sum(violated,
+                                                         grid.mpi_communicator);
+                  moved =
+                    dealii::Utilities::MPI::sum(moved, grid.mpi_communicator);
+                  if (violated == 0 && moved > 0 && it < max_newton_iterations)
+                    {
+                      if (std::getenv("TALUS_DEBUG_NEWTON"))
+                        std::cerr << "    " << moved
+                                  << " held multiplier point(s) moved to "
+                                     "the state of the solution"
+                                  << std::endl;
+                      solved_since_update = false;
+                      continue;
+                    }
+                  if (violated > 0 || moved > 0)
+                    {
+                      result.failure =
+                        "Newton converged with " +
+                        std::to_string(violated + moved) +
+                        " Lagrange multiplier point(s) held in a contact "
+                        "state they do not satisfy (they cycled between two "
+                        "states)";
+                      return;
+                    }
+                }
               result.converged = true;
               solved           = true;
               return;
@@ -1958,7 +2286,10 @@ namespace Talus
             }
           result.linear_iterations += n_linear;
           du += increment;
-          displacement       = du;
+          displacement = du;
+          for (auto &bp : boundary_points)
+            if (bp.monolithic)
+              bp.lambda += bp.dlambda;
           double step_length = 1.;
           if (line_search)
             {
@@ -1976,6 +2307,9 @@ namespace Talus
                   step_length *= 0.5;
                   du.add(-step_length, increment);
                   displacement = du;
+                  for (auto &bp : boundary_points)
+                    if (bp.monolithic)
+                      bp.lambda -= step_length * bp.dlambda;
                 }
             }
           last_increment      = step_length * increment.l2_norm();
@@ -2478,6 +2812,7 @@ namespace Talus
     MPMSolver<dim>::cache_boundary_particles()
     {
       boundary_points.clear();
+      with_lagrange_multipliers = false;
       if (boundary_particles == nullptr)
         return;
       using BP                   = Boundaries::BoundaryParticleProperties<dim>;
@@ -2526,7 +2861,8 @@ namespace Talus
               bp.beta          = desc.beta;
               bp.mu            = desc.friction_coefficient;
               bp.condition     = desc.condition;
-              bp.augmented     = desc.augmented;
+              bp.augmented     = desc.augmented || desc.lagrange_multiplier;
+              bp.monolithic    = desc.lagrange_multiplier;
               bp.nitsche       = desc.nitsche;
               bp.theta         = desc.nitsche_theta;
               c.nitsche        = c.nitsche || desc.nitsche;
@@ -2731,6 +3067,12 @@ namespace Talus
             }
           boundary_cells.push_back(std::move(c));
         }
+      bool any_monolithic = false;
+      for (const auto &bp : boundary_points)
+        any_monolithic = any_monolithic || bp.monolithic;
+      with_lagrange_multipliers =
+        dealii::Utilities::MPI::logical_or(any_monolithic,
+                                           grid.mpi_communicator);
     }
 
 
@@ -2955,7 +3297,7 @@ namespace Talus
         for (unsigned int b = 0; b < c.n_boundary; ++b)
           {
             BoundaryPoint &bp = boundary_points[c.first_boundary + b];
-            if (!bp.augmented)
+            if (!bp.augmented || bp.monolithic)
               continue;
             dealii::Tensor<1, dim> du_b;
             for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -3027,7 +3369,8 @@ namespace Talus
             break;
           case Condition::friction:
             if (b.frozen < 0 ? Fn > 0. :
-                               (b.frozen == 1 || (b.frozen == 2 && Fn > 0.)))
+                               (b.frozen == 1 || b.frozen == 3 ||
+                                (b.frozen == 2 && Fn > 0.)))
               {
                 const double                 fn      = Fn; // > 0
                 const dealii::Tensor<1, dim> f_trial = F - Fn * n;

@@ -89,6 +89,16 @@ namespace Talus
        * penalty spring plus the material's traction at the boundary and,
        * with weight nitsche_theta, the symmetry term.
        */
+      /**
+       * Impose the condition with Lagrange multipliers that are unknowns of
+       * the Newton iteration (method = Lagrange multiplier): the
+       * Alart-Curnier mixed form, r_u = f_int - f_ext - N^T f(lambda, u),
+       * (lambda - f(lambda, u)) / k = 0 with the projected trial force
+       * f = P(lambda - k g); each linear system is the saddle-point system
+       * in (du, dlambda), solved through its Schur complement. The
+       * constraint holds to the Newton tolerance whatever k.
+       */
+      bool         lagrange_multiplier  = false;
       bool         nitsche              = false;
       double       nitsche_theta        = -1.;
       double       friction_coefficient = 0.;
@@ -214,6 +224,16 @@ namespace Talus
       {
         for (const auto &b : boundaries)
           if (b.augmented)
+            return true;
+        return false;
+      }
+
+      /** Whether any boundary uses the monolithic Lagrange multipliers. */
+      bool
+      any_lagrange_multiplier() const
+      {
+        for (const auto &b : boundaries)
+          if (b.lagrange_multiplier)
             return true;
         return false;
       }

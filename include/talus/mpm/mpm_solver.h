@@ -15,6 +15,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
@@ -228,6 +229,24 @@ namespace Talus
         dealii::Tensor<1, dim> lambda;
         bool                   augmented = false;
         /**
+         * Lagrange multiplier method: lambda is a Newton unknown. The
+         * assembly keeps the force f(lambda, u) of the iterate and its
+         * derivative D = df/dF with respect to the trial force
+         * F = lambda - k g (k = beta w), which the saddle-point solve
+         * needs; dlambda is the last Newton correction of lambda.
+         */
+        bool                   monolithic = false;
+        dealii::Tensor<1, dim> lm_force;
+        dealii::Tensor<2, dim> lm_D;
+        dealii::Tensor<1, dim> dlambda;
+        /**
+         * Changes of state in the current Newton solve; a Lagrange
+         * multiplier point that changed 4 times (semi-smooth Newton cycling
+         * between two active sets) is held in the more constrained of its
+         * states (frozen) for the rest of the solve.
+         */
+        unsigned int switches = 0;
+        /**
          * Nitsche's method: lambda is w times the traction of the material
          * at the particle, lambda = -w S(u) n, recomputed at each iterate;
          * theta is the symmetry parameter (1 symmetric, 0 incomplete, -1
@@ -261,8 +280,10 @@ namespace Talus
         std::vector<double> member_weights;
         /**
          * Contact state the point is held in (-1: free to change; 0 open,
-         * 1 closed/stick, 2 slip); used by the initial acceleration
-         * iteration after 3 changes of state.
+         * 1 closed/stick, 2 slip while pressed, 3 closed and sliding
+         * whatever the normal force); used by the initial acceleration
+         * iteration after 3 changes of state and by the Lagrange
+         * multiplier Newton iteration against cycling.
          */
         int frozen = -1;
         /** State at the last Newton iterate (-1: none yet). */
@@ -363,8 +384,45 @@ namespace Talus
                const bool                                   with_inertia,
                std::string                                 &failure);
 
+      /**
+       * Newton correction: solve the tangent system for @p increment (and,
+       * with Lagrange multiplier boundaries, the multiplier corrections
+       * dlambda of the boundary points); returns the linear iterations.
+       */
       unsigned int
       solve_linear(dealii::TrilinosWrappers::MPI::Vector &increment);
+
+      /**
+       * Saddle-point system of the Lagrange multiplier boundaries,
+       * [A C; D E] [x; y] = [r; s] with A the assembled tangent (which
+       * contains the k N^T D N of the trial force), C = -N^T D,
+       * D_b = D N, E = (I - D) / k and s = (f - lambda) / k, solved by
+       * GMRES on the Schur complement E - D A^-1 C with k as diagonal
+       * preconditioner; every application solves with A (factorised once
+       * with the direct solver, AMG-preconditioned Krylov otherwise).
+       */
+      unsigned int
+      solve_saddle_point(dealii::TrilinosWrappers::MPI::Vector &increment);
+
+      /**
+       * Solve A x = b with the assembled tangent @p matrix (direct or
+       * AMG-preconditioned Krylov, see 'Linear solver'); returns the
+       * linear iterations.
+       */
+      unsigned int
+      solve_with_tangent(dealii::TrilinosWrappers::MPI::Vector       &x,
+                         const dealii::TrilinosWrappers::MPI::Vector &b);
+
+      /** Whether a boundary point of this step uses Lagrange multipliers
+       * (all ranks). */
+      bool with_lagrange_multipliers = false;
+      /**
+       * Largest constraint residual |lambda - f| / k of the Lagrange
+       * multiplier points at the last assembly (this rank) [m].
+       */
+      double multiplier_residual = 0.;
+      /** Factorisation of the tangent for the saddle-point solve. */
+      std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> factorisation;
 
       dealii::Tensor<1, dim>
       external_acceleration(const dealii::Point<dim> &X, const double t) const;
