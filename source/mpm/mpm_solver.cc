@@ -1907,7 +1907,13 @@ namespace Talus
 
       unsigned int n_iterations = 0;
       Vector       t(grid.locally_owned_dofs, comm), z(t);
-      // the Schur complement S y = E y + D N A^-1 N^T D y
+      // the Schur complement S y = E y + D N A^-1 N^T D y, plus a
+      // compliance 1e-6 / k on the active directions: in 3D the cell-wise
+      // multipliers of neighbouring cut cells can constrain the same few
+      // massive nodes, which makes S singular (Newton did not converge on
+      // the rotated plane). Only the Jacobian changes, not the residual,
+      // so the converged constraint is still exact.
+      const double regularisation = 1e-6;
       struct Operator
       {
         std::function<void(Vector &, const Vector &)> apply;
@@ -1928,7 +1934,8 @@ namespace Talus
             for (unsigned int d = 0; d < dim; ++d)
               yp[d] = src.begin()[p * dim + d];
             const dealii::Tensor<1, dim> Sy =
-              (yp - lm[p]->lm_D * yp) / k + lm[p]->lm_D * Nz[p];
+              (yp - lm[p]->lm_D * yp) / k + lm[p]->lm_D * Nz[p] +
+              regularisation * (lm[p]->lm_D * yp) / k;
             for (unsigned int d = 0; d < dim; ++d)
               dst.begin()[p * dim + d] = Sy[d];
           }
@@ -1956,7 +1963,8 @@ namespace Talus
               }
             const dealii::Tensor<2, dim> &D = lm[p]->lm_D;
             const dealii::Tensor<2, dim>  P =
-              (dealii::unit_symmetric_tensor<dim>() - D) / k + D * C * D;
+              (dealii::unit_symmetric_tensor<dim>() - D) / k + D * C * D +
+              regularisation * D / k;
             const double det = dealii::determinant(P);
             P_inverse[p]     = std::abs(det) > 1e-12 * std::pow(1. / k, dim) ?
                                  dealii::invert(P) :
