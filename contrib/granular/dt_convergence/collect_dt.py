@@ -10,7 +10,7 @@ per step, runout L, (L - L0)/L0, H/L0 (maximum height), the largest
 V0 det F), kinetic energy at the end, talus' exit code and wall time (last
 line of talus.log). Runs of the same input (name up to '_dt') are listed
 from the largest step down, and for each the change against the run with
-the next larger step: dL* = relative change of (L - L0)/L0, dH = relative
+the next larger step: dL = relative change of L, dL* = of (L - L0)/L0, dH = relative
 change of H, dh = largest change of the surface h(x) over the stations at
 least two bin widths behind both fronts and not empty (h > 0) in either
 run, in % of H0.
@@ -65,14 +65,15 @@ def main():
         key = re.sub(r"_dt[0-9.e-]+$", "", os.path.basename(x["dir"]))
         groups.setdefault(key, []).append(x)
     print("| run | Δt max [s] | steps | mean Δt [s] | Newton/step | L [m] | (L−L0)/L0 | H/L0 | max abs(h−h_exp) [m] "
-          "| dL* | dH | dh [% H0] | V/V0 | KE end [J] | rc | wall [s] |")
-    print("|" + "---|" * 16)
+          "| dL | dL* | dH | dh [% H0] | V/V0 | KE end [J] | rc | wall [s] |")
+    print("|" + "---|" * 17)
     for key, xs in groups.items():
         xs.sort(key=lambda x: -(x["dtmax"] or 0))
         prev = None
         for x in xs:
-            dl = dh = dprof = ""
+            dl = dl0 = dh = dprof = ""
             if prev:
+                dl0 = "%+.1f %%" % (100 * (x["L"] / prev["L"] - 1))
                 dl = "%+.1f %%" % (100 * (x["Ln"] / prev["Ln"] - 1))
                 dh = "%+.1f %%" % (100 * (x["H"] / prev["H"] - 1))
                 # stations behind both fronts (not the toe bins)
@@ -81,9 +82,9 @@ def main():
                           if k <= front and x["prof"][k] > 0 and prev["prof"][k] > 0]
                 if common:
                     dprof = "%.1f" % (100 * max(abs(x["prof"][k] - prev["prof"][k]) for k in common) / x["H0"])
-            print("| %s | %g | %d | %.2g | %.1f | %.4f | %.3f | %.3f | %s | %s | %s | %s | %.3f | %.3f | %s | %s |" % (
+            print("| %s | %g | %d | %.2g | %.1f | %.4f | %.3f | %.3f | %s | %s | %s | %s | %s | %.3f | %.3f | %s | %s |" % (
                 os.path.basename(x["dir"]), x["dtmax"] or 0, x["steps"], x["dtmean"], x["newton"], x["L"],
-                x["Ln"], x["Hn"], "%.4f" % x["hmax"] if x["hmax"] is not None else "", dl, dh, dprof,
+                x["Ln"], x["Hn"], "%.4f" % x["hmax"] if x["hmax"] is not None else "", dl0, dl, dh, dprof,
                 x["V"], x["KE"], x["rc"], x["wall"]))
             prev = x
 
