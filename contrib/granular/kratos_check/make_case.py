@@ -16,6 +16,20 @@ import math
 import os
 
 
+def element_lines(lines, nx, ny, node, prop, elem):
+    """Append the elements of an nx x ny structured block (quads, or two
+    triangles per quad) with property id prop to lines; return their ids."""
+    ids = []
+    for j in range(ny):
+        for i in range(nx):
+            n1, n2, n3, n4 = node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)
+            cells = [(n1, n2, n3, n4)] if elem == "quad" else [(n1, n2, n3), (n1, n3, n4)]
+            for conn in cells:
+                ids.append(len(ids) + 1)
+                lines.append(f"{ids[-1]} {prop} " + " ".join(str(n) for n in conn))
+    return ids
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("outdir")
@@ -68,27 +82,8 @@ def main():
             lines.append(f"{nid(i, j)} {i * h:.10f} {j * h:.10f} 0.0")
     lines.append("End Nodes")
     lines.append("")
-    elems = []
-    eid = 0
-    if a.elem == "quad":
-        lines.append("Begin Elements Element2D4N")
-        for j in range(ny):
-            for i in range(nx):
-                eid += 1
-                conn = (nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1))
-                lines.append(f"{eid} 0 {conn[0]} {conn[1]} {conn[2]} {conn[3]}")
-                elems.append(eid)
-    else:
-        lines.append("Begin Elements Element2D3N")
-        for j in range(ny):
-            for i in range(nx):
-                n1, n2, n3, n4 = nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1)
-                eid += 1
-                lines.append(f"{eid} 0 {n1} {n2} {n3}")
-                elems.append(eid)
-                eid += 1
-                lines.append(f"{eid} 0 {n1} {n3} {n4}")
-                elems.append(eid)
+    lines.append("Begin Elements Element2D4N" if a.elem == "quad" else "Begin Elements Element2D3N")
+    elems = element_lines(lines, nx, ny, nid, 0, a.elem)
     lines.append("End Elements")
     lines.append("")
     floor_nodes = [nid(i, 0) for i in range(nx + 1)]
@@ -132,26 +127,10 @@ def main():
 
     def bid(i, j):
         return j * (bx + 1) + i + 1
-    belems = []
-    eid = 0
-    if a.elem == "quad":
-        lines.append("Begin Elements MPMUpdatedLagrangianUP2D4N" if a.up else "Begin Elements MPMUpdatedLagrangian2D4N")
-        for j in range(by):
-            for i in range(bx):
-                eid += 1
-                lines.append(f"{eid} 1 {bid(i, j)} {bid(i + 1, j)} {bid(i + 1, j + 1)} {bid(i, j + 1)}")
-                belems.append(eid)
-    else:
-        lines.append("Begin Elements MPMUpdatedLagrangianUP2D3N" if a.up else "Begin Elements MPMUpdatedLagrangian2D3N")
-        for j in range(by):
-            for i in range(bx):
-                n1, n2, n3, n4 = bid(i, j), bid(i + 1, j), bid(i + 1, j + 1), bid(i, j + 1)
-                eid += 1
-                lines.append(f"{eid} 1 {n1} {n2} {n3}")
-                belems.append(eid)
-                eid += 1
-                lines.append(f"{eid} 1 {n1} {n3} {n4}")
-                belems.append(eid)
+    kind = ("MPMUpdatedLagrangianUP2D" if a.up else "MPMUpdatedLagrangian2D") + \
+        ("4N" if a.elem == "quad" else "3N")
+    lines.append(f"Begin Elements {kind}")
+    belems = element_lines(lines, bx, by, bid, 1, a.elem)
     lines.append("End Elements")
     lines += smp("Parts_Material_domain", list(range(1, (bx + 1) * (by + 1) + 1)), belems)
     with open(os.path.join(a.outdir, "case_Body.mdpa"), "w") as f:
