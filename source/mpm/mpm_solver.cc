@@ -774,6 +774,7 @@ namespace Talus
       cache_boundary_particles();
       if (ghost_penalty_factor > 0.)
         setup_ghost_penalty();
+      apply_impact_friction();
       initialize_friction_states();
       make_constraints();
       amg_current = false;
@@ -1571,6 +1572,42 @@ namespace Talus
               fn.slip_direction[fn.tangential_components[k]] =
                 ghosted(fn.tangential_dofs[k]);
           }
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::apply_impact_friction()
+    {
+      if (grid.friction_boundaries.empty() || quasi_static)
+        return;
+      dealii::TrilinosWrappers::MPI::Vector owned(grid.locally_owned_dofs,
+                                                  grid.mpi_communicator);
+      owned                       = velocity_n;
+      Epetra_FEVector &e          = owned.trilinos_vector();
+      double           dissipated = 0.;
+      for (const auto &fn : friction_nodes)
+        {
+          const double m = nodal_mass(fn.normal_dof);
+          if (!fn.owned || m <= 0. || fn.mu == 0. || fn.tangential_dofs.empty())
+            continue;
+          const double v_n = fn.inward * velocity_n(fn.normal_dof);
+          if (v_n >= 0.)
+            continue;
+          double v_t2 = 0.;
+          for (const auto t : fn.tangential_dofs)
+            v_t2 += velocity_n(t) * velocity_n(t);
+          if (v_t2 <= 0.)
+            continue;
+          const double v_t   = std::sqrt(v_t2);
+          const double scale = std::max(0., 1. - fn.mu * (-v_n) / v_t);
+          for (const auto t : fn.tangential_dofs)
+            e[0][e.Map().LID(static_cast<int>(t))] = scale * velocity_n(t);
+          dissipated += 0.5 * m * v_t2 * (1. - scale * scale);
+        }
+      velocity_n = owned;
+      friction_dissipation +=
+        dealii::Utilities::MPI::sum(dissipated, grid.mpi_communicator);
     }
 
 

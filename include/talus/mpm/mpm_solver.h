@@ -457,6 +457,22 @@ namespace Talus
       void
       setup_friction_nodes();
 
+      /**
+       * Friction of the impact at the grid reset: a friction node whose
+       * projected velocity v approaches its boundary (v_n = n.v < 0, n the
+       * inward normal) loses the normal velocity when the constraint sets
+       * it to zero (a perfectly inelastic impact, normal impulse
+       * m |v_n|). Coulomb's law bounds the tangential impulse by mu times
+       * that: v_t <- v_t max(0, 1 - mu |v_n| / |v_t|) (Bardenhagen et al.
+       * 2000, J. Comput. Phys. 160, eq. 14). Without it the impulse the
+       * reset removes carries no friction, and the floor's friction
+       * depends on how often the grid is reset (the time step). The
+       * kinetic energy lost tangentially is added to the friction
+       * dissipation.
+       */
+      void
+      apply_impact_friction();
+
       /** Contact states at the beginning of a step. */
       void
       initialize_friction_states();
