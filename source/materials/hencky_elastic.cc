@@ -159,62 +159,76 @@ namespace Talus
           for (unsigned int c = 0; c < 3; ++c)
             dtau_db[a][c] = dtau_deps[a][c] / (2. * b[c]);
 
-        // D = dtau/db_e (minor symmetric in its last two indices)
-        dealii::Tensor<4, 3> D;
+        // The spatial modulus D = dtau/db_e (minor symmetric in its last
+        // two indices) is
+        //   D = sum_ac dtau_a/db_c (n_a x n_a) x (n_c x n_c)
+        //     + sum_(a != c) theta_ac (n_a x n_c) x sym(n_a x n_c),
+        // theta_ac = (tau_a - tau_c)/(b_a - b_c), or its limit
+        // dtau_a/db_a - dtau_a/db_c for coinciding eigenvalues (symmetrized
+        // in a and c, which share the limit). With db_e = dF H^T + H dF^T,
+        // H = b_e F^{-T}, and d(F^{-T}) = -F^{-T} dF^T F^{-T}:
+        //   A_iJkL = 2 D_ipkm F^-1_Jp H_mL - P_iL F^-1_Jk.
+        // D is never formed: with g_a = F^{-1} n_a and h_a = H^T n_a the
+        // first part is a sum of rank-one products of 3x3 matrices,
+        //   2 sum_a (n_a x g_a) x Z_a,  Z_a = sum_c dtau_a/db_c n_c x h_c,
+        //   + sum_(a < c) theta_ac (n_a x g_c + n_c x g_a)
+        //                          x (n_a x h_c + n_c x h_a),
+        // 6 products of 81 entries instead of the 4th-order algebra.
+        const dealii::Tensor<2, 3> H = b_e * dealii::transpose(F_inv);
+        double                     g[3][3], h[3][3];
         for (unsigned int a = 0; a < 3; ++a)
-          {
-            const dealii::Tensor<2, 3> E_aa = dealii::outer_product(n[a], n[a]);
-            for (unsigned int c = 0; c < 3; ++c)
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              double gi = 0., hi = 0.;
+              for (unsigned int p = 0; p < 3; ++p)
+                {
+                  gi += F_inv[i][p] * n[a][p];
+                  hi += H[p][i] * n[a][p];
+                }
+              g[a][i] = gi;
+              h[a][i] = hi;
+            }
+
+        double left[6][3][3], right[6][3][3];
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
               {
-                const dealii::Tensor<2, 3> E_cc =
-                  dealii::outer_product(n[c], n[c]);
-                D += dtau_db[a][c] * dealii::outer_product(E_aa, E_cc);
-                if (c == a)
-                  continue;
-
-                // theta_ac = (tau_a - tau_c)/(b_a - b_c), or its limit
-                // dtau_a/db_a - dtau_a/db_c for coinciding eigenvalues
-                // (symmetrized in a and c, which share the limit).
-                double theta;
-                if (std::abs(b[a] - b[c]) > 1e-8 * std::max(b[a], b[c]))
-                  theta = (tau[a] - tau[c]) / (b[a] - b[c]);
-                else
-                  theta = 0.5 * ((dtau_db[a][a] - dtau_db[a][c]) +
-                                 (dtau_db[c][c] - dtau_db[c][a]));
-
-                const dealii::Tensor<2, 3> E_ac =
-                  dealii::outer_product(n[a], n[c]);
-                const dealii::Tensor<2, 3> S_ac =
-                  0.5 * (E_ac + dealii::transpose(E_ac));
-                D += theta * dealii::outer_product(E_ac, S_ac);
+                left[a][i][j] = 2. * n[a][i] * g[a][j];
+                double z      = 0.;
+                for (unsigned int c = 0; c < 3; ++c)
+                  z += dtau_db[a][c] * n[c][i] * h[c][j];
+                right[a][i][j] = z;
               }
+        static constexpr unsigned int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+        for (unsigned int q = 0; q < 3; ++q)
+          {
+            const unsigned int a = pairs[q][0], c = pairs[q][1];
+            double             theta;
+            if (std::abs(b[a] - b[c]) > 1e-8 * std::max(b[a], b[c]))
+              theta = (tau[a] - tau[c]) / (b[a] - b[c]);
+            else
+              theta = 0.5 * ((dtau_db[a][a] - dtau_db[a][c]) +
+                             (dtau_db[c][c] - dtau_db[c][a]));
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                {
+                  left[3 + q][i][j] =
+                    theta * (n[a][i] * g[c][j] + n[c][i] * g[a][j]);
+                  right[3 + q][i][j] = n[a][i] * h[c][j] + n[c][i] * h[a][j];
+                }
           }
 
-        // db_e = dF H^T + H dF^T with H = b_e F^{-T}, and
-        // d(F^{-T}) = -F^{-T} dF^T F^{-T}, hence
-        // A_iJkL = 2 D_ipkn H_nL F^-1_Jp - P_iL F^-1_Jk.
-        const dealii::Tensor<2, 3> H = b_e * dealii::transpose(F_inv);
         for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int k = 0; k < 3; ++k)
-            {
-              double DH[3][3]; // DH[p][L] = D_ipkn H_nL
-              for (unsigned int p = 0; p < 3; ++p)
-                for (unsigned int L = 0; L < 3; ++L)
-                  {
-                    double sum = 0.;
-                    for (unsigned int m = 0; m < 3; ++m)
-                      sum += D[i][p][k][m] * H[m][L];
-                    DH[p][L] = sum;
-                  }
-              for (unsigned int J = 0; J < 3; ++J)
-                for (unsigned int L = 0; L < 3; ++L)
-                  {
-                    double sum = 0.;
-                    for (unsigned int p = 0; p < 3; ++p)
-                      sum += DH[p][L] * F_inv[J][p];
-                    (*A)[i][J][k][L] = 2. * sum - P[i][L] * F_inv[J][k];
-                  }
-            }
+          for (unsigned int J = 0; J < 3; ++J)
+            for (unsigned int k = 0; k < 3; ++k)
+              for (unsigned int L = 0; L < 3; ++L)
+                {
+                  double sum = -P[i][L] * F_inv[J][k];
+                  for (unsigned int t = 0; t < 6; ++t)
+                    sum += left[t][i][J] * right[t][k][L];
+                  (*A)[i][J][k][L] = sum;
+                }
       }
     } // namespace LogarithmicStrain
 
