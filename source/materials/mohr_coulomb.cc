@@ -1,9 +1,7 @@
 #include <talus/materials/mohr_coulomb.h>
 
-#include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/vector.h>
-
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -67,7 +65,7 @@ namespace Talus
 
 
       std::string
-      plane_names(const std::vector<MohrCoulomb::Plane> &planes)
+      plane_names(const dealii::ArrayView<const MohrCoulomb::Plane> &planes)
       {
         static const char *names[] = {"main plane",
                                       "right edge",
@@ -126,19 +124,67 @@ namespace Talus
 
 
 
+    namespace
+    {
+      /**
+       * The local Jacobian of return_to_planes(), a bordered matrix
+       * [[A, b], [c^T, d]]: A (m x m, m <= 3 active planes) couples the
+       * plastic multipliers, b, c and d the accumulated plastic strain. It
+       * is solved by block elimination with deal.II's 3x3 inverse of A
+       * (padded with the identity) and the scalar Schur complement
+       * S = d - c . A^{-1} b, so the return mapping needs no heap
+       * memory (it runs at every material point in every assembly).
+       */
+      struct BorderedJacobian
+      {
+        dealii::Tensor<2, 3> A;
+        dealii::Tensor<1, 3> b, c;
+        double               d = 1.;
+
+        /** Factorise: A^{-1}, A^{-1} b and S. */
+        void
+        factorise(const unsigned int m)
+        {
+          for (unsigned int i = m; i < 3; ++i)
+            A[i][i] = 1.;
+          A_inv  = dealii::invert(A);
+          Ainv_b = A_inv * b;
+          schur  = d - c * Ainv_b;
+        }
+
+        /** Solve [[A, b], [c^T, d]] (x, x_p) = (r, r_p). */
+        void
+        solve(const dealii::Tensor<1, 3> &r,
+              const double                r_p,
+              dealii::Tensor<1, 3>       &x,
+              double                     &x_p) const
+        {
+          const dealii::Tensor<1, 3> y = A_inv * r;
+          x_p                          = (r_p - c * y) / schur;
+          x                            = y - Ainv_b * x_p;
+        }
+
+        dealii::Tensor<2, 3> A_inv;
+        dealii::Tensor<1, 3> Ainv_b;
+        double               schur = 1.;
+      };
+    } // namespace
+
+
+
     bool
-    MohrCoulomb::return_to_planes(const std::vector<Plane>   &planes,
+    MohrCoulomb::return_to_planes(const dealii::ArrayView<const Plane> &planes,
                                   const dealii::Tensor<1, 3> &eps_trial,
                                   const double     plastic_strain_old,
                                   const double     stress_scale,
                                   PrincipalReturn &result) const
     {
-      const unsigned int     m = planes.size();
-      const double           k = std::sqrt(2. / 3.);
-      std::vector<double>    dgamma(m, 0.);
-      double                 eps_p = plastic_strain_old;
-      std::vector<PlaneData> p(m);
-      const auto             update_planes = [&]() {
+      const unsigned int       m = planes.size();
+      const double             k = std::sqrt(2. / 3.);
+      dealii::Tensor<1, 3>     dgamma; // entries m..2 stay zero
+      double                   eps_p = plastic_strain_old;
+      std::array<PlaneData, 3> p;
+      const auto               update_planes = [&]() {
         for (unsigned int i = 0; i < m; ++i)
           p[i] = plane_data(planes[i], strength_parameters, eps_p);
       };
@@ -147,32 +193,31 @@ namespace Talus
       // (exact without softening), then eps_p from it.
       update_planes();
       {
-        dealii::FullMatrix<double> J0(m, m);
-        dealii::Vector<double>     rhs(m), x(m);
+        dealii::Tensor<2, 3>       J0;
+        dealii::Tensor<1, 3>       rhs;
         const dealii::Tensor<1, 3> tau_trial = D * eps_trial;
         for (unsigned int i = 0; i < m; ++i)
           {
-            rhs(i) = p[i].a * tau_trial - p[i].r;
+            rhs[i] = p[i].a * tau_trial - p[i].r;
             for (unsigned int j = 0; j < m; ++j)
-              J0(i, j) = p[i].a * (D * p[j].n);
+              J0[i][j] = p[i].a * (D * p[j].n);
           }
-        J0.gauss_jordan();
-        J0.vmult(x, rhs);
+        for (unsigned int i = m; i < 3; ++i)
+          J0[i][i] = 1.;
+        dgamma = dealii::invert(J0) * rhs;
         dealii::Tensor<1, 3> flow;
         for (unsigned int i = 0; i < m; ++i)
-          {
-            dgamma[i] = x(i);
-            flow += dgamma[i] * p[i].n;
-          }
+          flow += dgamma[i] * p[i].n;
         eps_p = plastic_strain_old + k * flow.norm();
       }
 
-      dealii::FullMatrix<double> J(m + 1, m + 1);
-      dealii::Vector<double>     R(m + 1);
-      dealii::Tensor<1, 3>       tau, flow, dflow;
-      double                     residual = 0.;
-      // residual R and Jacobian J of the local equations at the current
-      // (dgamma, eps_p); returns the scaled residual norm
+      BorderedJacobian     J;
+      dealii::Tensor<1, 3> R;
+      double               R_p = 0.;
+      dealii::Tensor<1, 3> tau, flow, dflow;
+      double               residual = 0.;
+      // residual (R, R_p) and Jacobian J of the local equations at the
+      // current (dgamma, eps_p); returns the scaled residual norm
       const auto evaluate = [&]() {
         update_planes();
         flow  = dealii::Tensor<1, 3>();
@@ -187,25 +232,26 @@ namespace Talus
         const double               norm    = flow.norm();
         const dealii::Tensor<1, 3> m_hat =
           (norm > 0. ? flow / norm : dealii::Tensor<1, 3>());
+        J        = BorderedJacobian();
         double r = 0.;
         for (unsigned int i = 0; i < m; ++i)
           {
-            R(i) = p[i].a * tau - p[i].r;
-            r    = std::max(r, std::abs(R(i)) / stress_scale);
+            R[i] = p[i].a * tau - p[i].r;
+            r    = std::max(r, std::abs(R[i]) / stress_scale);
             for (unsigned int j = 0; j < m; ++j)
-              J(i, j) = -(p[i].a * (D * p[j].n));
-            J(i, m) = p[i].da * tau + p[i].a * dtau_dp - p[i].dr;
+              J.A[i][j] = -(p[i].a * (D * p[j].n));
+            J.b[i] = p[i].da * tau + p[i].a * dtau_dp - p[i].dr;
           }
-        R(m) = eps_p - plastic_strain_old - k * norm;
+        R_p = eps_p - plastic_strain_old - k * norm;
         for (unsigned int j = 0; j < m; ++j)
-          J(m, j) = -k * (m_hat * p[j].n);
-        J(m, m) = 1. - k * (m_hat * dflow);
-        if (!std::isfinite(r) || !std::isfinite(R(m)))
+          J.c[j] = -k * (m_hat * p[j].n);
+        J.d = 1. - k * (m_hat * dflow);
+        if (!std::isfinite(r) || !std::isfinite(R_p))
           fail(plane_names(planes),
                eps_trial,
                plastic_strain_old,
                "non-finite values in the local Newton iteration");
-        return std::max(r, std::abs(R(m)) / (1. + eps_p));
+        return std::max(r, std::abs(R_p) / (1. + eps_p));
       };
 
       bool converged = false;
@@ -217,12 +263,13 @@ namespace Talus
               converged = true;
               break;
             }
-          J.gauss_jordan();
-          dealii::Vector<double> dx(m + 1);
-          J.vmult(dx, R);
+          J.factorise(m);
+          dealii::Tensor<1, 3> dx;
+          double               dx_p;
+          J.solve(R, R_p, dx, dx_p);
           for (unsigned int i = 0; i < m; ++i)
-            dgamma[i] -= dx(i);
-          eps_p -= dx(m);
+            dgamma[i] -= dx[i];
+          eps_p -= dx_p;
         }
       if (!converged)
         {
@@ -250,20 +297,21 @@ namespace Talus
       if (tau[0] - strength_parameters.tension_cutoff > tol_stress)
         return false;
 
-      // Consistent tangent: dx/deps = -J^{-1} dR/deps, with J evaluated at
-      // the converged state (J was not inverted after the last evaluation).
-      J.gauss_jordan();
-      std::vector<dealii::Tensor<1, 3>> dgamma_deps(m);
-      dealii::Tensor<1, 3>              dp_deps;
-      for (unsigned int row = 0; row <= m; ++row)
+      // Consistent tangent: d(dgamma, eps_p)/deps = -J^{-1} dR/deps with
+      // dR_i/deps = D a_i (dR_p/deps = 0), J at the converged state.
+      J.factorise(m);
+      std::array<dealii::Tensor<1, 3>, 3> dgamma_deps;
+      dealii::Tensor<1, 3>                dp_deps;
+      for (unsigned int e = 0; e < 3; ++e)
         {
-          dealii::Tensor<1, 3> dx;
+          dealii::Tensor<1, 3> rhs, x;
+          double               x_p;
           for (unsigned int i = 0; i < m; ++i)
-            dx -= J(row, i) * (D * p[i].a); // dR_i/deps = D a_i
-          if (row < m)
-            dgamma_deps[row] = dx;
-          else
-            dp_deps = dx;
+            rhs[i] = -(D * p[i].a)[e];
+          J.solve(rhs, 0., x, x_p);
+          for (unsigned int i = 0; i < m; ++i)
+            dgamma_deps[i][e] = x[i];
+          dp_deps[e] = x_p;
         }
       dealii::Tensor<2, 3> dflow_deps = dealii::outer_product(dflow, dp_deps);
       for (unsigned int i = 0; i < m; ++i)
@@ -297,47 +345,54 @@ namespace Talus
 
       struct Candidate
       {
-        std::vector<Plane> planes;
-        unsigned int       type;
+        std::array<Plane, 3> planes;
+        unsigned int         n_planes;
+        unsigned int         type;
       };
-      std::vector<Candidate> candidates;
+      std::array<Candidate, 9> candidates;
+      unsigned int             n_candidates = 0;
+      const auto add = [&](const std::initializer_list<Plane> planes,
+                           const unsigned int                 type) {
+        Candidate &c = candidates[n_candidates++];
+        c.n_planes   = 0;
+        for (const Plane plane : planes)
+          c.planes[c.n_planes++] = plane;
+        c.type = type;
+      };
       if (mc_violated)
         {
-          candidates.push_back({{Plane::main}, 1});
+          add({Plane::main}, 1);
           const double spsi        = std::sin(s.psi(plastic_strain_old).value);
           const bool   right_first = (1. - spsi) * tau_trial[0] -
                                      2. * tau_trial[1] +
                                      (1. + spsi) * tau_trial[2] >
                                    0.;
-          candidates.push_back(
-            {{Plane::main, right_first ? Plane::right_edge : Plane::left_edge},
-             2});
-          candidates.push_back(
-            {{Plane::main, right_first ? Plane::left_edge : Plane::right_edge},
-             2});
+          add({Plane::main, right_first ? Plane::right_edge : Plane::left_edge},
+              2);
+          add({Plane::main, right_first ? Plane::left_edge : Plane::right_edge},
+              2);
         }
       if (cutoff_violated)
         {
-          candidates.push_back({{Plane::cutoff_1}, 4});
-          candidates.push_back({{Plane::cutoff_1, Plane::cutoff_2}, 4});
-          candidates.push_back({{Plane::main, Plane::cutoff_1}, 4});
-          candidates.push_back(
-            {{Plane::main, Plane::right_edge, Plane::cutoff_1}, 4});
-          candidates.push_back(
-            {{Plane::main, Plane::left_edge, Plane::cutoff_1}, 4});
-          candidates.push_back(
-            {{Plane::cutoff_1, Plane::cutoff_2, Plane::cutoff_3}, 4});
+          add({Plane::cutoff_1}, 4);
+          add({Plane::cutoff_1, Plane::cutoff_2}, 4);
+          add({Plane::main, Plane::cutoff_1}, 4);
+          add({Plane::main, Plane::right_edge, Plane::cutoff_1}, 4);
+          add({Plane::main, Plane::left_edge, Plane::cutoff_1}, 4);
+          add({Plane::cutoff_1, Plane::cutoff_2, Plane::cutoff_3}, 4);
         }
 
       PrincipalReturn result;
-      for (const Candidate &candidate : candidates)
-        if (return_to_planes(candidate.planes,
-                             eps_trial,
-                             plastic_strain_old,
-                             stress_scale,
-                             result))
+      for (unsigned int c = 0; c < n_candidates; ++c)
+        if (return_to_planes(
+              dealii::ArrayView<const Plane>(candidates[c].planes.data(),
+                                             candidates[c].n_planes),
+              eps_trial,
+              plastic_strain_old,
+              stress_scale,
+              result))
           {
-            result.return_type = candidate.type;
+            result.return_type = candidates[c].type;
             return result;
           }
 

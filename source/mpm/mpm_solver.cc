@@ -774,6 +774,7 @@ namespace Talus
       cache_boundary_particles();
       if (ghost_penalty_factor > 0.)
         setup_ghost_penalty();
+      make_step_sparsity_pattern();
       apply_impact_friction();
       initialize_friction_states();
       make_constraints();
@@ -1572,6 +1573,39 @@ namespace Talus
               fn.slip_direction[fn.tangential_components[k]] =
                 ghosted(fn.tangential_dofs[k]);
           }
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::make_step_sparsity_pattern()
+    {
+      dealii::DynamicSparsityPattern dsp(grid.locally_relevant_dofs);
+      for (const auto i : grid.locally_owned_dofs)
+        dsp.add(i, i);
+      const auto add_block =
+        [&dsp](const std::vector<dealii::types::global_dof_index> &dofs) {
+          std::vector<dealii::types::global_dof_index> sorted(dofs);
+          std::sort(sorted.begin(), sorted.end());
+          for (const auto i : sorted)
+            dsp.add_entries(i, sorted.begin(), sorted.end(), true);
+        };
+      for (const auto &c : cells)
+        add_block(c.dofs);
+      for (const auto &c : boundary_cells)
+        add_block(c.dofs);
+      for (const auto &g : ghost_faces)
+        add_block(g.dofs);
+      dealii::SparsityTools::distribute_sparsity_pattern(
+        dsp,
+        grid.locally_owned_dofs,
+        grid.mpi_communicator,
+        grid.locally_relevant_dofs);
+      factorisation.reset();
+      matrix.reinit(grid.locally_owned_dofs,
+                    grid.locally_owned_dofs,
+                    dsp,
+                    grid.mpi_communicator);
     }
 
 

@@ -3,6 +3,7 @@
 
 #include <talus/materials/granular_plasticity.h>
 
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/tensor.h>
 
 #include <string>
@@ -110,11 +111,11 @@ namespace Talus
        * false if the result is not admissible.
        */
       bool
-      return_to_planes(const std::vector<Plane>   &planes,
-                       const dealii::Tensor<1, 3> &eps_trial,
-                       const double                plastic_strain_old,
-                       const double                stress_scale,
-                       PrincipalReturn            &result) const;
+      return_to_planes(const dealii::ArrayView<const Plane> &planes,
+                       const dealii::Tensor<1, 3>           &eps_trial,
+                       const double                          plastic_strain_old,
+                       const double                          stress_scale,
+                       PrincipalReturn                      &result) const;
     };
   } // namespace Materials
 } // namespace Talus

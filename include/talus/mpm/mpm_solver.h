@@ -566,6 +566,17 @@ namespace Talus
       void
       setup_ghost_penalty();
 
+      /**
+       * Sparsity pattern of the step's tangent: the couplings of the cells
+       * with material points, of the cells with boundary particles and of
+       * the ghost-penalty faces, and the diagonal of every other degree of
+       * freedom (the empty grid's, constrained to zero). The pattern of the
+       * whole grid would make the direct solver factorise the empty part
+       * of the grid as well (its zeros are stored entries).
+       */
+      void
+      make_step_sparsity_pattern();
+
       /** Anti-locking treatment ("none" or "F-bar"). */
       bool use_fbar = false;
 
