@@ -1173,11 +1173,16 @@ namespace Talus
             max_diagonal = 1.;
           // 3D slip: derivative of the direction s = v_t/|v_t| of the
           // friction force -mu p s with respect to the tangential
-          // increments, mu p (I - s s)/|v_t| dv/du (p lagged).
+          // increments, mu p (I - s s)/|v_t| dv/du (p lagged). It is
+          // singular at v_t -> 0: in the Jacobian only, |v_t| is bounded
+          // below by 1e-10 h/dt (a slip speed of 1e-18 m/s gave diagonals
+          // of 1e23 and a singular factorisation in the 3D block run).
           if (dim == 3 && !grid.friction_boundaries.empty())
             {
               const double dv_du =
                 quasi_static ? 1. / dt : newmark.gamma / (newmark.beta * dt);
+              const double speed_floor =
+                1e-10 * grid.minimal_cell_diameter / dt;
               for (const auto &fn : friction_nodes)
                 if (fn.owned && fn.state == ContactState::slip && fn.mu > 0. &&
                     fn.tangential_dofs.size() == 2)
@@ -1188,8 +1193,8 @@ namespace Talus
                       v_t[fn.tangential_components[k]] =
                         new_velocity(fn.tangential_dofs[k],
                                      du(fn.tangential_dofs[k]));
-                    const double speed = v_t.norm();
-                    if (!(p > 0.) || !(speed > 0.))
+                    const double speed = std::max(v_t.norm(), speed_floor);
+                    if (!(p > 0.))
                       continue;
                     for (unsigned int k = 0; k < 2; ++k)
                       for (unsigned int l = 0; l < 2; ++l)
@@ -1745,7 +1750,7 @@ namespace Talus
                   {
                     if (v_t * fn.slip_direction < -speed_tol)
                       fn.state = ContactState::stick;
-                    else if (dim == 3)
+                    else if (dim == 3 && v_t.norm() > 0.)
                       fn.slip_direction = v_t / v_t.norm();
                   }
                 break;
