@@ -115,6 +115,28 @@ namespace Talus
                           "largest released gravitational energy "
                           "max|G(t) - G(0)| plus the initial kinetic energy "
                           "[-].");
+        prm.declare_entry(
+          "impulse normal",
+          "",
+          Patterns::List(Patterns::Double(), 0, 3),
+          "If given (dim components): the unit normal n, pointing into the "
+          "body, of the boundary whose impulse on the body is checked against "
+          "Coulomb's law. The boundary impulse over the run is J = p(T) - "
+          "p(0) - m g T (change of the total momentum minus the impulse of "
+          "gravity; every boundary together); J_n = J.n, J_t = |J - J_n n|. "
+          "Empty: no check [-].");
+        prm.declare_entry("impulse ratio",
+                          "0",
+                          Patterns::Double(0),
+                          "The expected ratio J_t / J_n of the boundary "
+                          "impulse along 'impulse normal': the friction "
+                          "coefficient mu for a body that slides during the "
+                          "whole contact (Coulomb) [-].");
+        prm.declare_entry("impulse ratio tolerance",
+                          "0.01",
+                          Patterns::Double(0),
+                          "Allowed relative error of the measured impulse "
+                          "ratio J_t / J_n [-].");
         prm.declare_entry("compare center of mass",
                           "false",
                           Patterns::Bool(),
@@ -302,6 +324,27 @@ namespace Talus
     const double speed_limit       = prm.get_double("maximum final speed");
     const double balance_tolerance = prm.get_double("energy balance tolerance");
     const double penetration_limit = prm.get_double("maximum penetration");
+    const std::vector<double> impulse_normal_list =
+      dealii::Utilities::string_to_double(
+        dealii::Utilities::split_string_list(prm.get("impulse normal")));
+    if (!impulse_normal_list.empty() && impulse_normal_list.size() != dim)
+      InputFile::reject("Verification",
+                        "impulse normal",
+                        prm.get("impulse normal"),
+                        "empty, or " + std::to_string(dim) + " components");
+    dealii::Tensor<1, dim> impulse_normal;
+    for (unsigned int d = 0; d < impulse_normal_list.size(); ++d)
+      impulse_normal[d] = impulse_normal_list[d];
+    if (!impulse_normal_list.empty() && impulse_normal.norm() == 0.)
+      InputFile::reject("Verification",
+                        "impulse normal",
+                        prm.get("impulse normal"),
+                        "a non-zero vector");
+    if (!impulse_normal_list.empty())
+      impulse_normal /= impulse_normal.norm();
+    const double impulse_ratio = prm.get_double("impulse ratio");
+    const double impulse_ratio_tolerance =
+      prm.get_double("impulse ratio tolerance");
     dealii::Functions::ParsedFunction<dim> exact_stress(dim == 2 ? 3 : 6);
     prm.enter_subsection("Exact stress");
     parse_function(prm, exact_stress, "Verification/Exact stress");
@@ -806,6 +849,24 @@ namespace Talus
         }
     if (penetration_limit > 0.)
       check("penetration", max_penetration, penetration_limit);
+    if (!impulse_normal_list.empty())
+      {
+        // Impulse of the boundaries: momentum change minus gravity's.
+        const dealii::Tensor<1, dim> J =
+          final_state.momentum - initial.momentum -
+          (final_state.mass * time_control.time) * solver.gravity();
+        const double J_n = J * impulse_normal;
+        const double J_t = (J - J_n * impulse_normal).norm();
+        pcout << "  boundary impulse: normal " << std::setprecision(6) << J_n
+              << " N s, tangential " << J_t << " N s, ratio "
+              << J_t / std::max(std::abs(J_n), 1e-300) << " (expected "
+              << impulse_ratio << ")\n";
+        check("relative impulse ratio error",
+              J_n > 0. ? std::abs(J_t / J_n - impulse_ratio) /
+                           std::max(impulse_ratio, 1e-300) :
+                         std::numeric_limits<double>::infinity(),
+              impulse_ratio_tolerance);
+      }
     if (speed_limit > 0.)
       {
         double v_end = 0.;

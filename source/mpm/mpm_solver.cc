@@ -1667,9 +1667,28 @@ namespace Talus
                 fn.state = ContactState::free;
                 continue;
               }
-            // In contact at the start of the step (the grid is reset onto
-            // the boundary); slipping if it carries a tangential velocity.
-            // (or accelerates: starting to slide from rest).
+            // A node that moves away from the boundary faster than gravity
+            // brings it back within the step, v_n > dt g_n / 2 (g_n: the
+            // part of gravity pushing into the boundary), starts free: the
+            // reset must not hold it back (that would be an adhesive,
+            // frictionless impulse). A slower one would land again within
+            // the step and starts in contact (an adhesive impulse below
+            // m g_n dt / 2, vanishing with the step). If the step pushes a
+            // free node back into the boundary, update_friction_states()
+            // closes the contact.
+            const double v_n = fn.inward * velocity_n(fn.normal_dof);
+            const double g_n =
+              std::max(0., -fn.inward * gravity_vector[fn.normal_component]);
+            if (!quasi_static &&
+                v_n > std::max(0.5 * dt * g_n,
+                               1e-9 * grid.minimal_cell_diameter / dt))
+              {
+                fn.state = ContactState::free;
+                continue;
+              }
+            // Otherwise in contact at the start of the step (the grid is
+            // reset onto the boundary); slipping if it carries a tangential
+            // velocity (or accelerates: starting to slide from rest).
             dealii::Tensor<1, dim> v_t, a_t;
             for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
               {
@@ -1729,10 +1748,21 @@ namespace Talus
           switch (fn.state)
             {
               case ContactState::free:
+                // Closing contact: a node that arrives with a tangential
+                // velocity slides (its friction is then bounded by mu p);
+                // one that arrives at rest sticks.
                 if (fn.inward * du(fn.normal_dof) < -length_tol)
-                  fn.state = (fn.mu == 0. || fn.tangential_dofs.empty()) ?
-                               ContactState::slip :
-                               ContactState::stick;
+                  {
+                    if (fn.mu == 0. || fn.tangential_dofs.empty())
+                      fn.state = ContactState::slip;
+                    else if (v_t.norm() > speed_tol)
+                      {
+                        fn.state          = ContactState::slip;
+                        fn.slip_direction = v_t / v_t.norm();
+                      }
+                    else
+                      fn.state = ContactState::stick;
+                  }
                 break;
               case ContactState::stick:
                 if (p < -pressure_tol)
