@@ -1667,24 +1667,25 @@ namespace Talus
                 fn.state = ContactState::free;
                 continue;
               }
-            // A node that moves away from the boundary faster than gravity
-            // brings it back within the step, v_n > dt g_n / 2 (g_n: the
-            // part of gravity pushing into the boundary), starts free: the
-            // reset must not hold it back (that would be an adhesive,
-            // frictionless impulse). A slower one would land again within
-            // the step and starts in contact (an adhesive impulse below
-            // m g_n dt / 2, vanishing with the step). If the step pushes a
-            // free node back into the boundary, update_friction_states()
-            // closes the contact.
-            const double v_n = fn.inward * velocity_n(fn.normal_dof);
-            const double g_n =
-              std::max(0., -fn.inward * gravity_vector[fn.normal_component]);
-            if (!quasi_static &&
-                v_n > std::max(0.5 * dt * g_n,
-                               1e-9 * grid.minimal_cell_diameter / dt))
+            // 'friction separation = velocity': a node that moves away from
+            // the boundary faster than gravity brings it back within the
+            // step, v_n > dt g_n / 2 (g_n: the part of gravity pushing into
+            // the boundary), starts free: the reset does not hold it back.
+            // If the step pushes it back into the boundary,
+            // update_friction_states() closes the contact. ('pressure': all
+            // nodes with mass start in contact.)
+            if (grid.friction_separation_by_velocity && !quasi_static)
               {
-                fn.state = ContactState::free;
-                continue;
+                const double v_n = fn.inward * velocity_n(fn.normal_dof);
+                const double g_n =
+                  std::max(0.,
+                           -fn.inward * gravity_vector[fn.normal_component]);
+                if (v_n > std::max(0.5 * dt * g_n,
+                                   1e-9 * grid.minimal_cell_diameter / dt))
+                  {
+                    fn.state = ContactState::free;
+                    continue;
+                  }
               }
             // Otherwise in contact at the start of the step (the grid is
             // reset onto the boundary); slipping if it carries a tangential

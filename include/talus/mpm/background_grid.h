@@ -84,6 +84,15 @@ namespace Talus
        */
       std::map<dealii::types::boundary_id, double> friction_boundaries;
 
+      /**
+       * How nodes leave the friction boundaries: false ('pressure'), every
+       * node with mass starts a step in contact and is released when the
+       * boundary would pull; true ('velocity'), a node whose projected
+       * velocity leaves the boundary faster than gravity brings it back
+       * within the step starts free.
+       */
+      bool friction_separation_by_velocity = false;
+
     private:
       std::string               type;
       std::string               mesh_file;
