@@ -97,7 +97,7 @@ subsection Solver
   set line search = true
 end
 subsection Time
-  set end time = 1
+  set end time = 3
   set time step = 0.01
   set adaptive time step = true
 end
@@ -109,6 +109,7 @@ end
 subsection Verification
   set energy balance tolerance = 0.05
   set maximum final speed = 0.01
+  set final speed measure = grid velocity
 end
 """)
 

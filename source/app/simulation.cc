@@ -98,6 +98,16 @@ namespace Talus
                           "material point at the end exceeds this value "
                           "[m/s] (e.g. a body that must come to or stay at "
                           "rest).");
+        prm.declare_entry(
+          "final speed measure",
+          "point velocity",
+          Patterns::Selection("point velocity|grid velocity"),
+          "Which speed 'maximum final speed' checks: 'point velocity', the "
+          "velocity the material points carry (FLIP: it also holds particle "
+          "velocity modes the grid does not see, which move nothing and are "
+          "never damped); 'grid velocity', the grid velocity interpolated at "
+          "the points, sum_I N_I(x_p) v_I, the velocity that moves them. "
+          "Both are printed [-].");
         prm.declare_entry("maximum penetration",
                           "0",
                           Patterns::Double(0),
@@ -324,6 +334,8 @@ namespace Talus
     const double speed_limit       = prm.get_double("maximum final speed");
     const double balance_tolerance = prm.get_double("energy balance tolerance");
     const double penetration_limit = prm.get_double("maximum penetration");
+    const bool   speed_of_grid =
+      prm.get("final speed measure") == "grid velocity";
     const std::vector<double> impulse_normal_list =
       dealii::Utilities::string_to_double(
         dealii::Utilities::split_string_list(prm.get("impulse normal")));
@@ -880,8 +892,13 @@ namespace Talus
                 2);
             v_end = std::max(v_end, std::sqrt(v2));
           }
-        check("final speed",
-              dealii::Utilities::MPI::max(v_end, communicator),
+        v_end = dealii::Utilities::MPI::max(v_end, communicator);
+        pcout << "  final speed: point velocity " << std::setprecision(6)
+              << v_end << " m/s, grid velocity " << final_state.max_grid_speed
+              << " m/s; kinetic energy of the grid velocity "
+              << final_state.grid_kinetic_energy << " J\n";
+        check(speed_of_grid ? "final speed (grid velocity)" : "final speed",
+              speed_of_grid ? final_state.max_grid_speed : v_end,
               speed_limit);
       }
     if (reference_period > 0.)

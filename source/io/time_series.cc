@@ -28,7 +28,8 @@ namespace Talus
               "momentum_x,momentum_y,momentum_z,kinetic_energy,strain_energy,"
               "gravitational_energy,total_energy,lost_mass,plastic_dissipation,"
               "friction_dissipation,energy_balance,contact_force_x,"
-              "contact_force_y,contact_force_z,volume";
+              "contact_force_y,contact_force_z,volume,grid_kinetic_energy,"
+              "max_grid_speed";
       for (const auto &name : boundary_names)
         {
           for (unsigned int d = 0; d < dim; ++d)
@@ -66,7 +67,8 @@ namespace Talus
                 d.plastic_dissipation + d.friction_dissipation;
       for (unsigned int i = 0; i < 3; ++i)
         file << ',' << (i < dim ? d.contact_force[i] : 0.);
-      file << ',' << d.volume;
+      file << ',' << d.volume << ',' << d.grid_kinetic_energy << ','
+           << d.max_grid_speed;
       for (const auto &b : d.boundaries)
         {
           for (unsigned int i = 0; i < dim; ++i)

@@ -2604,6 +2604,7 @@ namespace Talus
       std::vector<double> history_new(n_history);
       std::vector<double> du_local(dofs_per_cell), a_local(dofs_per_cell),
         dv_local(dofs_per_cell), v_local(dofs_per_cell);
+      double                              grid_energy = 0., grid_speed = 0.;
       std::vector<dealii::Tensor<2, dim>> F_cell;
       dealii::Tensor<2, 3>                P;
       for (const auto &c : cells)
@@ -2673,8 +2674,18 @@ namespace Talus
                     quasi_static ? 0. : a_p[i];
                 }
               particles[k]->set_location(particles[k]->get_location() + du_p);
+              if (!quasi_static)
+                {
+                  grid_energy +=
+                    0.5 * props[Properties::mass] * v_pic.norm_square();
+                  grid_speed = std::max(grid_speed, v_pic.norm());
+                }
             }
         }
+      grid_kinetic_energy =
+        dealii::Utilities::MPI::sum(grid_energy, grid.mpi_communicator);
+      max_grid_speed =
+        dealii::Utilities::MPI::max(grid_speed, grid.mpi_communicator);
       // Boundary particles: new gaps, reactions and states; friction work.
       if (boundary_particles != nullptr)
         {
@@ -3578,6 +3589,24 @@ namespace Talus
       d.volume               = dealii::Utilities::MPI::sum(d.volume, comm);
       d.friction_dissipation = friction_dissipation;
       d.contact_force        = contact_force;
+      if (grid_kinetic_energy >= 0.)
+        {
+          d.grid_kinetic_energy = grid_kinetic_energy;
+          d.max_grid_speed      = max_grid_speed;
+        }
+      else
+        {
+          d.grid_kinetic_energy = d.kinetic_energy;
+          double v_max          = 0.;
+          for (const auto &p : points.particle_handler())
+            {
+              dealii::Tensor<1, dim> v;
+              for (unsigned int i = 0; i < dim; ++i)
+                v[i] = p.get_properties()[Properties::velocity + i];
+              v_max = std::max(v_max, v.norm());
+            }
+          d.max_grid_speed = dealii::Utilities::MPI::max(v_max, comm);
+        }
       if (boundary_particles != nullptr)
         d.boundaries = boundary_particles->resultants();
       return d;

@@ -51,9 +51,20 @@ namespace Talus
     {
       double                 mass = 0.;
       dealii::Tensor<1, dim> momentum;
-      double                 kinetic_energy       = 0.;
-      double                 strain_energy        = 0.;
-      double                 gravitational_energy = 0.;
+      double                 kinetic_energy = 0.;
+      /**
+       * Kinetic energy of the grid velocity at the points [J],
+       * sum_p m_p |sum_I N_I(x_p) v_I|^2 / 2 with the nodal velocities v_I
+       * at the end of the last step: the velocity that moves the points.
+       * kinetic_energy minus this includes the FLIP update's particle
+       * velocity modes that the grid does not see (and that move nothing);
+       * before the first step it equals kinetic_energy.
+       */
+      double grid_kinetic_energy = 0.;
+      /** Largest speed of the grid velocity at a point [m/s] (as above). */
+      double max_grid_speed       = 0.;
+      double strain_energy        = 0.;
+      double gravitational_energy = 0.;
       /**
        * Energy dissipated by plastic flow since the start [J]: the sum
        * over the points of V_0 times the history variable named "plastic
@@ -622,6 +633,10 @@ namespace Talus
       double                 friction_dissipation = 0.;
       dealii::Tensor<1, dim> contact_force;
       unsigned int           frozen_nodes = 0;
+      /** Grid kinetic energy and speed at the points of the last commit
+       * (negative: no step yet); see Diagnostics. */
+      double grid_kinetic_energy = -1.;
+      double max_grid_speed      = -1.;
       /**
        * Boundary particles held in stick at the present Newton iterate
        * because their slip direction reversed (the iterate is then not
