@@ -780,7 +780,9 @@ namespace Talus
       make_constraints();
       amg_current = false;
       // Grid velocity and acceleration obey the essential conditions: a
-      // fixed node neither moves nor carries the particles' velocity.
+      // fixed node neither moves nor carries the particles' velocity. The
+      // kinetic energy this removes is booked (reset_dissipation).
+      double removed = 0.;
       for (auto *v : {&velocity_n, &acceleration_n})
         {
           dealii::TrilinosWrappers::MPI::Vector owned(grid.locally_owned_dofs,
@@ -789,9 +791,16 @@ namespace Talus
           Epetra_FEVector &e = owned.trilinos_vector();
           for (const auto i : grid.locally_owned_dofs)
             if (constraints.is_constrained(i))
-              e[0][e.Map().LID(static_cast<int>(i))] = 0.;
+              {
+                const int l = e.Map().LID(static_cast<int>(i));
+                if (v == &velocity_n && !quasi_static)
+                  removed += 0.5 * nodal_mass(i) * e[0][l] * e[0][l];
+                e[0][l] = 0.;
+              }
           *v = owned;
         }
+      reset_dissipation +=
+        dealii::Utilities::MPI::sum(removed, grid.mpi_communicator);
       prepared = true;
       solved   = false;
     }
@@ -3588,6 +3597,7 @@ namespace Talus
         dealii::Utilities::MPI::sum(d.plastic_dissipation, comm);
       d.volume               = dealii::Utilities::MPI::sum(d.volume, comm);
       d.friction_dissipation = friction_dissipation;
+      d.reset_dissipation    = reset_dissipation;
       d.contact_force        = contact_force;
       if (grid_kinetic_energy >= 0.)
         {

@@ -80,6 +80,14 @@ namespace Talus
        */
       double friction_dissipation = 0.;
       /**
+       * Kinetic energy the essential conditions of the grid remove at the
+       * start of each step since the start [J]: sum over the steps and the
+       * constrained dofs with mass of m_I v_I^2 / 2 (the inelastic impact
+       * of the reset onto fixed, slip and friction boundaries; the
+       * tangential part of a frictional impact is in friction_dissipation).
+       */
+      double reset_dissipation = 0.;
+      /**
        * Resultant force of all friction boundaries on the material at the
        * end of the last step [N] (normal and tangential contact forces).
        */
@@ -630,7 +638,9 @@ namespace Talus
       /** Residual without constraints at the friction nodes (owned). */
       dealii::TrilinosWrappers::MPI::Vector raw_residual;
       /** Accumulated friction dissipation [J] (all ranks). */
-      double                 friction_dissipation = 0.;
+      double friction_dissipation = 0.;
+      /** Accumulated reset dissipation [J] (all ranks); see Diagnostics. */
+      double                 reset_dissipation = 0.;
       dealii::Tensor<1, dim> contact_force;
       unsigned int           frozen_nodes = 0;
       /** Grid kinetic energy and speed at the points of the last commit
