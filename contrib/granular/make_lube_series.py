@@ -65,7 +65,7 @@ subsection Solver
   set gravity = 0, -9.81
   set linear solver = direct
   set volumetric locking treatment = F-bar
-  set line search = true
+  set line search = true{tolerance}
 end
 subsection Time
   set end time = {T:g}
@@ -94,6 +94,17 @@ end
 
 # Largest time step per cell size [s/m] (see the time-step comment in main).
 DT_PER_CELL = 0.1
+
+# Columns taller than a = 5: near rest Newton stalls at relative residuals
+# of 1e-7 to 1e-8 while friction states switch, and with the default 1e-8
+# the a = 8 run halved its step to 3e-5 s and did not finish; with 1e-6 it
+# finishes in 3.7 min. At a = 5 (which converges either way) 1e-6 changes
+# (L - L0)/L0 by 1e-5 relative and H/L0 by 6 % (1.196 against 1.125; the
+# height at the wall is the most sensitive quantity) (doc/verification.md,
+# granular column collapse, "Update 2026-12-01").
+TALL_COLUMN_TOLERANCE = """
+  # a > 5: looser Newton tolerance (make_lube_series.py, TALL_COLUMN_TOLERANCE)
+  set residual tolerance = 1e-6"""
 
 
 def lube_runout(a):
@@ -154,7 +165,8 @@ def main():
             mu=math.tan(math.radians(args.friction_angle)), path=path,
             X=round(nx * cell, 12), Y=round(ny * cell, 12), nx=nx, ny=ny,
             T=T, dt=dt, out=T / 20., name=name.replace(".", "p"),
-            series=max(1, round(0.01 / dt)))
+            series=max(1, round(0.01 / dt)),
+            tolerance=TALL_COLUMN_TOLERANCE if a > 5 else "")
         with open(path, "w") as f:
             f.write(text)
         print("wrote %s (a = %g, grid %d x %d, end %g s, dt %g s)"
