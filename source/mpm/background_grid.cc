@@ -85,6 +85,7 @@ namespace Talus
     BackgroundGrid<dim>::declare_parameters(dealii::ParameterHandler &prm)
     {
       using dealii::Patterns::Anything;
+      using dealii::Patterns::Double;
       using dealii::Patterns::FileName;
       using dealii::Patterns::Integer;
       using dealii::Patterns::List;
@@ -152,21 +153,33 @@ namespace Talus
           "such boundaries (corners) are fixed.");
         prm.declare_entry(
           "friction separation",
-          "pressure",
+          "velocity",
           Selection("pressure|velocity"),
-          "When a node of a friction boundary leaves it [-]. 'pressure': "
-          "every node with mass starts a step in contact (its normal "
-          "velocity is reset to zero) and is released when the boundary "
-          "would have to pull; the reset also removes separating velocity, "
-          "without friction, so rebounds are too frictional (impact test: "
-          "tangential impulse 3x mu times the normal one), but the collapse "
-          "runout converges in the time step. 'velocity': a node moving away "
-          "faster than gravity brings it back within the step (n.v > dt g_n "
-          "/ 2) starts free, as in explicit MPM contact (Bardenhagen et al. "
-          "2000); Coulomb's impulse ratio holds at impacts to 1 %, but the "
-          "projected velocity of floor nodes under a flow is noisy and the "
-          "collapse runout grows as the step shrinks (doc/theory.md, "
-          "'Impact and separation on friction floors').");
+          "When a node of a friction boundary leaves it [-]. 'velocity': a "
+          "node whose projected velocity leaves the boundary fast enough to "
+          "lift off by a resolved height, v_n^2 / (2 g_n) > 'separation lift "
+          "height' x h (g_n: the part of gravity pushing into the boundary, h "
+          "the cell size), and faster than gravity brings it back within the "
+          "step (v_n > dt g_n / 2), starts the step free, as in explicit MPM "
+          "contact (Bardenhagen et al. 2000); every other node with mass "
+          "starts in contact. 'pressure': every node with mass starts in "
+          "contact (its normal velocity is reset to zero). In both, a node is "
+          "released during the step when the boundary would have to pull. "
+          "'pressure' removes separating velocity without friction, so "
+          "rebounds are too frictional (impact test: tangential impulse 2.5x "
+          "mu times the normal one; doc/theory.md, 'Impact and separation on "
+          "friction floors').");
+        prm.declare_entry(
+          "separation lift height",
+          "0.05",
+          Double(0.),
+          "With 'friction separation = velocity': the smallest ballistic "
+          "lift-off height v_n^2 / (2 g_n), as a fraction of the cell size, "
+          "for which a node starts a step free [-]. Smaller lifts are below "
+          "the grid's resolution; the projected normal velocity of floor "
+          "nodes under a granular flow is noisy at this level, and a zero "
+          "value makes the collapse runout grow as the step shrinks. Without "
+          "gravity into the boundary every separating node starts free.");
       }
       prm.leave_subsection();
     }
@@ -190,7 +203,8 @@ namespace Talus
       fixed_boundaries = ids("fixed boundaries");
       friction_separation_by_velocity =
         prm.get("friction separation") == "velocity";
-      slip_boundaries = ids("slip boundaries");
+      separation_lift_height = prm.get_double("separation lift height");
+      slip_boundaries        = ids("slip boundaries");
       friction_boundaries.clear();
       {
         const std::string value = prm.get("friction boundaries");

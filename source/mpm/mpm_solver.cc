@@ -1677,10 +1677,11 @@ namespace Talus
                 continue;
               }
             // 'friction separation = velocity': a node that moves away from
-            // the boundary faster than gravity brings it back within the
-            // step, v_n > dt g_n / 2 (g_n: the part of gravity pushing into
-            // the boundary), starts free: the reset does not hold it back.
-            // If the step pushes it back into the boundary,
+            // the boundary fast enough to lift off by a resolved height,
+            // v_n^2 / (2 g_n) > f h, and faster than gravity brings it back
+            // within the step, v_n > dt g_n / 2 (g_n: the part of gravity
+            // pushing into the boundary), starts free: the reset does not
+            // hold it back. If the step pushes it back into the boundary,
             // update_friction_states() closes the contact. ('pressure': all
             // nodes with mass start in contact.)
             if (grid.friction_separation_by_velocity && !quasi_static)
@@ -1689,8 +1690,15 @@ namespace Talus
                 const double g_n =
                   std::max(0.,
                            -fn.inward * gravity_vector[fn.normal_component]);
-                if (v_n > std::max(0.5 * dt * g_n,
-                                   1e-9 * grid.minimal_cell_diameter / dt))
+                // lift-off by more than the resolved height f h:
+                // v_n^2 / (2 g_n) > f h
+                const double h_cell =
+                  grid.minimal_cell_diameter / std::sqrt(double(dim));
+                const double v_lift =
+                  std::sqrt(2. * grid.separation_lift_height * g_n * h_cell);
+                if (v_n > std::max({v_lift,
+                                    0.5 * dt * g_n,
+                                    1e-9 * grid.minimal_cell_diameter / dt}))
                   {
                     fn.state = ContactState::free;
                     continue;

@@ -91,7 +91,14 @@ namespace Talus
        * velocity leaves the boundary faster than gravity brings it back
        * within the step starts free.
        */
-      bool friction_separation_by_velocity = false;
+      bool friction_separation_by_velocity = true;
+
+      /**
+       * Smallest ballistic lift-off height v_n^2 / (2 g_n), as a fraction
+       * of the cell size, for which a separating node starts free (with
+       * friction_separation_by_velocity) [-].
+       */
+      double separation_lift_height = 0.05;
 
     private:
       std::string               type;
