@@ -841,12 +841,12 @@ namespace Talus
     if (balance_tolerance > 0.)
       {
         const double scale = max_released + initial.kinetic_energy;
-        pcout << "  energy balance: largest change " << max_balance_change
-              << " J, released gravitational energy " << max_released
-              << " J, plastic dissipation " << final_state.plastic_dissipation
-              << " J, friction dissipation " << final_state.friction_dissipation
-              << " J, reset dissipation " << final_state.reset_dissipation
-              << " J\n";
+        pcout << "  energy balance: largest change " << std::setprecision(4)
+              << max_balance_change << " J, released gravitational energy "
+              << max_released << " J, plastic dissipation "
+              << final_state.plastic_dissipation << " J, friction dissipation "
+              << final_state.friction_dissipation << " J, reset dissipation "
+              << final_state.reset_dissipation << " J\n";
         check("energy balance",
               max_balance_change / std::max(scale, 1e-300),
               balance_tolerance);
