@@ -344,7 +344,9 @@ namespace Talus
       InputFile::reject("Verification",
                         "impulse normal",
                         prm.get("impulse normal"),
-                        "empty, or " + std::to_string(dim) + " components");
+                        "an empty value or " + std::to_string(dim) +
+                          " components (one per space dimension) is "
+                          "expected");
     dealii::Tensor<1, dim> impulse_normal;
     for (unsigned int d = 0; d < impulse_normal_list.size(); ++d)
       impulse_normal[d] = impulse_normal_list[d];
@@ -352,7 +354,7 @@ namespace Talus
       InputFile::reject("Verification",
                         "impulse normal",
                         prm.get("impulse normal"),
-                        "a non-zero vector");
+                        "a non-zero vector is expected");
     if (!impulse_normal_list.empty())
       impulse_normal /= impulse_normal.norm();
     const double impulse_ratio = prm.get_double("impulse ratio");
