@@ -1745,6 +1745,7 @@ namespace Talus
       const double speed_tol  = 1e-9 * grid.minimal_cell_diameter / dt;
       unsigned int changed    = 0;
       std::vector<std::pair<dealii::types::global_dof_index, double>> values;
+      std::vector<dealii::types::global_dof_index>                    released;
       for (auto &fn : friction_nodes)
         {
           if (!fn.owned || nodal_mass(fn.normal_dof) <= 0.)
@@ -1823,6 +1824,12 @@ namespace Talus
               continue;
             }
           ++changed;
+          // A node released from contact leaves with the normal velocity
+          // the particles gave it: the reset had set it to zero, which
+          // would pull it back without friction.
+          if (old_state != ContactState::free &&
+              fn.state == ContactState::free && !quasi_static)
+            released.push_back(fn.normal_dof);
           // Project the increment onto the new constraints.
           if (fn.state != ContactState::free)
             values.emplace_back(fn.normal_dof, 0.);
@@ -1838,6 +1845,25 @@ namespace Talus
         for (const auto &[i, value] : values)
           e[0][e.Map().LID(static_cast<int>(i))] = value;
       }
+      if (dealii::Utilities::MPI::sum(released.size(), grid.mpi_communicator) >
+          0)
+        {
+          dealii::TrilinosWrappers::MPI::Vector owned(grid.locally_owned_dofs,
+                                                      grid.mpi_communicator);
+          owned                     = velocity_n;
+          Epetra_FEVector &e        = owned.trilinos_vector();
+          double           restored = 0.;
+          for (const auto i : released)
+            {
+              const int    l = e.Map().LID(static_cast<int>(i));
+              const double v = velocity_p2g(i);
+              restored += 0.5 * nodal_mass(i) * (v * v - e[0][l] * e[0][l]);
+              e[0][l] = v;
+            }
+          velocity_n = owned;
+          reset_dissipation -=
+            dealii::Utilities::MPI::sum(restored, grid.mpi_communicator);
+        }
       exchange_friction_states();
       make_constraints();
       amg_current = false;
