@@ -147,7 +147,8 @@ namespace Talus
                           "0.01",
                           Patterns::Double(0),
                           "Allowed relative error of the measured impulse "
-                          "ratio J_t / J_n [-].");
+                          "ratio J_t / J_n (absolute error when 'impulse "
+                          "ratio' is 0, a frictionless boundary) [-].");
         prm.declare_entry("compare center of mass",
                           "false",
                           Patterns::Bool(),
@@ -879,9 +880,10 @@ namespace Talus
               << " N s, tangential " << J_t << " N s, ratio "
               << J_t / std::max(std::abs(J_n), 1e-300) << " (expected "
               << impulse_ratio << ")\n";
-        check("relative impulse ratio error",
+        check(impulse_ratio > 0. ? "relative impulse ratio error" :
+                                   "impulse ratio error",
               J_n > 0. ? std::abs(J_t / J_n - impulse_ratio) /
-                           std::max(impulse_ratio, 1e-300) :
+                           (impulse_ratio > 0. ? impulse_ratio : 1.) :
                          std::numeric_limits<double>::infinity(),
               impulse_ratio_tolerance);
       }

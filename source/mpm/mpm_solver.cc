@@ -767,8 +767,10 @@ namespace Talus
     MPMSolver<dim>::prepare_step(const double new_time, const double step)
     {
       dealii::TimerOutput::Scope scope(timer, "prepare (P2G)");
-      time = new_time;
-      dt   = step;
+      time                    = new_time;
+      dt                      = step;
+      step_impact_dissipation = 0.;
+      step_reset_dissipation  = 0.;
       cache_particles();
       project_to_grid();
       cache_boundary_particles();
@@ -799,7 +801,7 @@ namespace Talus
               }
           *v = owned;
         }
-      reset_dissipation +=
+      step_reset_dissipation =
         dealii::Utilities::MPI::sum(removed, grid.mpi_communicator);
       prepared = true;
       solved   = false;
@@ -1654,7 +1656,7 @@ namespace Talus
           dissipated += 0.5 * m * v_t2 * (1. - scale * scale);
         }
       velocity_n = owned;
-      friction_dissipation +=
+      step_impact_dissipation =
         dealii::Utilities::MPI::sum(dissipated, grid.mpi_communicator);
     }
 
@@ -1861,7 +1863,7 @@ namespace Talus
               e[0][l] = v;
             }
           velocity_n = owned;
-          reset_dissipation -=
+          step_reset_dissipation -=
             dealii::Utilities::MPI::sum(restored, grid.mpi_communicator);
         }
       exchange_friction_states();
@@ -2564,6 +2566,8 @@ namespace Talus
     {
       dealii::TimerOutput::Scope scope(timer, "commit (G2P, move, sort)");
       Assert(solved, dealii::ExcMessage("solve_step() first"));
+      friction_dissipation += step_impact_dissipation;
+      reset_dissipation += step_reset_dissipation;
       using Properties                 = MaterialPointProperties<dim>;
       const auto        &fe            = grid.fe;
       const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;

@@ -640,7 +640,16 @@ namespace Talus
       /** Accumulated friction dissipation [J] (all ranks). */
       double friction_dissipation = 0.;
       /** Accumulated reset dissipation [J] (all ranks); see Diagnostics. */
-      double                 reset_dissipation = 0.;
+      double reset_dissipation = 0.;
+      /**
+       * The present step's impact friction and reset dissipation [J] (all
+       * ranks): set by prepare_step() (and the velocity restore of released
+       * nodes in the Newton loop), added to the totals by commit_step(), so
+       * that rejected attempts and repeated coupling iterations of a step
+       * are not booked.
+       */
+      double                 step_impact_dissipation = 0.;
+      double                 step_reset_dissipation  = 0.;
       dealii::Tensor<1, dim> contact_force;
       unsigned int           frozen_nodes = 0;
       /** Grid kinetic energy and speed at the points of the last commit
