@@ -3586,6 +3586,7 @@ namespace Talus
     {
       using Properties = MaterialPointProperties<dim>;
       Diagnostics<dim>   d;
+      double             point_speed       = 0.;
       const unsigned int n_history         = points.n_history();
       int                dissipation_index = -1;
       {
@@ -3613,6 +3614,7 @@ namespace Talus
                 m * gravity_vector[i] * p.get_location()[i];
             }
           d.kinetic_energy += 0.5 * m * v2;
+          point_speed = std::max(point_speed, std::sqrt(v2));
           d.volume += props[Properties::initial_volume] *
                       dealii::determinant(
                         read_tensor<dim>(props, Properties::deformation));
@@ -3644,16 +3646,9 @@ namespace Talus
         }
       else
         {
+          // no step yet: the points' velocities are the initial field
           d.grid_kinetic_energy = d.kinetic_energy;
-          double v_max          = 0.;
-          for (const auto &p : points.particle_handler())
-            {
-              dealii::Tensor<1, dim> v;
-              for (unsigned int i = 0; i < dim; ++i)
-                v[i] = p.get_properties()[Properties::velocity + i];
-              v_max = std::max(v_max, v.norm());
-            }
-          d.max_grid_speed = dealii::Utilities::MPI::max(v_max, comm);
+          d.max_grid_speed = dealii::Utilities::MPI::max(point_speed, comm);
         }
       if (boundary_particles != nullptr)
         d.boundaries = boundary_particles->resultants();
