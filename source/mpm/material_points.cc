@@ -42,6 +42,9 @@ namespace Talus
         n.emplace_back("stress_" + s);
       for (unsigned int d = 0; d < dim; ++d)
         n.emplace_back("initial_position");
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          n.emplace_back("C_" + std::to_string(i) + std::to_string(j));
       for (unsigned int i = 0; i < n_history; ++i)
         n.emplace_back("history_" + std::to_string(i));
       return n;

@@ -366,7 +366,24 @@ namespace Talus
           "Velocity update of the material points [-], 0 to 1: 1 = FLIP "
           "(v_p += interpolated grid velocity increment; no numerical "
           "dissipation), 0 = PIC (v_p = interpolated grid velocity; "
-          "dissipative), in between a blend.");
+          "dissipative), in between a blend. Used by 'velocity update = "
+          "FLIP' only.");
+        prm.declare_entry(
+          "velocity update",
+          "FLIP",
+          Patterns::Selection("FLIP|APIC"),
+          "Transfer of the velocity between the material points and the "
+          "grid [-]. 'FLIP': the points keep their own velocity and add the "
+          "interpolated grid increment (blended with PIC by 'FLIP "
+          "fraction'); velocity fields the grid cannot represent (more "
+          "points than nodes) are never corrected. 'APIC' (affine particle-"
+          "in-cell, Jiang et al. 2015, J. Comput. Phys. 290): the points "
+          "take the interpolated grid velocity v_p = sum_I N_I(x_p) v_I and "
+          "its gradient C_p = sum_I v_I grad N_I(x_p), and project the "
+          "momentum m_p (v_p + C_p (x_I - x_p)) to node I. Conserves linear "
+          "and angular momentum in the transfer, removes the sub-cell "
+          "velocity fields FLIP keeps, and dissipates only the velocity "
+          "beyond the affine field of each point (doc/theory.md).");
         prm.declare_entry(
           "ghost penalty factor",
           "0",
@@ -424,9 +441,16 @@ namespace Talus
       linear_tolerance      = get_positive(prm, sub, "linear solver tolerance");
       max_linear_iterations = prm.get_integer("maximum linear iterations");
       abort_on_lost_points  = prm.get_bool("abort on lost material points");
-      use_fbar             = prm.get("volumetric locking treatment") == "F-bar";
-      line_search          = prm.get_bool("line search");
-      flip_fraction        = prm.get_double("FLIP fraction");
+      use_fbar      = prm.get("volumetric locking treatment") == "F-bar";
+      line_search   = prm.get_bool("line search");
+      flip_fraction = prm.get_double("FLIP fraction");
+      apic          = prm.get("velocity update") == "APIC";
+      if (apic && flip_fraction != 1.)
+        InputFile::reject(sub,
+                          "FLIP fraction",
+                          prm.get("FLIP fraction"),
+                          "it applies to 'velocity update = FLIP' only; "
+                          "with 'velocity update = APIC' leave it at 1");
       ghost_penalty_factor = prm.get_double("ghost penalty factor");
       max_line_search      = prm.get_integer("maximum line search halvings");
       prm.leave_subsection();
@@ -690,15 +714,28 @@ namespace Talus
               dealii::Point<dim> X;
               for (unsigned int d = 0; d < dim; ++d)
                 X[d] = props[Properties::initial_position + d];
-              const auto b       = external_acceleration(X, time);
-              particle_forces[k] = m * b;
+              const auto b                 = external_acceleration(X, time);
+              particle_forces[k]           = m * b;
+              const dealii::Point<dim> x_p = particles[k]->get_location();
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const auto         ci = fe.system_to_component_index(i);
                   const double       N  = shape_values[k * n_nodes + ci.second];
                   const unsigned int comp = ci.first;
+                  // APIC: the point's affine velocity at the node,
+                  // v_p + C_p (x_I - x_p) (FE_Q(1): node k = vertex k)
+                  double v = props[Properties::velocity + comp];
+                  if (apic)
+                    {
+                      const dealii::Tensor<1, dim> dx =
+                        c.cell->vertex(ci.second) - x_p;
+                      for (unsigned int j = 0; j < dim; ++j)
+                        v +=
+                          props[Properties::affine_velocity + comp * dim + j] *
+                          dx[j];
+                    }
                   m_local[i] += N * m;
-                  p_local[i] += N * m * props[Properties::velocity + comp];
+                  p_local[i] += N * m * v;
                   a_local[i] += N * m * props[Properties::acceleration + comp];
                   f_local[i] += N * m * b[comp];
                 }
@@ -2672,11 +2709,12 @@ namespace Talus
               const auto        *dN    = &shape_gradients[k * n_nodes];
 
               dealii::Tensor<1, dim> du_p, a_p, dv_p, v_pic;
-              dealii::Tensor<2, dim> H;
+              dealii::Tensor<2, dim> H, grad_v;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const auto ci = fe.system_to_component_index(i);
                   v_pic[ci.first] += N[ci.second] * v_local[i];
+                  grad_v[ci.first] += v_local[i] * dN[ci.second];
                   du_p[ci.first] += N[ci.second] * du_local[i];
                   a_p[ci.first] += N[ci.second] * a_local[i];
                   dv_p[ci.first] += N[ci.second] * dv_local[i];
@@ -2710,13 +2748,17 @@ namespace Talus
                 {
                   for (unsigned int j = 0; j < dim; ++j)
                     props[Properties::deformation + i * dim + j] = F_new[i][j];
-                  // FLIP (increment) blended with PIC (grid velocity)
+                  // FLIP (increment) blended with PIC (grid velocity), or
+                  // APIC (grid velocity and its gradient)
                   props[Properties::velocity + i] =
-                    quasi_static ?
-                      0. :
-                      flip_fraction *
-                          (props[Properties::velocity + i] + dv_p[i]) +
-                        (1. - flip_fraction) * v_pic[i];
+                    quasi_static ? 0. :
+                    apic         ? v_pic[i] :
+                                   flip_fraction *
+                               (props[Properties::velocity + i] + dv_p[i]) +
+                             (1. - flip_fraction) * v_pic[i];
+                  for (unsigned int j = 0; j < dim; ++j)
+                    props[Properties::affine_velocity + i * dim + j] =
+                      (apic && !quasi_static) ? grad_v[i][j] : 0.;
                   props[Properties::acceleration + i] =
                     quasi_static ? 0. : a_p[i];
                 }

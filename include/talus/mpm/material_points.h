@@ -35,10 +35,16 @@ namespace Talus
      * | deformation gradient | dim*dim | -      |
      * | Cauchy stress        | 6 (xx yy zz xy yz xz) | Pa |
      * | initial position X   | dim     | m      |
+     * | affine velocity C    | dim*dim | 1/s    |
      * | history              | n       | model dependent |
      *
      * In 2D (plane strain) the out-of-plane stress zz is kept because it
      * enters plasticity; the in-plane deformation gradient has F_zz = 1.
+     *
+     * The affine velocity C (row-major, C_ij = d v_i / d x_j) is the grid
+     * velocity gradient at the point after the step; only the APIC velocity
+     * update uses it (Jiang et al. 2015: the point's velocity field is
+     * v_p + C (x - x_p)). With FLIP it stays zero.
      */
     template <int dim>
     struct MaterialPointProperties
@@ -50,7 +56,8 @@ namespace Talus
       static constexpr unsigned int deformation      = acceleration + dim;
       static constexpr unsigned int stress           = deformation + dim * dim;
       static constexpr unsigned int initial_position = stress + 6;
-      static constexpr unsigned int history          = initial_position + dim;
+      static constexpr unsigned int affine_velocity  = initial_position + dim;
+      static constexpr unsigned int history = affine_velocity + dim * dim;
 
       /** Number of properties for a model with @p n_history variables. */
       static constexpr unsigned int

@@ -600,8 +600,10 @@ namespace Talus
       bool use_fbar = false;
 
       /** Backtracking line search in Newton's method. */
-      bool         line_search     = false;
-      double       flip_fraction   = 1.;
+      bool   line_search   = false;
+      double flip_fraction = 1.;
+      /** Affine particle-in-cell velocity update instead of FLIP. */
+      bool         apic            = false;
       unsigned int max_line_search = 4;
 
       /** Contact state of a grid node on a friction boundary. */
