@@ -10,6 +10,7 @@
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/vector.h>
@@ -315,6 +316,22 @@ namespace Talus
                           "preconditioner with the translations as near null "
                           "space), or 'direct' (Amesos KLU, for small "
                           "problems).");
+        prm.declare_entry(
+          "saddle-point solver",
+          "automatic",
+          Patterns::Selection(
+            "automatic|Schur complement|block preconditioned"),
+          "Linear solve of the Newton systems with Lagrange multiplier "
+          "boundaries, [A C; B E] [x; y] = [r; s] (doc/theory.md) [-]. "
+          "'Schur complement': GMRES on the multipliers' Schur complement "
+          "E - B A^-1 C, each application solving with A (exact with the "
+          "direct solver; a full AMG-preconditioned Krylov solve per "
+          "iteration otherwise). 'block preconditioned': FGMRES on the whole "
+          "system with the block upper-triangular preconditioner [A~ C; 0 "
+          "S~], A~^-1 one AMG V-cycle (or the factorisation with 'direct') "
+          "and S~ = E - B diag(A)^-1 C point by point: no nested solves. "
+          "'automatic': Schur complement with 'direct', block "
+          "preconditioned with CG or GMRES.");
         prm.declare_entry("reuse preconditioner",
                           "true",
                           Patterns::Bool(),
@@ -435,9 +452,15 @@ namespace Talus
       residual_tolerance    = get_positive(prm, sub, "residual tolerance");
       absolute_residual_tolerance =
         prm.get_double("absolute residual tolerance");
-      increment_tolerance   = get_positive(prm, sub, "increment tolerance");
-      linear_solver_type    = prm.get("linear solver");
-      reuse_preconditioner  = prm.get_bool("reuse preconditioner");
+      increment_tolerance  = get_positive(prm, sub, "increment tolerance");
+      linear_solver_type   = prm.get("linear solver");
+      reuse_preconditioner = prm.get_bool("reuse preconditioner");
+      {
+        const std::string s = prm.get("saddle-point solver");
+        block_saddle_point =
+          s == "block preconditioned" ||
+          (s == "automatic" && linear_solver_type != "direct");
+      }
       linear_tolerance      = get_positive(prm, sub, "linear solver tolerance");
       max_linear_iterations = prm.get_integer("maximum linear iterations");
       abort_on_lost_points  = prm.get_bool("abort on lost material points");
@@ -1922,6 +1945,60 @@ namespace Talus
 
 
     template <int dim>
+    void
+    MPMSolver<dim>::build_amg()
+    {
+      dealii::TimerOutput::Scope s(timer, "AMG setup");
+      dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.constant_modes        = constant_modes;
+      data.elliptic              = true;
+      data.higher_order_elements = false;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+      // ML parameters with the rigid body modes (translations and
+      // rotations) as near null space; deal.II 9.4's AdditionalData only
+      // takes the translations.
+      Teuchos::ParameterList              parameters;
+      std::unique_ptr<Epetra_MultiVector> translations;
+      data.set_parameters(parameters, translations, matrix);
+      const Epetra_Map  &map     = matrix.trilinos_matrix().DomainMap();
+      const unsigned int n_modes = dim == 2 ? 3 : 6;
+      rigid_body_modes = std::make_unique<Epetra_MultiVector>(map, n_modes);
+      for (int l = 0; l < map.NumMyElements(); ++l)
+        {
+          const auto global =
+            static_cast<dealii::types::global_dof_index>(map.GID(l));
+          const auto local_index =
+            grid.locally_owned_dofs.index_within_set(global);
+          const auto        &x = owned_support_points[local_index];
+          const unsigned int c = owned_components[local_index];
+          double            *v = (*rigid_body_modes)[0];
+          const int          n = map.NumMyElements();
+          for (unsigned int m = 0; m < n_modes; ++m)
+            v[m * n + l] = 0.;
+          v[c * n + l] = 1.; // translation in direction c
+          if (dim == 2)
+            v[2 * n + l] = (c == 0 ? -x[1] : x[0]);
+          else
+            {
+              // rotations about x, y, z
+              const double rx[3] = {0., -x[2], x[1]};
+              const double ry[3] = {x[2], 0., -x[0]};
+              const double rz[3] = {-x[1], x[0], 0.};
+              v[3 * n + l]       = rx[c];
+              v[4 * n + l]       = ry[c];
+              v[5 * n + l]       = rz[c];
+            }
+        }
+      parameters.set("null space: type", "pre-computed");
+      parameters.set("null space: dimension", static_cast<int>(n_modes));
+      parameters.set("null space: vectors", rigid_body_modes->Values());
+      amg = std::make_unique<dealii::TrilinosWrappers::PreconditionAMG>();
+      amg->initialize(matrix, parameters);
+    }
+
+
+    template <int dim>
     unsigned int
     MPMSolver<dim>::solve_with_tangent(
       dealii::TrilinosWrappers::MPI::Vector       &x,
@@ -1945,55 +2022,6 @@ namespace Talus
       // The AMG hierarchy is built at the first Newton iteration of a step
       // and reused by the later ones (the tangent changes little); if the
       // Krylov solver fails with a reused hierarchy, it is rebuilt once.
-      const auto build_amg = [&]() {
-        dealii::TimerOutput::Scope s(timer, "AMG setup");
-        dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
-        data.constant_modes        = constant_modes;
-        data.elliptic              = true;
-        data.higher_order_elements = false;
-        data.smoother_sweeps       = 2;
-        data.aggregation_threshold = 0.02;
-        // ML parameters with the rigid body modes (translations and
-        // rotations) as near null space; deal.II 9.4's AdditionalData only
-        // takes the translations.
-        Teuchos::ParameterList              parameters;
-        std::unique_ptr<Epetra_MultiVector> translations;
-        data.set_parameters(parameters, translations, matrix);
-        const Epetra_Map  &map     = matrix.trilinos_matrix().DomainMap();
-        const unsigned int n_modes = dim == 2 ? 3 : 6;
-        rigid_body_modes = std::make_unique<Epetra_MultiVector>(map, n_modes);
-        for (int l = 0; l < map.NumMyElements(); ++l)
-          {
-            const auto global =
-              static_cast<dealii::types::global_dof_index>(map.GID(l));
-            const auto local_index =
-              grid.locally_owned_dofs.index_within_set(global);
-            const auto        &x = owned_support_points[local_index];
-            const unsigned int c = owned_components[local_index];
-            double            *v = (*rigid_body_modes)[0];
-            const int          n = map.NumMyElements();
-            for (unsigned int m = 0; m < n_modes; ++m)
-              v[m * n + l] = 0.;
-            v[c * n + l] = 1.; // translation in direction c
-            if (dim == 2)
-              v[2 * n + l] = (c == 0 ? -x[1] : x[0]);
-            else
-              {
-                // rotations about x, y, z
-                const double rx[3] = {0., -x[2], x[1]};
-                const double ry[3] = {x[2], 0., -x[0]};
-                const double rz[3] = {-x[1], x[0], 0.};
-                v[3 * n + l]       = rx[c];
-                v[4 * n + l]       = ry[c];
-                v[5 * n + l]       = rz[c];
-              }
-          }
-        parameters.set("null space: type", "pre-computed");
-        parameters.set("null space: dimension", static_cast<int>(n_modes));
-        parameters.set("null space: vectors", rigid_body_modes->Values());
-        amg = std::make_unique<dealii::TrilinosWrappers::PreconditionAMG>();
-        amg->initialize(matrix, parameters);
-      };
       bool fresh = false;
       if (!amg || !reuse_preconditioner || !amg_current)
         {
@@ -2182,6 +2210,106 @@ namespace Talus
           dealii::TimerOutput::Scope s(timer, "factorisation");
           factorisation->initialize(matrix);
         }
+      if (block_saddle_point)
+        try
+          {
+            // FGMRES on [A C; B E] [x; y] = [r; s] (C = -N^T D, B = D N,
+            // E as in the Schur operator) with the block upper-triangular
+            // preconditioner [A~ C; 0 S~]: y = S~^-1 b_y (point-wise
+            // P_inverse), x = A~^-1 (b_x - C y) with A~^-1 one AMG V-cycle
+            // (the factorisation with 'direct'). Constrained dofs are kept
+            // at zero in every vector that reaches the multipliers.
+            using BlockVector = dealii::TrilinosWrappers::MPI::BlockVector;
+            const std::vector<dealii::IndexSet> partitioning = {
+              grid.locally_owned_dofs, owned};
+            if (linear_solver_type != "direct" &&
+                (!amg || !reuse_preconditioner || !amg_current))
+              {
+                build_amg();
+                amg_current = true;
+              }
+            BlockVector solution(partitioning, comm), rhs(partitioning, comm);
+            rhs.block(0) = residual;
+            for (unsigned int p = 0; p < lm.size(); ++p)
+              {
+                const double                 k = lm[p]->beta * lm[p]->weight;
+                const dealii::Tensor<1, dim> s =
+                  (lm[p]->lm_force - lm[p]->lambda) / k;
+                for (unsigned int d = 0; d < dim; ++d)
+                  rhs.block(1).begin()[p * dim + d] = s[d];
+              }
+            Vector     masked(grid.locally_owned_dofs, comm);
+            const auto apply_A_inverse = [&](Vector &dst, const Vector &src) {
+              if (linear_solver_type == "direct")
+                factorisation->solve(dst, src);
+              else
+                amg->vmult(dst, src);
+              constraints.set_zero(dst);
+            };
+            struct BlockOperator
+            {
+              std::function<void(BlockVector &, const BlockVector &)> apply;
+              void
+              vmult(BlockVector &dst, const BlockVector &src) const
+              {
+                apply(dst, src);
+              }
+            };
+            // initial guess: x = A~^-1 r, y = 0
+            apply_A_inverse(solution.block(0), residual);
+            const BlockOperator system{
+              [&](BlockVector &dst, const BlockVector &src) {
+                masked = src.block(0);
+                constraints.set_zero(masked);
+                matrix.vmult(dst.block(0), masked);
+                spread(src.block(1), t);
+                dst.block(0) -= t;
+                const auto Nz = interpolate(masked);
+                for (unsigned int p = 0; p < lm.size(); ++p)
+                  {
+                    const double           k = lm[p]->beta * lm[p]->weight;
+                    dealii::Tensor<1, dim> yp;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      yp[d] = src.block(1).begin()[p * dim + d];
+                    const dealii::Tensor<1, dim> By =
+                      (yp - lm[p]->lm_D * yp) / k + lm[p]->lm_D * Nz[p] +
+                      regularisation * (lm[p]->lm_D * yp) / k;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      dst.block(1).begin()[p * dim + d] = By[d];
+                  }
+              }};
+            const BlockOperator block_preconditioner{
+              [&](BlockVector &dst, const BlockVector &src) {
+                preconditioner.vmult(dst.block(1), src.block(1));
+                spread(dst.block(1), t);
+                t += src.block(0);
+                apply_A_inverse(dst.block(0), t);
+              }};
+            dealii::SolverControl             control(max_linear_iterations,
+                                          linear_tolerance * rhs.l2_norm());
+            dealii::SolverFGMRES<BlockVector> fgmres(
+              control, dealii::SolverFGMRES<BlockVector>::AdditionalData(100));
+            fgmres.solve(system, solution, rhs, block_preconditioner);
+            n_iterations += control.last_step();
+            x = solution.block(0);
+            constraints.set_zero(x);
+            constraints.distribute(x);
+            if (std::getenv("TALUS_DEBUG_NEWTON") &&
+                dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+              std::cerr << "    saddle point (block): " << owned.size()
+                        << " multipliers, FGMRES " << control.last_step()
+                        << std::endl;
+            for (unsigned int p = 0; p < lm.size(); ++p)
+              for (unsigned int d = 0; d < dim; ++d)
+                lm[p]->dlambda[d] = solution.block(1).begin()[p * dim + d];
+            factorisation.reset();
+            return n_iterations;
+          }
+        catch (...)
+          {
+            factorisation.reset();
+            throw;
+          }
       try
         {
           // x0 = A^-1 r and the right-hand side s - D N x0

@@ -418,10 +418,21 @@ namespace Talus
        * D_b = D N, E = (I - D) / k and s = (f - lambda) / k, solved by
        * GMRES on the Schur complement E - D A^-1 C with k as diagonal
        * preconditioner; every application solves with A (factorised once
-       * with the direct solver, AMG-preconditioned Krylov otherwise).
+       * with the direct solver, AMG-preconditioned Krylov otherwise), or
+       * ('saddle-point solver = block preconditioned') by FGMRES on the
+       * whole system with a block upper-triangular preconditioner (one
+       * AMG V-cycle for A, the point-wise Schur approximation for the
+       * multipliers; Benzi, Golub & Liesen 2005, Acta Numerica 14, §10).
        */
       unsigned int
       solve_saddle_point(dealii::TrilinosWrappers::MPI::Vector &increment);
+
+      /**
+       * Build the ML AMG hierarchy of the tangent @p matrix with the rigid
+       * body modes as near null space (into amg).
+       */
+      void
+      build_amg();
 
       /**
        * Solve A x = b with the assembled tangent @p matrix (direct or
@@ -605,6 +616,8 @@ namespace Talus
       /** Affine particle-in-cell velocity update instead of FLIP. */
       bool         apic            = false;
       unsigned int max_line_search = 4;
+      /** Saddle-point systems by block-preconditioned FGMRES (else Schur). */
+      bool block_saddle_point = false;
 
       /** Contact state of a grid node on a friction boundary. */
       enum class ContactState
