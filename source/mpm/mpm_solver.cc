@@ -2040,8 +2040,15 @@ namespace Talus
           }
         else
           {
+            // right preconditioning: the convergence test then sees the
+            // true residual |b - A x| that the tolerance refers to (with
+            // left preconditioning deal.II tests |P^-1 (b - A x)|, a
+            // displacement, against a force)
+            dealii::SolverGMRES<
+              dealii::TrilinosWrappers::MPI::Vector>::AdditionalData data;
+            data.right_preconditioning = true;
             dealii::SolverGMRES<dealii::TrilinosWrappers::MPI::Vector> solver(
-              control);
+              control, data);
             solver.solve(matrix, x, b, *amg);
           }
       };
