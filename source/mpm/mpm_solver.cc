@@ -398,9 +398,10 @@ namespace Talus
           "take the interpolated grid velocity v_p = sum_I N_I(x_p) v_I and "
           "its gradient C_p = sum_I v_I grad N_I(x_p), and project the "
           "momentum m_p (v_p + C_p (x_I - x_p)) to node I. Conserves linear "
-          "and angular momentum in the transfer, removes the sub-cell "
-          "velocity fields FLIP keeps, and dissipates only the velocity "
-          "beyond the affine field of each point (doc/theory.md).");
+          "momentum in the transfer (Q1 reproduces linear fields; angular "
+          "momentum is not tested here), removes the sub-cell velocity "
+          "fields FLIP keeps, and dissipates only the velocity beyond the "
+          "affine field of each point (doc/theory.md).");
         prm.declare_entry(
           "ghost penalty factor",
           "0",
