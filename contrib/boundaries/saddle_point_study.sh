@@ -47,9 +47,10 @@ EOF
   (cd "$WORK" && timeout 900 $RUN "$name.prm" > "$name.log" 2>&1)
   local rc=$?
   end=$(date +%s.%N)
-  python3 - "$WORK" "$name" "$rc" "$(echo "$end - $start" | bc)" <<'EOF'
+  python3 - "$WORK" "$name" "$rc" "$start" "$end" <<'EOF'
 import csv, sys, os, re
-work, name, rc, wall = sys.argv[1:]
+work, name, rc, start, end = sys.argv[1:]
+wall = float(end) - float(start)
 rows = []
 f = f"{work}/out-{name}/time_series.csv"
 if os.path.exists(f):
@@ -61,7 +62,7 @@ rejected = log.count("rejected (dt")
 errors = " / ".join(re.findall(r"error at t = \S+: displacement (\S+)", log))
 t_end = rows[-1]["time"] if rows else "0"
 verdict = "ok" if rc == "0" else f"exit {rc}"
-print(f"| {name} | {float(wall):.1f} | {t_end} | {len(rows)} | {rejected} | "
+print(f"| {name} | {wall:.1f} | {t_end} | {len(rows)} | {rejected} | "
       f"{newton} | {linear / max(newton, 1):.1f} | {errors} | {verdict} |")
 EOF
 }
