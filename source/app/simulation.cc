@@ -121,7 +121,9 @@ namespace Talus
                           "If > 0: the run fails when the energy balance "
                           "B = kinetic + strain + gravitational + plastic "
                           "dissipation + friction dissipation + reset "
-                          "dissipation changes during "
+                          "dissipation + transfer dissipation (the kinetic "
+                          "energy a PIC blend, APIC or XPIC removes "
+                          "relative to FLIP) changes during "
                           "the run by more than this fraction of the "
                           "largest released gravitational energy "
                           "max|G(t) - G(0)| plus the initial kinetic energy "
@@ -651,12 +653,13 @@ namespace Talus
           max_drift =
             std::max(max_drift,
                      std::abs(e - e0) / std::max(std::abs(e0), 1e-300));
-          const double b0 = e0 + initial.plastic_dissipation +
-                            initial.friction_dissipation +
-                            initial.reset_dissipation;
+          const double b0 =
+            e0 + initial.plastic_dissipation + initial.friction_dissipation +
+            initial.reset_dissipation + initial.transfer_dissipation;
           const double b = e + diagnostics.plastic_dissipation +
                            diagnostics.friction_dissipation +
-                           diagnostics.reset_dissipation;
+                           diagnostics.reset_dissipation +
+                           diagnostics.transfer_dissipation;
           max_balance_change = std::max(max_balance_change, std::abs(b - b0));
           for (const auto &b : diagnostics.boundaries)
             max_penetration = std::max(max_penetration, b.penetration);
@@ -849,7 +852,8 @@ namespace Talus
               << max_released << " J, plastic dissipation "
               << final_state.plastic_dissipation << " J, friction dissipation "
               << final_state.friction_dissipation << " J, reset dissipation "
-              << final_state.reset_dissipation << " J\n";
+              << final_state.reset_dissipation << " J, transfer dissipation "
+              << final_state.transfer_dissipation << " J\n";
         check("energy balance",
               max_balance_change / std::max(scale, 1e-300),
               balance_tolerance);

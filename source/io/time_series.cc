@@ -29,7 +29,7 @@ namespace Talus
               "gravitational_energy,total_energy,lost_mass,plastic_dissipation,"
               "friction_dissipation,energy_balance,contact_force_x,"
               "contact_force_y,contact_force_z,volume,grid_kinetic_energy,"
-              "max_grid_speed,reset_dissipation";
+              "max_grid_speed,reset_dissipation,transfer_dissipation";
       for (const auto &name : boundary_names)
         {
           for (unsigned int d = 0; d < dim; ++d)
@@ -65,11 +65,12 @@ namespace Talus
            << d.friction_dissipation << ','
            << d.kinetic_energy + d.strain_energy + d.gravitational_energy +
                 d.plastic_dissipation + d.friction_dissipation +
-                d.reset_dissipation;
+                d.reset_dissipation + d.transfer_dissipation;
       for (unsigned int i = 0; i < 3; ++i)
         file << ',' << (i < dim ? d.contact_force[i] : 0.);
       file << ',' << d.volume << ',' << d.grid_kinetic_energy << ','
-           << d.max_grid_speed << ',' << d.reset_dissipation;
+           << d.max_grid_speed << ',' << d.reset_dissipation << ','
+           << d.transfer_dissipation;
       for (const auto &b : d.boundaries)
         {
           for (unsigned int i = 0; i < dim; ++i)

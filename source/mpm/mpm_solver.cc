@@ -388,7 +388,7 @@ namespace Talus
         prm.declare_entry(
           "velocity update",
           "FLIP",
-          Patterns::Selection("FLIP|APIC"),
+          Patterns::Selection("FLIP|APIC|XPIC"),
           "Transfer of the velocity between the material points and the "
           "grid [-]. 'FLIP': the points keep their own velocity and add the "
           "interpolated grid increment (blended with PIC by 'FLIP "
@@ -401,7 +401,19 @@ namespace Talus
           "momentum in the transfer (Q1 reproduces linear fields; angular "
           "momentum is not tested here), removes the sub-cell velocity "
           "fields FLIP keeps, and dissipates only the velocity beyond the "
-          "affine field of each point (doc/theory.md).");
+          "affine field of each point (doc/theory.md). 'XPIC' (extended "
+          "particle-in-cell of order m = 'XPIC order', Hammerquist and "
+          "Nairn 2017, CMAME 318): the FLIP update minus (I - P)^m v_p^n, "
+          "where P = projection to the grid and back; removes the sub-cell "
+          "velocity fields FLIP keeps with less dissipation than PIC (m = 1 "
+          "is PIC).");
+        prm.declare_entry(
+          "XPIC order",
+          "2",
+          Patterns::Integer(1, 10),
+          "Order m of the XPIC velocity update [-], 1 to 10 (1 = PIC; each "
+          "order costs one more projection to the grid and back per step). "
+          "Used by 'velocity update = XPIC' only.");
         prm.declare_entry(
           "ghost penalty factor",
           "0",
@@ -469,12 +481,16 @@ namespace Talus
       line_search   = prm.get_bool("line search");
       flip_fraction = prm.get_double("FLIP fraction");
       apic          = prm.get("velocity update") == "APIC";
-      if (apic && flip_fraction != 1.)
+      xpic_order    = prm.get("velocity update") == "XPIC" ?
+                        prm.get_integer("XPIC order") :
+                        0;
+      if ((apic || xpic_order > 0) && flip_fraction != 1.)
         InputFile::reject(sub,
                           "FLIP fraction",
                           prm.get("FLIP fraction"),
                           "it applies to 'velocity update = FLIP' only; "
-                          "with 'velocity update = APIC' leave it at 1");
+                          "with 'velocity update = " +
+                            prm.get("velocity update") + "' leave it at 1");
       ghost_penalty_factor = prm.get_double("ghost penalty factor");
       max_line_search      = prm.get_integer("maximum line search halvings");
       prm.leave_subsection();
@@ -786,6 +802,71 @@ namespace Talus
       velocity_n     = momentum;
       velocity_p2g   = momentum;
       acceleration_n = mass_acc;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::compute_xpic_correction(
+      std::vector<dealii::Tensor<1, dim>> &w) const
+    {
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      w.assign(particles.size(), dealii::Tensor<1, dim>());
+      for (const auto &c : cells)
+        for (unsigned int q = 0; q < c.n; ++q)
+          {
+            const auto props = particles[c.first + q]->get_properties();
+            for (unsigned int d = 0; d < dim; ++d)
+              w[c.first + q][d] = props[Properties::velocity + d];
+          }
+      dealii::TrilinosWrappers::MPI::Vector grid_velocity(
+        grid.locally_owned_dofs, grid.mpi_communicator);
+      dealii::TrilinosWrappers::MPI::Vector ghosted(grid.locally_owned_dofs,
+                                                    grid.locally_relevant_dofs,
+                                                    grid.mpi_communicator);
+      dealii::Vector<double>                p_local(dofs_per_cell);
+      for (unsigned int r = 0; r < xpic_order; ++r)
+        {
+          // P w: mass-weighted projection to the nodes and back
+          grid_velocity = 0.;
+          for (const auto &c : cells)
+            {
+              p_local = 0.;
+              for (unsigned int q = 0; q < c.n; ++q)
+                {
+                  const unsigned int k = c.first + q;
+                  const double       m =
+                    particles[k]->get_properties()[Properties::mass];
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    {
+                      const auto ci = fe.system_to_component_index(i);
+                      p_local[i] += shape_values[k * n_nodes + ci.second] * m *
+                                    w[k][ci.first];
+                    }
+                }
+              grid_velocity.add(c.dofs, p_local);
+            }
+          grid_velocity.compress(dealii::VectorOperation::add);
+          for (const auto i : grid.locally_owned_dofs)
+            if (nodal_mass(i) > 0.)
+              grid_velocity(i) /= nodal_mass(i);
+          grid_velocity.compress(dealii::VectorOperation::insert);
+          ghosted = grid_velocity;
+          for (const auto &c : cells)
+            for (unsigned int q = 0; q < c.n; ++q)
+              {
+                const unsigned int k = c.first + q;
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  {
+                    const auto ci = fe.system_to_component_index(i);
+                    w[k][ci.first] -= shape_values[k * n_nodes + ci.second] *
+                                      ghosted(c.dofs[i]);
+                  }
+              }
+        }
     }
 
 
@@ -2821,10 +2902,18 @@ namespace Talus
                     << std::endl;
       }
 
+      // XPIC(m): the part (I - P)^m v^n of the points' old velocities that
+      // the FLIP update keeps and PIC would remove, with P the projection
+      // to the grid and back (mass-weighted, at the old positions); m
+      // applications of P.
+      std::vector<dealii::Tensor<1, dim>> xpic_correction;
+      if (xpic_order > 0 && !quasi_static)
+        compute_xpic_correction(xpic_correction);
+
       std::vector<double> history_new(n_history);
       std::vector<double> du_local(dofs_per_cell), a_local(dofs_per_cell),
         dv_local(dofs_per_cell), v_local(dofs_per_cell);
-      double                              grid_energy = 0., grid_speed = 0.;
+      double grid_energy = 0., grid_speed = 0., transfer_energy = 0.;
       std::vector<dealii::Tensor<2, dim>> F_cell;
       dealii::Tensor<2, 3>                P;
       for (const auto &c : cells)
@@ -2886,10 +2975,16 @@ namespace Talus
                     props[Properties::deformation + i * dim + j] = F_new[i][j];
                   // FLIP (increment) blended with PIC (grid velocity), or
                   // APIC (grid velocity and its gradient)
+                  // or XPIC (FLIP minus (I - P)^m v^n)
+                  const double v_flip =
+                    props[Properties::velocity + i] + dv_p[i];
                   props[Properties::velocity + i] =
                     quasi_static ? 0. :
                     apic         ? v_pic[i] :
-                                   flip_fraction *
+                    xpic_order > 0 ?
+                           props[Properties::velocity + i] + dv_p[i] -
+                             xpic_correction[k][i] :
+                           flip_fraction *
                                (props[Properties::velocity + i] + dv_p[i]) +
                              (1. - flip_fraction) * v_pic[i];
                   for (unsigned int j = 0; j < dim; ++j)
@@ -2897,6 +2992,11 @@ namespace Talus
                       (apic && !quasi_static) ? grad_v[i][j] : 0.;
                   props[Properties::acceleration + i] =
                     quasi_static ? 0. : a_p[i];
+                  if (!quasi_static)
+                    transfer_energy +=
+                      0.5 * props[Properties::mass] *
+                      (v_flip * v_flip - props[Properties::velocity + i] *
+                                           props[Properties::velocity + i]);
                 }
               particles[k]->set_location(particles[k]->get_location() + du_p);
               if (!quasi_static)
@@ -2909,6 +3009,8 @@ namespace Talus
         }
       grid_kinetic_energy =
         dealii::Utilities::MPI::sum(grid_energy, grid.mpi_communicator);
+      transfer_dissipation +=
+        dealii::Utilities::MPI::sum(transfer_energy, grid.mpi_communicator);
       max_grid_speed =
         dealii::Utilities::MPI::max(grid_speed, grid.mpi_communicator);
       // Boundary particles: new gaps, reactions and states; friction work.
@@ -3816,6 +3918,7 @@ namespace Talus
       d.volume               = dealii::Utilities::MPI::sum(d.volume, comm);
       d.friction_dissipation = friction_dissipation;
       d.reset_dissipation    = reset_dissipation;
+      d.transfer_dissipation = transfer_dissipation;
       d.contact_force        = contact_force;
       if (grid_kinetic_energy >= 0.)
         {

@@ -88,6 +88,14 @@ namespace Talus
        */
       double reset_dissipation = 0.;
       /**
+       * Kinetic energy the velocity update removes from the points relative
+       * to FLIP since the start [J]: sum over the steps and points of
+       * m_p (|v_FLIP|^2 - |v_p^{n+1}|^2) / 2, with v_FLIP = v_p^n + the
+       * interpolated grid increment (zero with pure FLIP; the numerical
+       * dissipation of a PIC blend, APIC or XPIC).
+       */
+      double transfer_dissipation = 0.;
+      /**
        * Resultant force of all friction boundaries on the material at the
        * end of the last step [N] (normal and tangential contact forces).
        */
@@ -393,6 +401,15 @@ namespace Talus
       make_constraints();
 
       /**
+       * XPIC(m) (Hammerquist and Nairn 2017): @p w = (I - P)^m v^n for the
+       * points of the step, with P the mass-weighted projection of point
+       * velocities to the nodes and back at the old positions. The XPIC
+       * velocity is the FLIP velocity minus @p w.
+       */
+      void
+      compute_xpic_correction(std::vector<dealii::Tensor<1, dim>> &w) const;
+
+      /**
        * Assemble the residual (and the tangent if @p with_matrix) at the
        * increment @p du (ghosted). Returns false if a constitutive update
        * failed on any rank (message in @p failure).
@@ -614,7 +631,9 @@ namespace Talus
       bool   line_search   = false;
       double flip_fraction = 1.;
       /** Affine particle-in-cell velocity update instead of FLIP. */
-      bool         apic            = false;
+      bool apic = false;
+      /** Order m of the XPIC velocity update; 0: not used. */
+      unsigned int xpic_order      = 0;
       unsigned int max_line_search = 4;
       /** Saddle-point systems by block-preconditioned FGMRES (else Schur). */
       bool block_saddle_point = false;
@@ -656,6 +675,8 @@ namespace Talus
       double friction_dissipation = 0.;
       /** Accumulated reset dissipation [J] (all ranks); see Diagnostics. */
       double reset_dissipation = 0.;
+      /** Accumulated transfer dissipation [J] (all ranks); see Diagnostics. */
+      double transfer_dissipation = 0.;
       /**
        * The present step's impact friction and reset dissipation [J] (all
        * ranks): set by prepare_step() (and the velocity restore of released
