@@ -92,7 +92,8 @@ namespace Talus
        * to FLIP since the start [J]: sum over the steps and points of
        * m_p (|v_FLIP|^2 - |v_p^{n+1}|^2) / 2, with v_FLIP = v_p^n + the
        * interpolated grid increment (zero with pure FLIP; the numerical
-       * dissipation of a PIC blend, APIC or XPIC).
+       * dissipation of a PIC blend or XPIC; not APIC's loss, which sits in
+       * the projection of the affine field and is not booked).
        */
       double transfer_dissipation = 0.;
       /**
