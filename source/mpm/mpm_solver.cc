@@ -2311,11 +2311,13 @@ namespace Talus
             using BlockVector = dealii::TrilinosWrappers::MPI::BlockVector;
             const std::vector<dealii::IndexSet> partitioning = {
               grid.locally_owned_dofs, owned};
+            bool fresh_amg = false;
             if (linear_solver_type != "direct" &&
                 (!amg || !reuse_preconditioner || !amg_current))
               {
                 build_amg();
                 amg_current = true;
+                fresh_amg   = true;
               }
             BlockVector solution(partitioning, comm), rhs(partitioning, comm);
             rhs.block(0) = residual;
@@ -2378,7 +2380,23 @@ namespace Talus
                                           linear_tolerance * rhs.l2_norm());
             dealii::SolverFGMRES<BlockVector> fgmres(
               control, dealii::SolverFGMRES<BlockVector>::AdditionalData(100));
-            fgmres.solve(system, solution, rhs, block_preconditioner);
+            try
+              {
+                fgmres.solve(system, solution, rhs, block_preconditioner);
+              }
+            catch (const dealii::SolverControl::NoConvergence &)
+              {
+                // a hierarchy reused from an earlier Newton iteration may
+                // no longer fit A (the contact states changed): rebuild it
+                // once and start again
+                if (linear_solver_type == "direct" || fresh_amg)
+                  throw;
+                n_iterations += control.last_step();
+                build_amg();
+                apply_A_inverse(solution.block(0), residual);
+                solution.block(1) = 0.;
+                fgmres.solve(system, solution, rhs, block_preconditioner);
+              }
             n_iterations += control.last_step();
             x = solution.block(0);
             constraints.set_zero(x);
