@@ -3184,6 +3184,22 @@ namespace Talus
       for (const auto &b : boundary_points)
         exact = exact || b.monolithic || b.augmented || b.nitsche;
       exact = dealii::Utilities::MPI::logical_or(exact, grid.mpi_communicator);
+      // the force of boundary particle idx of cell c for the acceleration
+      // a_ghosted, as a penalty on tau^2 (a - a_bar) plus lambda_a
+      const auto force_at = [&](const CellCache &c, const unsigned int idx) {
+        BoundaryPoint bp = boundary_points[idx];
+        bp.du_bar        = tau2 * bp.a_bar;
+        bp.gap_old       = 0.;
+        bp.frozen        = frozen[idx];
+        bp.lambda        = lambda_a[idx];
+        dealii::Tensor<1, dim> a_b;
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          {
+            const auto ci = fe.system_to_component_index(i);
+            a_b[ci.first] += bp.N[ci.second] * a_ghosted(c.dofs[i]);
+          }
+        return boundary_force(bp, tau2 * a_b);
+      };
       const unsigned int max_updates       = exact ? 6 : 0;
       double             multiplier_change = 0.;
       for (unsigned int update = 0; update <= max_updates; ++update)
@@ -3198,21 +3214,11 @@ namespace Talus
               for (const auto &c : boundary_cells)
                 for (unsigned int b = 0; b < c.n_boundary; ++b)
                   {
-                    const unsigned int idx = c.first_boundary + b;
-                    BoundaryPoint      bp  = boundary_points[idx];
+                    const unsigned int   idx = c.first_boundary + b;
+                    const BoundaryPoint &bp  = boundary_points[idx];
                     if (!(bp.monolithic || bp.augmented || bp.nitsche))
                       continue;
-                    bp.du_bar  = tau2 * bp.a_bar;
-                    bp.gap_old = 0.;
-                    bp.frozen  = frozen[idx];
-                    bp.lambda  = lambda_a[idx];
-                    dealii::Tensor<1, dim> a_b;
-                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                      {
-                        const auto ci = fe.system_to_component_index(i);
-                        a_b[ci.first] += bp.N[ci.second] * a_ghosted(c.dofs[i]);
-                      }
-                    const BoundaryForce bf = boundary_force(bp, tau2 * a_b);
+                    const BoundaryForce bf = force_at(c, idx);
                     for (unsigned int i = 0; i < dofs_per_cell; ++i)
                       {
                         const auto ci = fe.system_to_component_index(i);
@@ -3248,20 +3254,9 @@ namespace Talus
                   r_local = 0.;
                   for (unsigned int b = 0; b < c.n_boundary; ++b)
                     {
-                      const unsigned int idx = c.first_boundary + b;
-                      BoundaryPoint      bp  = boundary_points[idx];
-                      bp.du_bar              = tau2 * bp.a_bar;
-                      bp.gap_old             = 0.;
-                      bp.frozen              = frozen[idx];
-                      bp.lambda              = lambda_a[idx];
-                      dealii::Tensor<1, dim> a_b;
-                      for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                        {
-                          const auto ci = fe.system_to_component_index(i);
-                          a_b[ci.first] +=
-                            bp.N[ci.second] * a_ghosted(c.dofs[i]);
-                        }
-                      const BoundaryForce bf = boundary_force(bp, tau2 * a_b);
+                      const unsigned int   idx = c.first_boundary + b;
+                      const BoundaryPoint &bp  = boundary_points[idx];
+                      const BoundaryForce  bf  = force_at(c, idx);
                       if (frozen[idx] < 0)
                         {
                           if (last[idx] >= 0 && bf.state != last[idx])
