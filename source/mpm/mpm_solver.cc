@@ -2229,22 +2229,29 @@ namespace Talus
           apply(dst, src);
         }
       };
+      // the multipliers' rows E y + D (N x): dst_p = (y_p - D y_p) / k +
+      // D Nx_p + regularisation D y_p / k, given Nx = N x at the points
+      const auto multiplier_rows =
+        [&](Vector                                    &dst,
+            const Vector                              &y,
+            const std::vector<dealii::Tensor<1, dim>> &Nx) {
+          for (unsigned int p = 0; p < lm.size(); ++p)
+            {
+              const double           k = lm[p]->beta * lm[p]->weight;
+              dealii::Tensor<1, dim> yp;
+              for (unsigned int d = 0; d < dim; ++d)
+                yp[d] = y.begin()[p * dim + d];
+              const dealii::Tensor<1, dim> row =
+                (yp - lm[p]->lm_D * yp) / k + lm[p]->lm_D * Nx[p] +
+                regularisation * (lm[p]->lm_D * yp) / k;
+              for (unsigned int d = 0; d < dim; ++d)
+                dst.begin()[p * dim + d] = row[d];
+            }
+        };
       const Operator schur{[&](Vector &dst, const Vector &src) {
         spread(src, t);
         n_iterations += solve_with_tangent(z, t);
-        const auto Nz = interpolate(z);
-        for (unsigned int p = 0; p < lm.size(); ++p)
-          {
-            const double           k = lm[p]->beta * lm[p]->weight;
-            dealii::Tensor<1, dim> yp;
-            for (unsigned int d = 0; d < dim; ++d)
-              yp[d] = src.begin()[p * dim + d];
-            const dealii::Tensor<1, dim> Sy =
-              (yp - lm[p]->lm_D * yp) / k + lm[p]->lm_D * Nz[p] +
-              regularisation * (lm[p]->lm_D * yp) / k;
-            for (unsigned int d = 0; d < dim; ++d)
-              dst.begin()[p * dim + d] = Sy[d];
-          }
+        multiplier_rows(dst, src, interpolate(z));
       }};
       // Preconditioner: S with A replaced by its diagonal and only the
       // point's own block, P = (I - D) / k + D C D with
@@ -2348,27 +2355,15 @@ namespace Talus
             };
             // initial guess: x = A~^-1 r, y = 0
             apply_A_inverse(solution.block(0), residual);
-            const BlockOperator system{
-              [&](BlockVector &dst, const BlockVector &src) {
-                masked = src.block(0);
-                constraints.set_zero(masked);
-                matrix.vmult(dst.block(0), masked);
-                spread(src.block(1), t);
-                dst.block(0) -= t;
-                const auto Nz = interpolate(masked);
-                for (unsigned int p = 0; p < lm.size(); ++p)
-                  {
-                    const double           k = lm[p]->beta * lm[p]->weight;
-                    dealii::Tensor<1, dim> yp;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      yp[d] = src.block(1).begin()[p * dim + d];
-                    const dealii::Tensor<1, dim> By =
-                      (yp - lm[p]->lm_D * yp) / k + lm[p]->lm_D * Nz[p] +
-                      regularisation * (lm[p]->lm_D * yp) / k;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      dst.block(1).begin()[p * dim + d] = By[d];
-                  }
-              }};
+            const BlockOperator system{[&](BlockVector       &dst,
+                                           const BlockVector &src) {
+              masked = src.block(0);
+              constraints.set_zero(masked);
+              matrix.vmult(dst.block(0), masked);
+              spread(src.block(1), t);
+              dst.block(0) -= t;
+              multiplier_rows(dst.block(1), src.block(1), interpolate(masked));
+            }};
             const BlockOperator block_preconditioner{
               [&](BlockVector &dst, const BlockVector &src) {
                 preconditioner.vmult(dst.block(1), src.block(1));
@@ -2997,14 +2992,11 @@ namespace Talus
                   const double v_flip =
                     props[Properties::velocity + i] + dv_p[i];
                   props[Properties::velocity + i] =
-                    quasi_static ? 0. :
-                    apic         ? v_pic[i] :
-                    xpic_order > 0 ?
-                           props[Properties::velocity + i] + dv_p[i] -
-                             xpic_correction[k][i] :
-                           flip_fraction *
-                               (props[Properties::velocity + i] + dv_p[i]) +
-                             (1. - flip_fraction) * v_pic[i];
+                    quasi_static   ? 0. :
+                    apic           ? v_pic[i] :
+                    xpic_order > 0 ? v_flip - xpic_correction[k][i] :
+                                     flip_fraction * v_flip +
+                                       (1. - flip_fraction) * v_pic[i];
                   for (unsigned int j = 0; j < dim; ++j)
                     props[Properties::affine_velocity + i * dim + j] =
                       (apic && !quasi_static) ? grad_v[i][j] : 0.;
