@@ -413,7 +413,8 @@ namespace Talus
           Patterns::Integer(1, 10),
           "Order m of the XPIC velocity update [-], 1 to 10 (1 = PIC; each "
           "order costs one more projection to the grid and back per step). "
-          "Used by 'velocity update = XPIC' only.");
+          "Used by 'velocity update = XPIC' only; a value other than 2 "
+          "with FLIP or APIC is rejected.");
         prm.declare_entry(
           "ghost penalty factor",
           "0",
@@ -484,6 +485,14 @@ namespace Talus
       xpic_order    = prm.get("velocity update") == "XPIC" ?
                         prm.get_integer("XPIC order") :
                         0;
+      if (xpic_order == 0 && prm.get_integer("XPIC order") != 2)
+        InputFile::reject(sub,
+                          "XPIC order",
+                          prm.get("XPIC order"),
+                          "it applies to 'velocity update = XPIC' only; "
+                          "with 'velocity update = " +
+                            prm.get("velocity update") +
+                            "' leave it at its default 2");
       if ((apic || xpic_order > 0) && flip_fraction != 1.)
         InputFile::reject(sub,
                           "FLIP fraction",
