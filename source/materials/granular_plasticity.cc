@@ -102,6 +102,8 @@ namespace Talus
       else
         s << "no softening";
       s << ", tension cut-off = " << tension_cutoff << " Pa";
+      if (recoverable_separation)
+        s << ", recoverable separated volume";
       return s.str();
     }
 
@@ -123,7 +125,7 @@ namespace Talus
     unsigned int
     GranularPlasticity::n_history_variables() const
     {
-      return 9;
+      return 10;
     }
 
 
@@ -150,7 +152,8 @@ namespace Talus
               "Cp_inv_xz",
               "plastic_strain",
               "plastic_dissipation",
-              "return_type"};
+              "return_type",
+              "open_volumetric_strain"};
     }
 
 
@@ -246,12 +249,28 @@ namespace Talus
           for (unsigned int i = 0; i < 6; ++i)
             history_new[i] = history_old[i];
           history_new[dissipation_index] = history_old[dissipation_index];
+          history_new[open_strain_index] = 0.;
         }
       else
         {
-          const dealii::Tensor<1, 3> eps_new     = C * r.tau;
-          double                     dissipation = 0.;
-          dealii::Tensor<2, 3>       b_e_new;
+          dealii::Tensor<1, 3> eps_new = C * r.tau;
+          // Recoverable separation: the volumetric strain beyond a
+          // hydrostatic apex stays elastic (b^e) and stress-free.
+          double open = 0.;
+          if (strength_parameters.recoverable_separation &&
+              r.return_type >= 3 &&
+              std::abs(r.tau[0] - r.tau[2]) <=
+                1e-12 * (std::abs(r.tau[0]) + elastic.mu))
+            {
+              open = std::max(0.,
+                              eps_sorted[0] + eps_sorted[1] + eps_sorted[2] -
+                                (eps_new[0] + eps_new[1] + eps_new[2]));
+              for (unsigned int k = 0; k < 3; ++k)
+                eps_new[k] += open / 3.;
+            }
+          history_new[open_strain_index]   = open;
+          double               dissipation = 0.;
+          dealii::Tensor<2, 3> b_e_new;
           for (unsigned int k = 0; k < 3; ++k)
             {
               dissipation += r.tau[k] * (eps_sorted[k] - eps_new[k]);
@@ -284,10 +303,16 @@ namespace Talus
     {
       const auto s =
         LogarithmicStrain::elastic_state(name(), F, history_to_G(history));
-      const double tr = s.eps[0] + s.eps[1] + s.eps[2];
-      return 0.5 * elastic.lambda * tr * tr +
-             elastic.mu * (s.eps[0] * s.eps[0] + s.eps[1] * s.eps[1] +
-                           s.eps[2] * s.eps[2]);
+      // the open (separated) volumetric strain stores no energy
+      const double open = history[open_strain_index] / 3.;
+      double       tr   = 0.;
+      double       sum2 = 0.;
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          tr += s.eps[k] - open;
+          sum2 += (s.eps[k] - open) * (s.eps[k] - open);
+        }
+      return 0.5 * elastic.lambda * tr * tr + elastic.mu * sum2;
     }
 
 
@@ -400,6 +425,20 @@ namespace Talus
                           " It only has an effect if t < c cot(phi) (the "
                           "tensile strength of the cone or pyramid apex); "
                           "the default 1e30 disables it. Not softened.");
+      prm.declare_entry(
+        "separated volume",
+        "plastic",
+        dealii::Patterns::Selection("plastic|recoverable"),
+        "What happens to the volume a point gains beyond the apex of the "
+        "yield surface (stress-free separation of the grains, e.g. at a "
+        "free surface or a spreading front of a cohesionless material). "
+        "'plastic': it is stored as plastic dilation, so the point resists "
+        "compression from its dilated volume on and does not recompact. "
+        "'recoverable': it stays an isotropic, stress-free opening that "
+        "closes without stress when the point is compressed back to the "
+        "apex volume (the disconnected state of Dunatunga & Kamrin, JFM "
+        "779 (2015) 483); the history value open_volumetric_strain holds "
+        "it [-].");
       prm.declare_entry(
         "residual friction angle",
         "peak",
@@ -541,6 +580,7 @@ namespace Talus
       s.cohesion                 = c;
       s.dilatancy_angle          = psi * degree;
       s.tension_cutoff           = t;
+      s.recoverable_separation   = prm.get("separated volume") == "recoverable";
       s.residual_friction_angle  = phi_r * degree;
       s.residual_cohesion        = c_r;
       s.residual_dilatancy_angle = psi_r * degree;

@@ -47,6 +47,13 @@ namespace Talus
       double softening_strain;
       /** Tension cut-off t [Pa]; >= 0 (its meaning depends on the model). */
       double tension_cutoff;
+      /**
+       * Whether the volume a point gains beyond the apex (stress-free
+       * separation of the grains) is recovered without stress when it is
+       * compressed again (true: the "disconnected" state of Dunatunga &
+       * Kamrin, JFM 779 (2015) 483) or kept as plastic dilation (false).
+       */
+      bool recoverable_separation = false;
 
       /** Whether any residual value differs from its peak value. */
       bool
@@ -129,14 +136,31 @@ namespace Talus
      * @f$\partial\mathbf P/\partial\mathbf F@f$ follows from
      * LogarithmicStrain::principal_kirchhoff_to_piola().
      *
-     * History (9 values): @f$\mathbf G@f$ as xx, yy, zz, xy, yz, xz;
+     * History (10 values): @f$\mathbf G@f$ as xx, yy, zz, xy, yz, xz;
      * the accumulated equivalent plastic strain
      * @f$\bar\varepsilon^p = \sum\sqrt{2/3}\,\|\Delta\boldsymbol
      * \varepsilon^p\|@f$ (principal logarithmic plastic strain increments
      * of every step); the plastic dissipation per unit reference volume
      * @f$\sum\boldsymbol\tau_{n+1}:\Delta\boldsymbol\varepsilon^p@f$
      * [J/m^3] (backward Euler); the return type of the last step
-     * (0 elastic, 1 plane or cone, 2 edge, 3 apex, 4 tension cut-off).
+     * (0 elastic, 1 plane or cone, 2 edge, 3 apex, 4 tension cut-off);
+     * the open volumetric strain @f$\varepsilon_o@f$.
+     *
+     * *Recoverable separation* (GranularStrength::recoverable_separation):
+     * a return to the hydrostatic apex normally stores all of the trial
+     * volumetric strain beyond the apex's in @f$\mathbf C_p@f$, so a point
+     * that was stretched while stress-free (grains separating at a free
+     * surface or a spreading front) resists compression from its dilated
+     * volume on and never recompacts. With recoverable separation the
+     * excess @f$\varepsilon_o = \max(0, \operatorname{tr}
+     * \varepsilon^{tr} - \operatorname{tr}\mathbb D^{-1}\tau_a)@f$ stays
+     * in @f$\mathbf b^e@f$ as an isotropic, stress-free opening: the next
+     * trial state starts from it, and the point carries the apex stress
+     * until it is compressed back to the apex volume (the "disconnected"
+     * state of Dunatunga & Kamrin, JFM 779 (2015) 483, in a Hencky
+     * setting). The stress, the tangent and the plastic strain of the
+     * step are those of the ordinary apex return; the stored energy
+     * excludes @f$\varepsilon_o@f$.
      */
     class GranularPlasticity : public ConstitutiveModel
     {
@@ -147,6 +171,12 @@ namespace Talus
       static constexpr unsigned int dissipation_index = 7;
       /** Index of the return type in the history. */
       static constexpr unsigned int return_type_index = 8;
+      /**
+       * Index of the open (separated) volumetric logarithmic strain in the
+       * history: the part of the elastic volumetric strain beyond the apex
+       * that carries no stress (0 unless recoverable separation is on).
+       */
+      static constexpr unsigned int open_strain_index = 9;
 
       /**
        * @param elastic  the elastic constants
@@ -155,7 +185,7 @@ namespace Talus
       GranularPlasticity(const IsotropicElasticity &elastic,
                          const GranularStrength    &strength);
 
-      /** 9. */
+      /** 10. */
       unsigned int
       n_history_variables() const override;
 
@@ -164,7 +194,7 @@ namespace Talus
       initialize_history(
         const dealii::ArrayView<double> &history) const override;
 
-      /** Names of the 9 history values. */
+      /** Names of the 10 history values. */
       std::vector<std::string>
       history_names() const override;
 
