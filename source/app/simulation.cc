@@ -341,27 +341,33 @@ namespace Talus
     const double u_tolerance = prm.get_double("displacement error tolerance");
     const double s_tolerance = prm.get_double("stress error tolerance");
     const bool   stress_rms  = prm.get("stress error norm") == "RMS";
-    const std::vector<double> stress_axis_list =
-      dealii::Utilities::string_to_double(dealii::Utilities::split_string_list(
-        prm.get("stress comparison axis")));
-    if (!stress_axis_list.empty() && stress_axis_list.size() != dim)
-      InputFile::reject("Verification",
-                        "stress comparison axis",
-                        prm.get("stress comparison axis"),
-                        "an empty value or " + std::to_string(dim) +
-                          " components (one per space dimension) is "
-                          "expected");
-    dealii::Tensor<1, dim> stress_axis;
-    for (unsigned int d = 0; d < stress_axis_list.size(); ++d)
-      stress_axis[d] = stress_axis_list[d];
-    if (!stress_axis_list.empty() && stress_axis.norm() == 0.)
-      InputFile::reject("Verification",
-                        "stress comparison axis",
-                        prm.get("stress comparison axis"),
-                        "a non-zero vector is expected");
-    const bool axial_stress = !stress_axis_list.empty();
-    if (axial_stress)
-      stress_axis /= stress_axis.norm();
+    // An optional direction of the subsection Verification: empty, or dim
+    // components of a non-zero vector (returned normalised).
+    const auto read_direction = [&](const std::string &entry) {
+      const std::string         text = prm.get(entry);
+      const std::vector<double> list = dealii::Utilities::string_to_double(
+        dealii::Utilities::split_string_list(text));
+      if (!list.empty() && list.size() != dim)
+        InputFile::reject("Verification",
+                          entry,
+                          text,
+                          "an empty value or " + std::to_string(dim) +
+                            " components (one per space dimension) is "
+                            "expected");
+      dealii::Tensor<1, dim> v;
+      for (unsigned int d = 0; d < list.size(); ++d)
+        v[d] = list[d];
+      if (!list.empty() && v.norm() == 0.)
+        InputFile::reject("Verification",
+                          entry,
+                          text,
+                          "a non-zero vector is expected");
+      return std::make_pair(
+        !list.empty(), list.empty() ? v : dealii::Tensor<1, dim>(v / v.norm()));
+    };
+    const auto axis_entry   = read_direction("stress comparison axis");
+    const bool axial_stress = axis_entry.first;
+    const dealii::Tensor<1, dim> stress_axis = axis_entry.second;
     const double reference_period  = prm.get_double("reference period");
     const double period_tolerance  = prm.get_double("period tolerance");
     const double drift_tolerance   = prm.get_double("energy drift tolerance");
@@ -370,26 +376,9 @@ namespace Talus
     const double penetration_limit = prm.get_double("maximum penetration");
     const bool   speed_of_grid =
       prm.get("final speed measure") == "grid velocity";
-    const std::vector<double> impulse_normal_list =
-      dealii::Utilities::string_to_double(
-        dealii::Utilities::split_string_list(prm.get("impulse normal")));
-    if (!impulse_normal_list.empty() && impulse_normal_list.size() != dim)
-      InputFile::reject("Verification",
-                        "impulse normal",
-                        prm.get("impulse normal"),
-                        "an empty value or " + std::to_string(dim) +
-                          " components (one per space dimension) is "
-                          "expected");
-    dealii::Tensor<1, dim> impulse_normal;
-    for (unsigned int d = 0; d < impulse_normal_list.size(); ++d)
-      impulse_normal[d] = impulse_normal_list[d];
-    if (!impulse_normal_list.empty() && impulse_normal.norm() == 0.)
-      InputFile::reject("Verification",
-                        "impulse normal",
-                        prm.get("impulse normal"),
-                        "a non-zero vector is expected");
-    if (!impulse_normal_list.empty())
-      impulse_normal /= impulse_normal.norm();
+    const auto normal_entry  = read_direction("impulse normal");
+    const bool impulse_check = normal_entry.first;
+    const dealii::Tensor<1, dim> impulse_normal = normal_entry.second;
     const double impulse_ratio = prm.get_double("impulse ratio");
     const double impulse_ratio_tolerance =
       prm.get_double("impulse ratio tolerance");
@@ -928,7 +917,7 @@ namespace Talus
         }
     if (penetration_limit > 0.)
       check("penetration", max_penetration, penetration_limit);
-    if (!impulse_normal_list.empty())
+    if (impulse_check)
       {
         // Impulse of the boundaries: momentum change minus gravity's.
         const dealii::Tensor<1, dim> J =
