@@ -459,6 +459,21 @@ namespace
   }
 
 
+  // (j) separated volume (c = 0, plane-strain fit): as for Mohr-Coulomb
+  void
+  check_recoverable_separation()
+  {
+    out << std::endl
+        << "(j) separated volume: plastic (default) and recoverable, c = 0"
+        << std::endl;
+    recoverable_separation_path(out, [](const bool recoverable) {
+      GranularStrength s       = strength(19.8, 0., 0.);
+      s.recoverable_separation = recoverable;
+      return DruckerPrager(IsotropicElasticity(E, nu), s, Fit::plane_strain);
+    });
+  }
+
+
   void
   check_softening()
   {
@@ -603,6 +618,7 @@ main()
   check_returns_on_surface();
   check_tangents();
   check_cohesionless();
+  check_recoverable_separation();
   check_softening();
   check_volume_change();
   check_objectivity_and_energy();

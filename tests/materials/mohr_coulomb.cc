@@ -455,56 +455,11 @@ namespace
     out << std::endl
         << "(j) separated volume: plastic (default) and recoverable, c = 0"
         << std::endl;
-    for (const bool recoverable : {false, true})
-      {
-        GranularStrength s       = strength(19.8, 0., 0.);
-        s.recoverable_separation = recoverable;
-        const MohrCoulomb model(IsotropicElasticity(E, nu), s);
-        MaterialPoint     p(model);
-        out << (recoverable ? "recoverable" : "plastic") << ":" << std::endl;
-        for (const auto &[name, F] :
-             std::vector<std::pair<std::string, Tensor<2, 3>>>{
-               {"stretch 5 % x 5 %", diagonal(1.05, 1.05, 1.)},
-               {"back to 2 % x 2 %", diagonal(1.02, 1.02, 1.)},
-               {"shear while open",
-                Tensor<2, 3>(diagonal(1.02, 1.02, 1.) +
-                             0.01 * outer_product(vector(1., 0., 0.),
-                                                  vector(0., 1., 0.)))},
-               {"back to F = I", unit_tensor()},
-               {"compress 1 %", diagonal(0.99, 1., 1.)}})
-          {
-            const Step st = advance(model, p, F);
-            // reference: the same F from the stress-free initial state
-            const Step   ref = evaluate(model, MaterialPoint(model), F);
-            const double J   = dealii::determinant(F);
-            out
-              << "  " << name << " (J = " << std::setprecision(6) << J
-              << "): return type " << return_type_name(st.history[8])
-              << ", open volumetric strain " << std::setprecision(6)
-              << (std::abs(st.history[GranularPlasticity::open_strain_index]) <
-                      1e-14 ?
-                    0. :
-                    st.history[GranularPlasticity::open_strain_index])
-              << ", max |P| = " << std::setprecision(4)
-              << (max_abs(st.P) < 1e-6 ? 0. : max_abs(st.P))
-              << " Pa, stored energy "
-              << (model.energy_density(F, make_array_view(st.history)) < 1e-9 ?
-                    0. :
-                    model.energy_density(F, make_array_view(st.history)))
-              << " J/m^3";
-            if (name == "compress 1 %")
-              out << ", |P - P(fresh point)| / |P(fresh point)| "
-                  << (max_abs(Tensor<2, 3>(st.P - ref.P)) <=
-                          1e-9 * max_abs(ref.P) ?
-                        "< 1e-9" :
-                        "> 1e-9");
-            out << std::endl;
-          }
-        report(out,
-               "  tangent while open",
-               tangent_error(model, p, diagonal(1.03, 1.03, 1.)),
-               1e-6);
-      }
+    recoverable_separation_path(out, [](const bool recoverable) {
+      GranularStrength s       = strength(19.8, 0., 0.);
+      s.recoverable_separation = recoverable;
+      return MohrCoulomb(IsotropicElasticity(E, nu), s);
+    });
   }
 
 
