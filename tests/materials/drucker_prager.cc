@@ -463,9 +463,6 @@ namespace
   void
   check_recoverable_separation()
   {
-    out << std::endl
-        << "(j) separated volume: plastic (default) and recoverable, c = 0"
-        << std::endl;
     recoverable_separation_path(out, [](const bool recoverable) {
       GranularStrength s       = strength(19.8, 0., 0.);
       s.recoverable_separation = recoverable;

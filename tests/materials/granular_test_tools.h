@@ -239,6 +239,9 @@ namespace GranularTest
   void
   recoverable_separation_path(std::ostream &out, const MakeModel &make)
   {
+    out << std::endl
+        << "(j) separated volume: plastic (default) and recoverable, c = 0"
+        << std::endl;
     for (const bool recoverable : {false, true})
       {
         const auto    model = make(recoverable);
