@@ -60,6 +60,14 @@ namespace Talus
                           "If > 0: the run fails (exit code 3) when the "
                           "displacement error at any report time exceeds "
                           "this value [m].");
+        prm.declare_entry("relative displacement error tolerance",
+                          "0",
+                          Patterns::Double(0),
+                          "If > 0: the run fails (exit code 3) when the "
+                          "displacement error at any report time exceeds "
+                          "this fraction of the exact displacement (the same "
+                          "norm of u_ex; for 'compare center of mass' of "
+                          "|u_ex(X_c)|) [-].");
         prm.declare_entry("stress error tolerance",
                           "0",
                           Patterns::Double(0),
@@ -339,6 +347,8 @@ namespace Talus
     const bool   compare_stress = prm.get_bool("compare stress");
     const bool   compare_center = prm.get_bool("compare center of mass");
     const double u_tolerance = prm.get_double("displacement error tolerance");
+    const double u_relative_tolerance =
+      prm.get_double("relative displacement error tolerance");
     const double s_tolerance = prm.get_double("stress error tolerance");
     const bool   stress_rms  = prm.get("stress error norm") == "RMS";
     // An optional direction of the subsection Verification: empty, or dim
@@ -493,7 +503,7 @@ namespace Talus
       exact_displacement.set_time(t);
       exact_stress.set_time(t);
       double sum_u = 0., sum_v = 0., max_ds = 0., max_s = 0., sum_m = 0.,
-             sum_ds = 0.;
+             sum_ds = 0., sum_ex = 0.;
       dealii::Tensor<1, dim> sum_mu, sum_mX;
       for (const auto &p : points.particle_handler())
         {
@@ -511,8 +521,10 @@ namespace Talus
             }
           for (unsigned int d = 0; d < dim; ++d)
             {
-              const double u = p.get_location()[d] - X[d];
-              sum_u += V0 * std::pow(u - exact_displacement.value(X, d), 2);
+              const double u    = p.get_location()[d] - X[d];
+              const double u_ex = exact_displacement.value(X, d);
+              sum_u += V0 * std::pow(u - u_ex, 2);
+              sum_ex += V0 * u_ex * u_ex;
             }
           sum_v += V0;
           if (compare_stress)
@@ -573,7 +585,9 @@ namespace Talus
       max_ds               = dealii::Utilities::MPI::max(max_ds, communicator);
       max_s                = dealii::Utilities::MPI::max(max_s, communicator);
       sum_ds               = dealii::Utilities::MPI::sum(sum_ds, communicator);
+      sum_ex               = dealii::Utilities::MPI::sum(sum_ex, communicator);
       e.displacement_error = std::sqrt(sum_u / sum_v);
+      e.exact_displacement = std::sqrt(sum_ex / sum_v);
       if (compare_center)
         {
           sum_m  = dealii::Utilities::MPI::sum(sum_m, communicator);
@@ -581,9 +595,12 @@ namespace Talus
           sum_mX = dealii::Utilities::MPI::sum(sum_mX, communicator);
           const dealii::Point<dim> X_c(sum_mX / sum_m);
           dealii::Tensor<1, dim>   du = sum_mu / sum_m;
+          dealii::Tensor<1, dim>   u_ex;
           for (unsigned int d = 0; d < dim; ++d)
-            du[d] -= exact_displacement.value(X_c, d);
+            u_ex[d] = exact_displacement.value(X_c, d);
+          du -= u_ex;
           e.displacement_error = du.norm();
+          e.exact_displacement = u_ex.norm();
         }
       e.stress_error = max_s > 0. ? max_ds / max_s : max_ds;
       e.stress_rms_error =
@@ -881,6 +898,12 @@ namespace Talus
         {
           if (u_tolerance > 0.)
             check("displacement error", e.displacement_error, u_tolerance);
+          if (u_relative_tolerance > 0.)
+            check("relative displacement error",
+                  e.exact_displacement > 0. ?
+                    e.displacement_error / e.exact_displacement :
+                    e.displacement_error,
+                  u_relative_tolerance);
           if (compare_stress && s_tolerance > 0.)
             check(std::string(axial_stress ? "axial " : "") +
                     (stress_rms ? "stress error (RMS)" : "stress error"),

@@ -223,6 +223,37 @@ namespace Talus
             "consistent, so the gap does not scale with 1/beta; a cell "
             "without material points falls back to penalty) [-].");
           prm.declare_entry(
+            "contact side",
+            "boundary particles",
+            Selection("boundary particles|material points"),
+            "Where a 'contact' or 'friction' condition is checked: "
+            "'boundary particles' (the penalty spring of each boundary "
+            "particle on the gap accumulated since material reached its "
+            "cell), or 'material points' (node-to-surface contact with the "
+            "material as the slave side: the lowest point x_c = x_p - r_p n "
+            "of every material point's extent, r_p = (V0^(1/dim)/2) |F^T "
+            "n|, against the tangent line or plane of the nearest boundary "
+            "particle, with the geometric gap g = (x_c - x_b) . n at the "
+            "start of the step plus the increment interpolated at x_c from "
+            "the point's own cell, whose nodes all carry mass; penalty beta "
+            "on the surface V0^((dim-1)/dim) of the point; the tangential "
+            "stick spring is kept on the point). A body then touches the "
+            "boundary where its material is, not where its cells are: use "
+            "it for rolling and for bodies whose contact patch is smaller "
+            "than a cell. Only with method = penalty and condition = "
+            "contact or friction [-].");
+          prm.declare_entry(
+            "contact damping",
+            "0",
+            Double(0.),
+            "contact side = material points: a normal dashpot next to the "
+            "penalty spring, eta [-]: a point pressed against the boundary "
+            "gets the force k (-g_n - eta dg_n) with dg_n the change of its "
+            "normal gap in the step (a Kelvin-Voigt contact with viscosity "
+            "eta k dt; it makes the impact of a new contact inelastic "
+            "instead of a rebound). The dissipated energy is booked with the "
+            "friction. 0: the elastic spring alone.");
+          prm.declare_entry(
             "Nitsche symmetry",
             "-1",
             Double(-1., 1.),
@@ -334,8 +365,32 @@ namespace Talus
           b.lagrange_multiplier = b.method == "Lagrange multiplier";
           b.nitsche             = b.method == "Nitsche";
           b.nitsche_theta       = prm.get_double("Nitsche symmetry");
-          b.penalty_factor      = prm.get_double("penalty factor");
-          b.penalty_parameter   = prm.get_double("penalty parameter");
+          b.material_point_contact =
+            prm.get("contact side") == "material points";
+          b.contact_damping = prm.get_double("contact damping");
+          if (b.contact_damping > 0. && !b.material_point_contact)
+            InputFile::reject(sub,
+                              "contact damping",
+                              prm.get("contact damping"),
+                              "0 unless contact side = material points");
+          if (b.material_point_contact && (b.condition == Condition::fixed ||
+                                           b.condition == Condition::slip))
+            InputFile::reject(sub,
+                              "contact side",
+                              prm.get("contact side"),
+                              "'boundary particles' for condition = " +
+                                condition +
+                                " ('material points' needs condition = "
+                                "contact or friction)");
+          if (b.material_point_contact && b.method != "penalty")
+            InputFile::reject(sub,
+                              "contact side",
+                              prm.get("contact side"),
+                              "'boundary particles' for method = " + b.method +
+                                " ('material points' needs method = "
+                                "penalty)");
+          b.penalty_factor    = prm.get_double("penalty factor");
+          b.penalty_parameter = prm.get_double("penalty parameter");
           if (!(b.penalty_factor > 0.))
             InputFile::reject(sub,
                               "penalty factor",
@@ -825,6 +880,15 @@ namespace Talus
           r[b].penetration = std::max(r[b].penetration, -(g * n));
           ++r[b].active;
         }
+      for (unsigned int b = 0; b < point_contact.size() && b < r.size(); ++b)
+        {
+          r[b].force += point_contact[b].force;
+          r[b].normal_force += point_contact[b].normal_force;
+          tangential[b] += point_contact_tangential[b];
+          r[b].penetration =
+            std::max(r[b].penetration, point_contact[b].penetration);
+          r[b].active += point_contact[b].active;
+        }
       const MPI_Comm comm = grid.mpi_communicator;
       for (unsigned int b = 0; b < boundaries.size(); ++b)
         {
@@ -838,6 +902,36 @@ namespace Talus
           r[b].active = dealii::Utilities::MPI::sum(r[b].active, comm);
         }
       return r;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::clear_point_contact()
+    {
+      point_contact.assign(boundaries.size(), BoundaryResultant<dim>());
+      point_contact_tangential.assign(boundaries.size(),
+                                      dealii::Tensor<1, dim>());
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::record_point_contact(
+      const unsigned int            b,
+      const dealii::Tensor<1, dim> &reaction,
+      const dealii::Tensor<1, dim> &normal,
+      const double                  penetration)
+    {
+      if (point_contact.size() != boundaries.size())
+        clear_point_contact();
+      AssertIndexRange(b, boundaries.size());
+      point_contact[b].force += reaction;
+      point_contact[b].normal_force -= reaction * normal;
+      point_contact_tangential[b] += reaction - (reaction * normal) * normal;
+      point_contact[b].penetration =
+        std::max(point_contact[b].penetration, penetration);
+      ++point_contact[b].active;
     }
 
 

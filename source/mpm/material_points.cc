@@ -45,6 +45,11 @@ namespace Talus
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
           n.emplace_back("C_" + std::to_string(i) + std::to_string(j));
+      for (unsigned int b = 0; b < n_contact_slots; ++b)
+        for (unsigned int d = 0; d < dim; ++d)
+          n.emplace_back("contact_gap_" + std::to_string(b + 1));
+      for (unsigned int b = 0; b < n_contact_slots; ++b)
+        n.emplace_back("contact_offset_" + std::to_string(b + 1));
       for (unsigned int i = 0; i < n_history; ++i)
         n.emplace_back("history_" + std::to_string(i));
       return n;
@@ -64,6 +69,8 @@ namespace Talus
           r[velocity + d]         = component_is_part_of_vector;
           r[acceleration + d]     = component_is_part_of_vector;
           r[initial_position + d] = component_is_part_of_vector;
+          for (unsigned int b = 0; b < n_contact_slots; ++b)
+            r[contact_gap + dim * b + d] = component_is_part_of_vector;
         }
       return r;
     }

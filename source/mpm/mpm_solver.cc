@@ -22,6 +22,8 @@
 #include <deal.II/fe/fe_interface_values.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/numerics/rtree.h>
+
 #include <deal.II/differentiation/ad/sacado_product_types.h>
 
 #include <Epetra_MultiVector.h>
@@ -1229,6 +1231,21 @@ namespace Talus
                   // the two states was, closed and sliding otherwise
                   bp.frozen = (bf.state == 1 || bp.last_state == 1) ? 1 : 3;
                   bf        = boundary_force(bp, du_b);
+                }
+              if (with_matrix && bp.monolithic && bp.last_state >= 0 &&
+                  bf.state != bp.last_state &&
+                  std::getenv("TALUS_DEBUG_SWITCH"))
+                {
+                  const double k = bp.beta * bp.weight;
+                  const auto   F =
+                    bp.lambda - k * (bp.gap_old + du_b - bp.du_bar);
+                  const double Fn = F * bp.normal;
+                  std::cerr << "      switch " << bp.last_state << "->"
+                            << bf.state << " frozen " << bp.frozen << " Fn "
+                            << Fn << " |Ft| " << (F - Fn * bp.normal).norm()
+                            << " mu Fn " << bp.mu * Fn << " lambda.n "
+                            << bp.lambda * bp.normal << " at "
+                            << bp.particle->get_location() << std::endl;
                 }
               if (with_matrix)
                 bp.last_state = bf.state;
@@ -3105,7 +3122,47 @@ namespace Talus
                       }
                     props[BP::state] = bf.state;
                   };
-                  if (bp.members.empty())
+                  if (bp.on_material_point)
+                    {
+                      if (std::getenv("TALUS_DEBUG_POINT_CONTACT") &&
+                          bf.state != 0)
+                        std::cerr << "  t " << time << " mp "
+                                  << bp.particle->get_location() << " g0 "
+                                  << bp.gap_old * bp.normal << " du.n "
+                                  << (du_b - bp.du_bar) * bp.normal << " g.n "
+                                  << bf.gap * bp.normal << " f " << bf.force
+                                  << " state " << bf.state << " N";
+                      if (std::getenv("TALUS_DEBUG_POINT_CONTACT") &&
+                          bf.state != 0)
+                        {
+                          for (const double v : bp.N)
+                            std::cerr << ' ' << v;
+                          std::cerr << std::endl;
+                        }
+                      // the stick spring stays on the material point; the
+                      // reaction goes to the boundary's resultant
+                      auto props = bp.particle->get_properties();
+                      const dealii::Tensor<1, dim> g_t =
+                        bf.state == 0 ?
+                          dealii::Tensor<1, dim>() :
+                          bf.gap - (bf.gap * bp.normal) * bp.normal;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        props[Properties::contact_gap + dim * bp.boundary + d] =
+                          g_t[d];
+                      // the dashpot's work on the normal increment
+                      if (bf.state != 0)
+                        {
+                          const double dgn = (du_b - bp.du_bar) * bp.normal;
+                          work += bp.damping * bp.beta * bp.weight * dgn * dgn;
+                        }
+                      if (bf.state != 0)
+                        boundary_particles->record_point_contact(
+                          bp.boundary,
+                          -bf.force,
+                          bp.normal,
+                          std::max(0., -(bf.gap * bp.normal)));
+                    }
+                  else if (bp.members.empty())
                     write(bp.particle, 1.);
                   else
                     for (unsigned int m = 0; m < bp.members.size(); ++m)
@@ -3391,7 +3448,6 @@ namespace Talus
           if (!has_mass)
             continue;
           c.first_boundary = boundary_points.size();
-          c.n_boundary     = n;
           std::vector<dealii::Point<dim>> reference_points;
           for (auto p = handler.particles_in_cell(tria_cell).begin();
                p != handler.particles_in_cell(tria_cell).end();
@@ -3402,15 +3458,18 @@ namespace Talus
               const auto props = p->get_properties();
               bp.boundary      = static_cast<unsigned int>(props[BP::boundary]);
               const auto &desc = boundary_particles->boundary(bp.boundary);
-              bp.weight        = props[BP::weight];
-              bp.beta          = desc.beta;
-              bp.mu            = desc.friction_coefficient;
-              bp.condition     = desc.condition;
-              bp.augmented     = desc.augmented || desc.lagrange_multiplier;
-              bp.monolithic    = desc.lagrange_multiplier;
-              bp.nitsche       = desc.nitsche;
-              bp.theta         = desc.nitsche_theta;
-              c.nitsche        = c.nitsche || desc.nitsche;
+              // material-point contact: the particles only give the surface
+              if (desc.material_point_contact)
+                continue;
+              bp.weight     = props[BP::weight];
+              bp.beta       = desc.beta;
+              bp.mu         = desc.friction_coefficient;
+              bp.condition  = desc.condition;
+              bp.augmented  = desc.augmented || desc.lagrange_multiplier;
+              bp.monolithic = desc.lagrange_multiplier;
+              bp.nitsche    = desc.nitsche;
+              bp.theta      = desc.nitsche_theta;
+              c.nitsche     = c.nitsche || desc.nitsche;
               dealii::Point<dim> X;
               for (unsigned int d = 0; d < dim; ++d)
                 {
@@ -3447,8 +3506,12 @@ namespace Talus
               reference_points.push_back(p->get_reference_location());
               boundary_points.push_back(std::move(bp));
             }
+          const unsigned int n_kept = reference_points.size();
+          if (n_kept == 0)
+            continue;
+          c.n_boundary = n_kept;
           if (grid.is_cartesian)
-            for (unsigned int q = 0; q < n; ++q)
+            for (unsigned int q = 0; q < n_kept; ++q)
               {
                 auto &bp = boundary_points[c.first_boundary + q];
                 bp.N.resize(n_nodes);
@@ -3474,7 +3537,7 @@ namespace Talus
                                               dealii::update_values |
                                                 dealii::update_gradients);
               fe_values.reinit(tria_cell);
-              for (unsigned int q = 0; q < n; ++q)
+              for (unsigned int q = 0; q < n_kept; ++q)
                 {
                   auto &bp = boundary_points[c.first_boundary + q];
                   bp.N.resize(n_nodes);
@@ -3500,7 +3563,7 @@ namespace Talus
               massive[k] =
                 nodal_mass(c.dofs[grid.fe.component_to_system_index(0, k)]) >
                 0.;
-            for (unsigned int q = 0; q < n; ++q)
+            for (unsigned int q = 0; q < n_kept; ++q)
               {
                 auto  &bp = boundary_points[c.first_boundary + q];
                 double S  = 0.;
@@ -3534,7 +3597,7 @@ namespace Talus
           // Cell-wise constraints: merge the particles of each such
           // boundary into one point with weight-averaged data.
           bool any_cellwise = false;
-          for (unsigned int q = 0; q < n; ++q)
+          for (unsigned int q = 0; q < n_kept; ++q)
             any_cellwise =
               any_cellwise ||
               boundary_particles
@@ -3544,7 +3607,7 @@ namespace Talus
             {
               std::map<unsigned int, BoundaryPoint> merged;
               std::vector<BoundaryPoint>            kept;
-              for (unsigned int q = 0; q < n; ++q)
+              for (unsigned int q = 0; q < n_kept; ++q)
                 {
                   BoundaryPoint &bp = boundary_points[c.first_boundary + q];
                   if (!boundary_particles->boundary(bp.boundary).cellwise)
@@ -3612,12 +3675,202 @@ namespace Talus
             }
           boundary_cells.push_back(std::move(c));
         }
+      cache_point_contacts();
       bool any_monolithic = false;
       for (const auto &bp : boundary_points)
         any_monolithic = any_monolithic || bp.monolithic;
       with_lagrange_multipliers =
         dealii::Utilities::MPI::logical_or(any_monolithic,
                                            grid.mpi_communicator);
+    }
+
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::cache_point_contacts()
+    {
+      // Node-to-surface contact with the material as the slave side: the
+      // contact point of material point p against boundary b is the lowest
+      // point of its extent, x_c = x_p - r_p n with r_p = (l0/2) |F^T n|
+      // (the half extent along n of the deformed circle of diameter
+      // l0 = V0^(1/dim) around the point; a rotation leaves it unchanged),
+      // n and x_b the normal and position of the boundary particle nearest
+      // to x_p. Its gap at the start of the step is the geometric distance
+      // g0 = (x_c - x_b) . n; within the step it changes by the increment
+      // at x_c interpolated with the shape functions of the point's own
+      // cell (extrapolated where x_c lies outside it), all of whose nodes
+      // carry mass. The tangential stick spring is the point's contact gap.
+      using BP = Boundaries::BoundaryParticleProperties<dim>;
+      using MP = MaterialPointProperties<dim>;
+      static_assert(MP::n_contact_slots ==
+                      Boundaries::BoundaryParticles<dim>::max_boundaries,
+                    "one contact gap slot per boundary slot");
+      if (boundary_particles == nullptr)
+        return;
+      boundary_particles->clear_point_contact();
+      const auto        &base    = grid.fe.base_element(0);
+      const unsigned int n_nodes = base.dofs_per_cell;
+      const MPI_Comm     comm    = grid.mpi_communicator;
+      const double       h       = grid.is_cartesian ?
+                                     *std::min_element(grid.cell_extent.begin_raw(),
+                                           grid.cell_extent.end_raw()) :
+                                     grid.minimal_cell_diameter;
+      for (unsigned int b = 0; b < boundary_particles->n_boundaries(); ++b)
+        {
+          const auto &desc = boundary_particles->boundary(b);
+          if (!desc.material_point_contact)
+            continue;
+          // every rank gets the whole surface of the boundary: positions,
+          // normals and reference positions of its particles
+          std::vector<double> local;
+          for (const auto &p : boundary_particles->particle_handler())
+            {
+              const auto props = p.get_properties();
+              if (static_cast<unsigned int>(props[BP::boundary]) != b)
+                continue;
+              for (unsigned int d = 0; d < dim; ++d)
+                local.push_back(p.get_location()[d]);
+              for (unsigned int d = 0; d < dim; ++d)
+                local.push_back(props[BP::normal + d]);
+              for (unsigned int d = 0; d < dim; ++d)
+                local.push_back(props[BP::reference_position + d]);
+            }
+          std::vector<dealii::Point<dim>>     x_b, X_b;
+          std::vector<dealii::Tensor<1, dim>> n_b;
+          for (const auto &part :
+               dealii::Utilities::MPI::all_gather(comm, local))
+            for (unsigned int k = 0; k + 3 * dim <= part.size(); k += 3 * dim)
+              {
+                dealii::Point<dim>     x, X;
+                dealii::Tensor<1, dim> n;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    x[d] = part[k + d];
+                    n[d] = part[k + dim + d];
+                    X[d] = part[k + 2 * dim + d];
+                  }
+                x_b.push_back(x);
+                n_b.push_back(n);
+                X_b.push_back(X);
+              }
+          if (x_b.empty())
+            continue;
+          const auto tree = dealii::pack_rtree_of_indices(x_b);
+          for (const auto &mc : cells)
+            {
+              CellCache c;
+              c.cell           = mc.cell;
+              c.dofs           = mc.dofs;
+              c.first          = 0;
+              c.n              = 0;
+              c.point_contact  = true;
+              c.first_boundary = boundary_points.size();
+              for (unsigned int q = 0; q < mc.n; ++q)
+                {
+                  auto                      particle = particles[mc.first + q];
+                  auto                      props = particle->get_properties();
+                  const auto                x_p   = particle->get_location();
+                  std::vector<unsigned int> nearest;
+                  tree.query(boost::geometry::index::nearest(x_p, 1),
+                             std::back_inserter(nearest));
+                  const unsigned int            j = nearest[0];
+                  const dealii::Tensor<1, dim> &n = n_b[j];
+                  const dealii::Tensor<2, dim>  F =
+                    read_tensor<dim>(props, MP::deformation);
+                  const double l0 =
+                    std::pow(props[MP::initial_volume], 1. / dim);
+                  const double r = 0.5 * l0 * (dealii::transpose(F) * n).norm();
+                  const dealii::Point<dim> x_c = x_p - r * n;
+                  // an extent that overlaps the boundary at the start is
+                  // measured from its initial depth on (contact offset)
+                  if (initializing && (x_c - x_b[j]) * n < 0.)
+                    props[MP::contact_offset + b] = -((x_c - x_b[j]) * n);
+                  const double g0 =
+                    (x_c - x_b[j]) * n + props[MP::contact_offset + b];
+                  dealii::Tensor<1, dim> g_t;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    g_t[d] = props[MP::contact_gap + dim * b + d];
+                  g_t -= (g_t * n) * n;
+                  // out of reach in this step: forget the stick spring
+                  dealii::Tensor<1, dim> v;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    v[d] = props[MP::velocity + d];
+                  const double reach = initializing ?
+                                         1e-6 * h :
+                                         0.5 * h + 2. * dt * v.norm() +
+                                           dt * dt * gravity_vector.norm();
+                  if (g0 > reach)
+                    {
+                      for (unsigned int d = 0; d < dim; ++d)
+                        props[MP::contact_gap + dim * b + d] = 0.;
+                      continue;
+                    }
+                  BoundaryPoint bp;
+                  bp.particle          = particle;
+                  bp.on_material_point = true;
+                  bp.boundary          = b;
+                  bp.weight =
+                    std::pow(props[MP::initial_volume], (dim - 1.) / dim);
+                  bp.beta          = desc.beta;
+                  bp.mu            = desc.friction_coefficient;
+                  bp.condition     = desc.condition;
+                  bp.damping       = desc.contact_damping;
+                  bp.damping_onset = 1e-2 * h;
+                  bp.normal        = n;
+                  bp.gap_old       = g0 * n + g_t;
+                  bp.du_bar        = 0.;
+                  bp.a_bar         = 0.;
+                  if (!initializing && desc.moving)
+                    bp.du_bar =
+                      boundary_particles->prescribed_displacement(b,
+                                                                  X_b[j],
+                                                                  time) -
+                      boundary_particles->prescribed_displacement(b,
+                                                                  X_b[j],
+                                                                  time - dt);
+                  if (initializing && desc.moving)
+                    {
+                      const double eps = 1e-4; // [s], as for the particles
+                      bp.a_bar =
+                        (boundary_particles->prescribed_displacement(b,
+                                                                     X_b[j],
+                                                                     time) -
+                         2. * boundary_particles->prescribed_displacement(
+                                b, X_b[j], time + eps) +
+                         boundary_particles->prescribed_displacement(
+                           b, X_b[j], time + 2. * eps)) /
+                        (eps * eps);
+                    }
+                  // shape values of the point's cell at x_c
+                  dealii::Point<dim> xi = particle->get_reference_location();
+                  if (grid.is_cartesian)
+                    for (unsigned int d = 0; d < dim; ++d)
+                      xi[d] += (x_c[d] - x_p[d]) / grid.cell_extent[d];
+                  else
+                    {
+                      try
+                        {
+                          xi = grid.mapping.transform_real_to_unit_cell(
+                            typename dealii::Triangulation<
+                              dim>::active_cell_iterator(mc.cell),
+                            x_c);
+                        }
+                      catch (...)
+                        {
+                          // keep the point's own location
+                        }
+                    }
+                  bp.N.resize(n_nodes);
+                  for (unsigned int k = 0; k < n_nodes; ++k)
+                    bp.N[k] = base.shape_value(k, xi);
+                  boundary_points.push_back(std::move(bp));
+                }
+              c.n_boundary = boundary_points.size() - c.first_boundary;
+              if (c.n_boundary > 0)
+                boundary_cells.push_back(std::move(c));
+            }
+        }
     }
 
 
@@ -3633,7 +3886,8 @@ namespace Talus
       for (const auto &c : cells)
         flags[c.cell->active_cell_index()] |= 1;
       for (const auto &c : boundary_cells)
-        flags[c.cell->active_cell_index()] |= 2;
+        if (!c.point_contact)
+          flags[c.cell->active_cell_index()] |= 2;
       using Iterator = typename dealii::DoFHandler<dim>::active_cell_iterator;
       const auto exchange = [&]() {
         dealii::GridTools::
@@ -3885,10 +4139,25 @@ namespace Talus
       const dealii::Tensor<1, dim>  g  = b.gap_old + du - b.du_bar;
       const dealii::Tensor<1, dim> &n  = b.normal;
       const double                  gn = g * n;
-      const dealii::Tensor<1, dim>  F  = b.lambda - k * g;
-      const double                  Fn = F * n;
       const dealii::Tensor<2, dim>  I  = dealii::unit_symmetric_tensor<dim>();
       const dealii::Tensor<2, dim>  nn = dealii::outer_product(n, n);
+      // material-point contact: the normal dashpot eta k (g - g_old) . n,
+      // scaled by s = min(1, p / p_s) with the penetration p = -g . n, so
+      // that it neither pushes before contact nor jumps at first contact
+      double       kd  = 0.;
+      double       s   = 0.;
+      const double dgn = (du - b.du_bar) * n;
+      if (b.damping > 0. && gn < 0.)
+        {
+          s  = std::min(1., -gn / b.damping_onset);
+          kd = b.damping * k * s;
+          if (s < 1.) // d(s dgn)/du = s n + dgn ds/du, ds/du = -n / p_s
+            kd -= b.damping * k * dgn / b.damping_onset;
+        }
+      const dealii::Tensor<1, dim> F =
+        b.lambda - k * g - (b.damping * k * s * dgn) * n;
+      const double Fn      = F * n;
+      const bool   pressed = Fn > 0.;
       switch (b.condition)
         {
           case Condition::fixed:
@@ -3904,18 +4173,18 @@ namespace Talus
             r.state     = 1;
             break;
           case Condition::contact:
-            if (b.frozen < 0 ? Fn > 0. : b.frozen != 0)
+            if (b.frozen < 0 ? pressed : b.frozen != 0)
               {
                 r.force     = Fn * n;
-                r.dforce_du = -k * nn;
+                r.dforce_du = -(k + kd) * nn;
                 r.gap       = gn * n;
                 r.state     = 1;
               }
             break;
           case Condition::friction:
-            if (b.frozen < 0 ? Fn > 0. :
+            if (b.frozen < 0 ? pressed :
                                (b.frozen == 1 || b.frozen == 3 ||
-                                (b.frozen == 2 && Fn > 0.)))
+                                (b.frozen == 2 && pressed)))
               {
                 const double                 fn      = Fn; // > 0
                 const dealii::Tensor<1, dim> f_trial = F - Fn * n;
@@ -3925,7 +4194,7 @@ namespace Talus
                                    (b.frozen == 1 || norm == 0.))
                   {
                     r.force     = fn * n + f_trial;
-                    r.dforce_du = -k * I;
+                    r.dforce_du = -k * I - kd * nn;
                     r.gap       = g;
                     r.state     = 1;
                   }
@@ -3934,7 +4203,8 @@ namespace Talus
                     const dealii::Tensor<1, dim> s = f_trial / norm;
                     r.force                        = fn * n + limit * s;
                     r.dforce_du =
-                      -k * nn - k * b.mu * dealii::outer_product(s, n) -
+                      -(k + kd) * nn -
+                      (k + kd) * b.mu * dealii::outer_product(s, n) -
                       (limit * k / norm) *
                         ((I - dealii::outer_product(s, s)) * (I - nn));
                     // penalty: the elastic part of the tangential gap

@@ -32,6 +32,8 @@ namespace Talus
   {
     double time               = 0.;
     double displacement_error = 0.; ///< [sum V0 |u - u_ex|^2 / sum V0]^1/2
+    /** The same norm of u_ex (|u_ex(X_c)| for the center of mass) [m]. */
+    double exact_displacement = 0.;
     double stress_error       = 0.; ///< max |sigma - sigma_ex| / max |sigma_ex|
     /** [sum V0 |sigma - sigma_ex|^2 / sum V0]^1/2 / max |sigma_ex| */
     double stress_rms_error = 0.;

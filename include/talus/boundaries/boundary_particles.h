@@ -98,7 +98,21 @@ namespace Talus
        * in (du, dlambda), solved through its Schur complement. The
        * constraint holds to the Newton tolerance whatever k.
        */
-      bool         lagrange_multiplier  = false;
+      bool lagrange_multiplier = false;
+      /**
+       * Contact on the material side (contact side = material points): the
+       * contact condition is checked at the lowest point of every material
+       * point's extent against the boundary's surface (given by its
+       * nearest boundary particle), with a geometric gap, instead of at the
+       * boundary particles on an accumulated gap (see MPM::MPMSolver).
+       */
+      bool material_point_contact = false;
+      /**
+       * Normal dashpot of material-point contact relative to the spring,
+       * eta: the force on a pressed point is k (-g_n - eta (g_n - g_n,old))
+       * (a Kelvin-Voigt contact; 0: the elastic penalty spring alone).
+       */
+      double       contact_damping      = 0.;
       bool         nitsche              = false;
       double       nitsche_theta        = -1.;
       double       friction_coefficient = 0.;
@@ -298,9 +312,30 @@ namespace Talus
         return handler;
       }
 
-      /** Sum the reactions per boundary (all ranks). */
+      /**
+       * Sum the reactions per boundary (all ranks): those of the boundary
+       * particles and those recorded by record_point_contact().
+       */
       std::vector<BoundaryResultant<dim>>
       resultants() const;
+
+      /**
+       * Forget the reactions of material-point contact (contact side =
+       * material points) recorded for the last step on this rank.
+       */
+      void
+      clear_point_contact();
+
+      /**
+       * Record the force @p reaction [N] that one material point in contact
+       * exerts on boundary @p b, the boundary's normal @p normal there and
+       * the point's penetration [m] (this rank; resultants() sums).
+       */
+      void
+      record_point_contact(const unsigned int            b,
+                           const dealii::Tensor<1, dim> &reaction,
+                           const dealii::Tensor<1, dim> &normal,
+                           const double                  penetration);
 
       /** Boundary particles that left the grid so far (this rank). */
       unsigned int
@@ -352,6 +387,9 @@ namespace Talus
       unsigned int                            max_updates            = 20;
       /** Lost since the last take_lost_per_boundary(), per boundary. */
       std::vector<unsigned int> lost_per_boundary;
+      /** Material-point contact of the last step on this rank, per boundary. */
+      std::vector<BoundaryResultant<dim>> point_contact;
+      std::vector<dealii::Tensor<1, dim>> point_contact_tangential;
     };
   } // namespace Boundaries
 } // namespace Talus

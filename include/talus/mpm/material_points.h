@@ -36,6 +36,8 @@ namespace Talus
      * | Cauchy stress        | 6 (xx yy zz xy yz xz) | Pa |
      * | initial position X   | dim     | m      |
      * | affine velocity C    | dim*dim | 1/s    |
+     * | contact gap          | dim * n_contact_slots | m |
+     * | contact offset       | n_contact_slots | m |
      * | history              | n       | model dependent |
      *
      * In 2D (plane strain) the out-of-plane stress zz is kept because it
@@ -45,6 +47,16 @@ namespace Talus
      * velocity gradient at the point after the step; only the APIC velocity
      * update uses it (Jiang et al. 2015: the point's velocity field is
      * v_p + C (x - x_p)). With FLIP it stays zero.
+     *
+     * The contact gap holds, per boundary slot b, the elastic tangential
+     * relative displacement of the point's contact point against boundary
+     * b (the stick spring of a boundary with 'contact side = material
+     * points', see MPMSolver); zero while the point does not touch it.
+     * The contact offset is the depth by which the point's extent
+     * overlapped boundary b at the start (a lattice of points in a curved
+     * or inclined body pokes out of it by up to half a point spacing): its
+     * contact gap is measured from that depth on, so that a body placed on
+     * a boundary starts touching it instead of being thrown off.
      */
     template <int dim>
     struct MaterialPointProperties
@@ -57,7 +69,12 @@ namespace Talus
       static constexpr unsigned int stress           = deformation + dim * dim;
       static constexpr unsigned int initial_position = stress + 6;
       static constexpr unsigned int affine_velocity  = initial_position + dim;
-      static constexpr unsigned int history = affine_velocity + dim * dim;
+      /** Boundary slots with a contact gap (= BoundaryParticles' slots). */
+      static constexpr unsigned int n_contact_slots = 4;
+      static constexpr unsigned int contact_gap = affine_velocity + dim * dim;
+      static constexpr unsigned int contact_offset =
+        contact_gap + dim * n_contact_slots;
+      static constexpr unsigned int history = contact_offset + n_contact_slots;
 
       /** Number of properties for a model with @p n_history variables. */
       static constexpr unsigned int

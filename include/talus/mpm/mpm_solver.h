@@ -227,6 +227,11 @@ namespace Talus
         unsigned int n_boundary     = 0;
         /** Whether one of its boundary particles uses Nitsche's method. */
         bool nitsche = false;
+        /**
+         * Whether its boundary points are material points in contact
+         * (contact side = material points) rather than boundary particles.
+         */
+        bool point_contact = false;
       };
 
       /** A boundary particle in a cell with material, for one step. */
@@ -319,6 +324,24 @@ namespace Talus
         /** Slip direction (against the tangential force) at the last iterate.
          */
         dealii::Tensor<1, dim> last_slip;
+        /**
+         * Material-point contact (contact side = material points): particle
+         * is the material point, N the shape values of its cell at its
+         * contact point x_c, gap_old the geometric normal gap at the start
+         * of the step plus the point's tangential stick spring.
+         */
+        bool on_material_point = false;
+        /**
+         * Material-point contact: the normal dashpot of the contact,
+         * eta = 'contact damping', a force eta k (g - g_old) . n n added to
+         * the spring's -k g while the point is pressed (0: none).
+         */
+        double damping = 0.;
+        /**
+         * Penetration over which the dashpot grows from zero to its full
+         * value (so that the force is continuous at first contact) [m].
+         */
+        double damping_onset = 1.;
       };
 
       /** Force of a boundary particle on the material and its state. */
@@ -391,6 +414,14 @@ namespace Talus
       /** Boundary particles in the cells with material (prepare_step). */
       void
       cache_boundary_particles();
+
+      /**
+       * The material points that may touch a boundary with contact side =
+       * material points in this step, as boundary points of their cells
+       * (called by cache_boundary_particles()).
+       */
+      void
+      cache_point_contacts();
 
       void
       cache_particles();
