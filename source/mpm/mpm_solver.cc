@@ -3692,9 +3692,9 @@ namespace Talus
     {
       // Node-to-surface contact with the material as the slave side: the
       // contact point of material point p against boundary b is the lowest
-      // point of its extent, x_c = x_p - r_p n with r_p = (l0/2) |F^T n|
-      // (the half extent along n of the deformed circle of diameter
-      // l0 = V0^(1/dim) around the point; a rotation leaves it unchanged),
+      // point of its extent, x_c = x_p - r_p n with r_p = (l0/2) J^(1/dim)
+      // (the radius of the circle of the point's current volume,
+      // l0 = V0^(1/dim)),
       // n and x_b the normal and position of the boundary particle nearest
       // to x_p. Its gap at the start of the step is the geometric distance
       // g0 = (x_c - x_b) . n; within the step it changes by the increment
@@ -3780,7 +3780,11 @@ namespace Talus
                     read_tensor<dim>(props, MP::deformation);
                   const double l0 =
                     std::pow(props[MP::initial_volume], 1. / dim);
-                  const double r = 0.5 * l0 * (dealii::transpose(F) * n).norm();
+                  // the circle (sphere) of the point's current volume: a
+                  // rotation leaves it unchanged, and so does plastic flow
+                  // at constant volume, whose F may be far from a rotation
+                  const double r =
+                    0.5 * l0 * std::pow(dealii::determinant(F), 1. / dim);
                   const dealii::Point<dim> x_c = x_p - r * n;
                   // an extent that overlaps the boundary at the start is
                   // measured from its initial depth on (contact offset)
