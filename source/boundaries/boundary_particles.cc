@@ -240,9 +240,10 @@ namespace Talus
             "on the surface V0^((dim-1)/dim) of the point; the tangential "
             "stick spring is kept on the point). A body then touches the "
             "boundary where its material is, not where its cells are: use "
-            "it for rolling and for bodies whose contact patch is smaller "
-            "than a cell. Only with method = penalty and condition = "
-            "contact or friction [-].");
+            "it for rolling bodies whose points resolve their surface (a "
+            "lattice of points rolls like a polygon and bounces; see "
+            "doc/verification.md). Only with method = penalty and "
+            "condition = contact or friction [-].");
           prm.declare_entry(
             "contact damping",
             "0",
