@@ -9,7 +9,7 @@ the displacement of the center of mass, within 2 % of s(t) = a t^2 / 2.
 
     usage: make_rolling_cylinder.py <output dir> [--with-rolling]
            [--material-point-contact] [--ogrid M] [--ppc N] [--cell H]
-           [--penalty-factor F] [--name NAME] [--test]
+           [--penalty-factor F] [--clip] [--name NAME] [--test]
 
 --material-point-contact: 'contact side = material points' (the contact is
 checked at the lowest point of every material point's extent against the
@@ -20,7 +20,8 @@ of points at constant radius) instead of the background cells' points
 inside a 64-gon; with --material-point-contact the disk is placed so that
 the lowest extent of its points touches the line; --ppc N: points per
 cell and direction (default 2); --cell H: the background cell size [m]
-(default 0.05); --penalty-factor F: the boundary's penalty factor; --test:
+(default 0.05); --penalty-factor F: the boundary's penalty factor; --clip:
+'clip points to the body' for the lattice disk; --test:
 write ctest inputs (.prm.in, the mesh under @SOURCE_DIR@). With
 --material-point-contact the check is 2 % of s(t) at 0.2 s and 0.4 s
 ('relative displacement error tolerance').
@@ -112,7 +113,8 @@ def lowest_extent(nodes, quads, n, ppc):
 
 
 def write(path, mu, condition, factor, end_time=0.4, points_contact=False,
-          ogrid=0, cell=H, ppc=2, penalty_factor=None, template=False):
+          ogrid=0, cell=H, ppc=2, penalty_factor=None, template=False,
+          clip=False):
     t = (math.cos(RHO), math.sin(RHO))
     n = (-math.sin(RHO), math.cos(RHO))
     o = (0.2 + 0.1 * math.sin(RHO), 0.137)
@@ -143,6 +145,8 @@ def write(path, mu, condition, factor, end_time=0.4, points_contact=False,
     else:
         body = f"""  set geometry = polygon
   set vertices = {'; '.join(fmt(p) for p in disk)}"""
+        if clip:
+            body += "\n  set clip points to the body = true"
     g = (G * (math.sin(THETA) * t[0] - math.cos(THETA) * n[0]),
          G * (math.sin(THETA) * t[1] - math.cos(THETA) * n[1]))
     a = factor * G * math.sin(THETA)
@@ -226,7 +230,7 @@ if __name__ == "__main__":
     template = "--test" in args
     factor = float(args[args.index("--penalty-factor") + 1]) if "--penalty-factor" in args else None
     opts = dict(points_contact=points, ogrid=ogrid, cell=cell, ppc=ppc,
-                penalty_factor=factor, template=template)
+                penalty_factor=factor, template=template, clip="--clip" in args)
     ext = ".prm.in" if template else ".prm"
     write(f"{out}/cylinder_60_frictionless{suffix}.prm", 0.0, "contact", 1.0, **opts)
     if template:
