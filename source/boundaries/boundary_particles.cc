@@ -415,6 +415,14 @@ namespace Talus
           b.cellwise =
             prm.get("constraint") == "per cell" ||
             (prm.get("constraint") == "default" && b.lagrange_multiplier);
+          if (b.cellwise && b.material_point_contact)
+            InputFile::reject(sub,
+                              "constraint",
+                              prm.get("constraint"),
+                              "'default' or 'per particle' for contact side "
+                              "= material points (the contact is checked at "
+                              "the material points, not at the boundary "
+                              "particles of a cell)");
           b.flip_normals    = prm.get_bool("flip normals");
           b.material_inside = prm.get("material side") == "inside";
 
