@@ -67,7 +67,8 @@ namespace Talus
                           "displacement error at any report time exceeds "
                           "this fraction of the exact displacement (the same "
                           "norm of u_ex; for 'compare center of mass' of "
-                          "|u_ex(X_c)|) [-].");
+                          "|u_ex(X_c)|; where u_ex = 0 the absolute error is "
+                          "checked) [-].");
         prm.declare_entry("stress error tolerance",
                           "0",
                           Patterns::Double(0),

@@ -252,9 +252,11 @@ namespace Talus
             "penalty spring, eta [-]: a point pressed against the boundary "
             "gets the force k (-g_n - eta dg_n) with dg_n the change of its "
             "normal gap in the step (a Kelvin-Voigt contact with viscosity "
-            "eta k dt; it makes the impact of a new contact inelastic "
-            "instead of a rebound). The dissipated energy is booked with the "
-            "friction. 0: the elastic spring alone.");
+            "eta k dt), ramped in over the first 0.01 h of penetration so "
+            "that the force is continuous at first contact. Meant to damp "
+            "the rebound of new contacts; in the rolling-cylinder study it "
+            "did not (doc/verification.md). The dissipated energy is booked "
+            "with the friction. 0: the elastic spring alone.");
           prm.declare_entry(
             "Nitsche symmetry",
             "-1",

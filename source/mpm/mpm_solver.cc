@@ -1232,21 +1232,6 @@ namespace Talus
                   bp.frozen = (bf.state == 1 || bp.last_state == 1) ? 1 : 3;
                   bf        = boundary_force(bp, du_b);
                 }
-              if (with_matrix && bp.monolithic && bp.last_state >= 0 &&
-                  bf.state != bp.last_state &&
-                  std::getenv("TALUS_DEBUG_SWITCH"))
-                {
-                  const double k = bp.beta * bp.weight;
-                  const auto   F =
-                    bp.lambda - k * (bp.gap_old + du_b - bp.du_bar);
-                  const double Fn = F * bp.normal;
-                  std::cerr << "      switch " << bp.last_state << "->"
-                            << bf.state << " frozen " << bp.frozen << " Fn "
-                            << Fn << " |Ft| " << (F - Fn * bp.normal).norm()
-                            << " mu Fn " << bp.mu * Fn << " lambda.n "
-                            << bp.lambda * bp.normal << " at "
-                            << bp.particle->get_location() << std::endl;
-                }
               if (with_matrix)
                 bp.last_state = bf.state;
               if (bp.monolithic)
@@ -3067,6 +3052,8 @@ namespace Talus
           double work = 0.;
           // per-particle traction, force and gap at commit (debugging)
           const bool debug_boundary = std::getenv("TALUS_DEBUG_NITSCHE");
+          const bool debug_point_contact =
+            std::getenv("TALUS_DEBUG_POINT_CONTACT");
           std::vector<dealii::Tensor<1, dim>> dT(dofs_per_cell);
           std::vector<double>                 du_local(dofs_per_cell);
           for (const auto &c : boundary_cells)
@@ -3124,17 +3111,14 @@ namespace Talus
                   };
                   if (bp.on_material_point)
                     {
-                      if (std::getenv("TALUS_DEBUG_POINT_CONTACT") &&
-                          bf.state != 0)
-                        std::cerr << "  t " << time << " mp "
-                                  << bp.particle->get_location() << " g0 "
-                                  << bp.gap_old * bp.normal << " du.n "
-                                  << (du_b - bp.du_bar) * bp.normal << " g.n "
-                                  << bf.gap * bp.normal << " f " << bf.force
-                                  << " state " << bf.state << " N";
-                      if (std::getenv("TALUS_DEBUG_POINT_CONTACT") &&
-                          bf.state != 0)
+                      if (debug_point_contact && bf.state != 0)
                         {
+                          std::cerr << "  t " << time << " mp "
+                                    << bp.particle->get_location() << " g0 "
+                                    << bp.gap_old * bp.normal << " du.n "
+                                    << (du_b - bp.du_bar) * bp.normal << " g.n "
+                                    << bf.gap * bp.normal << " f " << bf.force
+                                    << " state " << bf.state << " N";
                           for (const double v : bp.N)
                             std::cerr << ' ' << v;
                           std::cerr << std::endl;
@@ -3149,18 +3133,17 @@ namespace Talus
                       for (unsigned int d = 0; d < dim; ++d)
                         props[Properties::contact_gap + dim * bp.boundary + d] =
                           g_t[d];
-                      // the dashpot's work on the normal increment
                       if (bf.state != 0)
                         {
+                          // the dashpot's work on the normal increment
                           const double dgn = (du_b - bp.du_bar) * bp.normal;
                           work += bp.damping * bp.beta * bp.weight * dgn * dgn;
+                          boundary_particles->record_point_contact(
+                            bp.boundary,
+                            -bf.force,
+                            bp.normal,
+                            std::max(0., -(bf.gap * bp.normal)));
                         }
-                      if (bf.state != 0)
-                        boundary_particles->record_point_contact(
-                          bp.boundary,
-                          -bf.force,
-                          bp.normal,
-                          std::max(0., -(bf.gap * bp.normal)));
                     }
                   else if (bp.members.empty())
                     write(bp.particle, 1.);
@@ -3761,7 +3744,6 @@ namespace Talus
             {
               CellCache c;
               c.cell           = mc.cell;
-              c.dofs           = mc.dofs;
               c.first          = 0;
               c.n              = 0;
               c.point_contact  = true;
@@ -3872,7 +3854,10 @@ namespace Talus
                 }
               c.n_boundary = boundary_points.size() - c.first_boundary;
               if (c.n_boundary > 0)
-                boundary_cells.push_back(std::move(c));
+                {
+                  c.dofs = mc.dofs; // only for cells with candidates
+                  boundary_cells.push_back(std::move(c));
+                }
             }
         }
     }

@@ -109,8 +109,9 @@ namespace Talus
       bool material_point_contact = false;
       /**
        * Normal dashpot of material-point contact relative to the spring,
-       * eta: the force on a pressed point is k (-g_n - eta (g_n - g_n,old))
-       * (a Kelvin-Voigt contact; 0: the elastic penalty spring alone).
+       * eta: the force on a pressed point is k (-g_n - eta s (g_n -
+       * g_n,old)) with s = min(1, penetration / (0.01 h)) (a Kelvin-Voigt
+       * contact; 0: the elastic penalty spring alone).
        */
       double       contact_damping      = 0.;
       bool         nitsche              = false;
