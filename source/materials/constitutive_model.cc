@@ -154,9 +154,11 @@ namespace Talus
         prm.enter_subsection("Mohr-Coulomb");
         try
           {
-            const GranularStrength s =
+            GranularStrength s =
               read_granular_strength(prm, subsection_name + "/Mohr-Coulomb");
             prm.leave_subsection();
+            if (s.rate_dependent() && s.grain_density == 0.)
+              s.grain_density = prm.get_double("density");
             return std::make_unique<MohrCoulomb>(e, s);
           }
         catch (...)
@@ -205,6 +207,13 @@ namespace Talus
           {
             const GranularStrength s =
               read_granular_strength(prm, subsection_name + "/Drucker-Prager");
+            if (s.rate_dependent())
+              InputFile::reject(subsection_name + "/Drucker-Prager",
+                                "limiting friction angle",
+                                prm.get("limiting friction angle"),
+                                "the rate-dependent friction is implemented "
+                                "for Mohr-Coulomb only; use 'none' with "
+                                "Drucker-Prager");
             const std::string fit = prm.get("cone fit");
             prm.leave_subsection();
             return std::make_unique<DruckerPrager>(

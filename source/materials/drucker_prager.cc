@@ -113,7 +113,8 @@ namespace Talus
 
     PrincipalReturn
     DruckerPrager::principal_return(const dealii::Tensor<1, 3> &eps_trial,
-                                    const double plastic_strain_old) const
+                                    const double plastic_strain_old,
+                                    const double /*time_step*/) const
     {
       const GranularStrength    &s         = strength_parameters;
       const double               t         = s.tension_cutoff;

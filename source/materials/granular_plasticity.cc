@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -50,6 +51,55 @@ namespace Talus
                     residual_friction_angle,
                     softening_strain,
                     eps_p);
+    }
+
+
+
+    bool
+    GranularStrength::rate_dependent() const
+    {
+      return friction_coefficient_increment > 0.;
+    }
+
+
+
+    GranularStrength::RateValue
+    GranularStrength::phi(const double eps_p,
+                          const double plastic_strain_increment,
+                          const double pressure,
+                          const double time_step) const
+    {
+      const Value static_phi = phi(eps_p);
+      if (!rate_dependent() || !(time_step > 0.))
+        return {static_phi.value, static_phi.derivative, 0., 0.};
+      // I/(I0 + I) = X/(X + Y) with X = gamma_dot d sqrt(rho_s) and
+      // Y = I0 sqrt(P): finite for P -> 0
+      const double dX_deps =
+        std::sqrt(3.) * grain_diameter * std::sqrt(grain_density) / time_step;
+      const double X     = std::max(0., plastic_strain_increment) * dX_deps;
+      const double sqrtP = std::sqrt(std::max(0., pressure));
+      const double Y     = reference_inertial_number * sqrtP;
+      const double tan_s = std::tan(static_phi.value);
+      double       ratio = 0., dratio_deps = 0., dratio_dP = 0.;
+      double       I = 0.;
+      if (X + Y > 0.)
+        {
+          ratio = X / (X + Y);
+          if (plastic_strain_increment > 0.)
+            dratio_deps = Y / ((X + Y) * (X + Y)) * dX_deps;
+          if (pressure > 0.)
+            dratio_dP = -X / ((X + Y) * (X + Y)) * reference_inertial_number /
+                        (2. * sqrtP);
+          I = (Y > 0. ? reference_inertial_number * X / Y :
+                        std::numeric_limits<double>::infinity());
+        }
+      const double mu    = tan_s + friction_coefficient_increment * ratio;
+      const double dphi  = 1. / (1. + mu * mu); // d phi/d mu
+      const double dmu_s = (1. + tan_s * tan_s) * static_phi.derivative;
+      return {std::atan(mu),
+              dphi * (dmu_s + friction_coefficient_increment * dratio_deps),
+              dphi * friction_coefficient_increment * dratio_dP,
+              I};
     }
 
 
@@ -104,6 +154,15 @@ namespace Talus
       s << ", tension cut-off = " << tension_cutoff << " Pa";
       if (recoverable_separation)
         s << ", recoverable separated volume";
+      if (rate_dependent())
+        s << ", rate-dependent friction mu(I): tan(phi_2) - tan(phi) = "
+          << friction_coefficient_increment << " (phi_2 = "
+          << std::atan(std::tan(friction_angle) +
+                       friction_coefficient_increment) /
+               degree
+          << " deg), I0 = " << reference_inertial_number
+          << ", grain diameter = " << grain_diameter
+          << " m, grain density = " << grain_density << " kg/m^3";
       return s.str();
     }
 
@@ -208,6 +267,7 @@ namespace Talus
       const dealii::Tensor<2, 3>            &F,
       const dealii::ArrayView<const double> &history_old,
       const dealii::ArrayView<double>       &history_new,
+      const double                           time_step,
       dealii::Tensor<2, 3>                  &P,
       dealii::Tensor<4, 3>                  *A) const
     {
@@ -230,7 +290,7 @@ namespace Talus
 
       const double plastic_strain_old = history_old[plastic_strain_index];
       const PrincipalReturn r =
-        principal_return(eps_sorted, plastic_strain_old);
+        principal_return(eps_sorted, plastic_strain_old, time_step);
 
       std::array<double, 3> tau;
       dealii::Tensor<2, 3>  dtau_deps;
@@ -469,25 +529,61 @@ namespace Talus
         "difference between peak and residual values decays by the factor "
         "e); > 0. Only used if a residual value differs from its peak "
         "value.");
+      prm.declare_entry(
+        "limiting friction angle",
+        "none",
+        dealii::Patterns::Anything(),
+        "Rate-dependent friction (mu(I) rheology, Jop, Forterre & Pouliquen, "
+        "Nature 441 (2006) 727): the friction angle phi_2 [deg] reached at "
+        "large inertial numbers I, phi < phi_2 < 90, or 'none' "
+        "(rate-independent, the default). tan(phi) = tan(phi_s) + "
+        "(tan(phi_2) - tan(phi_peak)) I/(I_0 + I), with phi_s the static "
+        "(softened) friction angle, I = gamma_p d/sqrt(P/rho_s), gamma_p = "
+        "sqrt(3) (equivalent plastic strain rate) the plastic shear rate and "
+        "P the trial pressure. Jop et al. (glass beads): phi = 20.9, phi_2 = "
+        "32.76 deg, I_0 = 0.279. Implemented for Mohr-Coulomb (plane and "
+        "edge returns; the apex keeps the static friction).");
+      prm.declare_entry("reference inertial number",
+                        "0.279",
+                        dealii::Patterns::Double(),
+                        "Reference inertial number I_0 [-] of the "
+                        "rate-dependent friction; > 0. Default: Jop et al. "
+                        "2006. Only used with a limiting friction angle.");
+      prm.declare_entry("grain diameter",
+                        "0",
+                        dealii::Patterns::Double(),
+                        "Grain diameter d [m] in the inertial number; > 0 "
+                        "when a limiting friction angle is given.");
+      prm.declare_entry("grain density",
+                        "0",
+                        dealii::Patterns::Double(),
+                        "Density of the grains rho_s [kg/m^3] in the "
+                        "inertial number; 0: the material density "
+                        "(Material/density, the bulk density), otherwise "
+                        "> 0. Only used with a limiting friction angle.");
     }
 
 
 
     namespace
     {
-      /** A residual value: "peak" or a number. */
+      /**
+       * A number, or the word @p keyword (e.g. "peak") that stands for
+       * @p keyword_value.
+       */
       double
-      read_residual(const dealii::ParameterHandler &prm,
-                    const std::string              &subsection_path,
-                    const std::string              &entry,
-                    const double                    peak)
+      read_number_or(const dealii::ParameterHandler &prm,
+                     const std::string              &subsection_path,
+                     const std::string              &entry,
+                     const std::string              &keyword,
+                     const double                    keyword_value)
       {
         const std::string text    = prm.get(entry);
         std::string       trimmed = text;
         trimmed.erase(0, trimmed.find_first_not_of(" \t"));
         trimmed.erase(trimmed.find_last_not_of(" \t") + 1);
-        if (trimmed == "peak")
-          return peak;
+        if (trimmed == keyword)
+          return keyword_value;
         try
           {
             std::size_t  used  = 0;
@@ -500,7 +596,18 @@ namespace Talus
         InputFile::reject(subsection_path,
                           entry,
                           text,
-                          "it must be a number or 'peak'");
+                          "it must be a number or '" + keyword + "'");
+      }
+
+
+      /** A residual value: "peak" or a number. */
+      double
+      read_residual(const dealii::ParameterHandler &prm,
+                    const std::string              &subsection_path,
+                    const std::string              &entry,
+                    const double                    peak)
+      {
+        return read_number_or(prm, subsection_path, entry, "peak", peak);
       }
 
 
@@ -585,6 +692,47 @@ namespace Talus
       s.residual_cohesion        = c_r;
       s.residual_dilatancy_angle = psi_r * degree;
       s.softening_strain         = prm.get_double("softening plastic strain");
+
+      const double phi_2 =
+        read_number_or(prm,
+                       sub,
+                       "limiting friction angle",
+                       "none",
+                       std::numeric_limits<double>::quiet_NaN());
+      if (!std::isnan(phi_2))
+        {
+          if (!(phi_2 > phi && phi_2 < 90.))
+            InputFile::reject(sub,
+                              "limiting friction angle",
+                              prm.get("limiting friction angle"),
+                              "it must be 'none' or lie strictly between the "
+                              "friction angle " +
+                                number(phi) + " degrees and 90 degrees");
+          s.friction_coefficient_increment =
+            std::tan(phi_2 * degree) - std::tan(phi * degree);
+          s.reference_inertial_number =
+            prm.get_double("reference inertial number");
+          if (!(s.reference_inertial_number > 0.) ||
+              !std::isfinite(s.reference_inertial_number))
+            InputFile::reject(sub,
+                              "reference inertial number",
+                              prm.get("reference inertial number"),
+                              "it must be > 0");
+          s.grain_diameter = prm.get_double("grain diameter");
+          if (!(s.grain_diameter > 0.) || !std::isfinite(s.grain_diameter))
+            InputFile::reject(sub,
+                              "grain diameter",
+                              prm.get("grain diameter"),
+                              "it must be > 0 m when a limiting friction "
+                              "angle is given");
+          s.grain_density = prm.get_double("grain density");
+          if (!(s.grain_density >= 0.) || !std::isfinite(s.grain_density))
+            InputFile::reject(sub,
+                              "grain density",
+                              prm.get("grain density"),
+                              "it must be > 0 kg/m^3, or 0 for the material "
+                              "density");
+        }
       if (s.softening() && !(s.softening_strain > 0.))
         InputFile::reject(sub,
                           "softening plastic strain",

@@ -13,19 +13,32 @@ namespace Talus
   {
     namespace
     {
-      /** A plane a . tau = r with flow direction n, and their derivatives
-       * with respect to the accumulated plastic strain. */
+      /** A plane a . tau = r with flow direction n, their derivatives
+       * with respect to the accumulated plastic strain (da, dn, dr) and
+       * with respect to the trial pressure (da_dP, dr_dP: rate-dependent
+       * friction). */
       struct PlaneData
       {
-        dealii::Tensor<1, 3> a, da, n, dn;
-        double               r, dr;
+        dealii::Tensor<1, 3> a, da, n, dn, da_dP;
+        double               r, dr, dr_dP = 0.;
+      };
+
+
+      /** What the rate-dependent friction of a step depends on besides
+       * the accumulated plastic strain. */
+      struct RateState
+      {
+        double plastic_strain_increment;
+        double pressure;
+        double time_step;
       };
 
 
       PlaneData
       plane_data(const MohrCoulomb::Plane plane,
                  const GranularStrength  &s,
-                 const double             eps_p)
+                 const double             eps_p,
+                 const RateState         &rate)
       {
         PlaneData d;
         if (plane == MohrCoulomb::Plane::cutoff_1 ||
@@ -47,19 +60,25 @@ namespace Talus
           j = 1;
         else if (plane == MohrCoulomb::Plane::left_edge)
           i = 1;
-        const auto   phi  = s.phi(eps_p);
+        const auto   phi  = s.phi(eps_p,
+                               rate.plastic_strain_increment,
+                               rate.pressure,
+                               rate.time_step);
         const auto   c    = s.c(eps_p);
         const auto   psi  = s.psi(eps_p);
         const double sphi = std::sin(phi.value), cphi = std::cos(phi.value);
         const double spsi = std::sin(psi.value), cpsi = std::cos(psi.value);
         d.a[i]  = 1. + sphi;
         d.a[j]  = -(1. - sphi);
-        d.da[i] = d.da[j] = cphi * phi.derivative;
-        d.n[i]            = 1. + spsi;
-        d.n[j]            = -(1. - spsi);
+        d.da[i] = d.da[j] = cphi * phi.d_plastic_strain;
+        d.da_dP[i] = d.da_dP[j] = cphi * phi.d_pressure;
+        d.n[i]                  = 1. + spsi;
+        d.n[j]                  = -(1. - spsi);
         d.dn[i] = d.dn[j] = cpsi * psi.derivative;
         d.r               = 2. * c.value * cphi;
-        d.dr = 2. * c.derivative * cphi - 2. * c.value * sphi * phi.derivative;
+        d.dr =
+          2. * c.derivative * cphi - 2. * c.value * sphi * phi.d_plastic_strain;
+        d.dr_dP = -2. * c.value * sphi * phi.d_pressure;
         return d;
       }
 
@@ -176,17 +195,33 @@ namespace Talus
     MohrCoulomb::return_to_planes(const dealii::ArrayView<const Plane> &planes,
                                   const dealii::Tensor<1, 3> &eps_trial,
                                   const double     plastic_strain_old,
+                                  const double     time_step,
                                   const double     stress_scale,
-                                  PrincipalReturn &result) const
+                                  PrincipalReturn &result,
+                                  bool            &converged_out) const
     {
+      converged_out              = true;
       const unsigned int       m = planes.size();
       const double             k = std::sqrt(2. / 3.);
       dealii::Tensor<1, 3>     dgamma; // entries m..2 stay zero
       double                   eps_p = plastic_strain_old;
       std::array<PlaneData, 3> p;
-      const auto               update_planes = [&]() {
+      // rate-dependent friction: the trial pressure P = -tr(tau_trial)/3
+      // and dP/d eps_trial_c = -K
+      const dealii::Tensor<1, 3> tau_trial_0 = D * eps_trial;
+      RateState                  rate{0.,
+                     -(tau_trial_0[0] + tau_trial_0[1] + tau_trial_0[2]) / 3.,
+                     time_step};
+      const bool                 rate_dependent =
+        strength_parameters.rate_dependent() && time_step > 0.;
+      // With a rate-dependent friction the unknown is the increment deps of
+      // the plastic strain (eps_p = eps_p,n + deps), which the rate needs
+      // to more digits than eps_p holds.
+      double     deps          = 0.;
+      const auto update_planes = [&]() {
+        rate.plastic_strain_increment = deps;
         for (unsigned int i = 0; i < m; ++i)
-          p[i] = plane_data(planes[i], strength_parameters, eps_p);
+          p[i] = plane_data(planes[i], strength_parameters, eps_p, rate);
       };
 
       // Initial guess: perfectly plastic return at the old plastic strain
@@ -208,7 +243,8 @@ namespace Talus
         dealii::Tensor<1, 3> flow;
         for (unsigned int i = 0; i < m; ++i)
           flow += dgamma[i] * p[i].n;
-        eps_p = plastic_strain_old + k * flow.norm();
+        deps  = k * flow.norm();
+        eps_p = plastic_strain_old + deps;
       }
 
       BorderedJacobian     J;
@@ -242,7 +278,7 @@ namespace Talus
               J.A[i][j] = -(p[i].a * (D * p[j].n));
             J.b[i] = p[i].da * tau + p[i].a * dtau_dp - p[i].dr;
           }
-        R_p = eps_p - plastic_strain_old - k * norm;
+        R_p = (rate_dependent ? deps : eps_p - plastic_strain_old) - k * norm;
         for (unsigned int j = 0; j < m; ++j)
           J.c[j] = -k * (m_hat * p[j].n);
         J.d = 1. - k * (m_hat * dflow);
@@ -251,7 +287,10 @@ namespace Talus
                eps_trial,
                plastic_strain_old,
                "non-finite values in the local Newton iteration");
-        return std::max(r, std::abs(R_p) / (1. + eps_p));
+        return std::max(r,
+                        std::abs(R_p) / (rate_dependent ?
+                                           std::abs(deps) + 1e-12 :
+                                           1. + eps_p));
       };
 
       bool converged = false;
@@ -267,14 +306,43 @@ namespace Talus
           dealii::Tensor<1, 3> dx;
           double               dx_p;
           J.solve(R, R_p, dx, dx_p);
+          // With a rate-dependent friction Newton's step from the
+          // rate-independent guess overshoots to negative multipliers (the
+          // friction saturates in the rate): shorten the step so that no
+          // positive multiplier nor the plastic strain increment falls below
+          // a tenth of its value.
+          if (rate_dependent)
+            {
+              double alpha = 1.;
+              for (unsigned int i = 0; i < m; ++i)
+                if (dgamma[i] > 0. && dx[i] > 0.9 * dgamma[i])
+                  alpha = std::min(alpha, 0.9 * dgamma[i] / dx[i]);
+              if (deps > 0. && dx_p > 0.9 * deps)
+                alpha = std::min(alpha, 0.9 * deps / dx_p);
+              dx *= alpha;
+              dx_p *= alpha;
+            }
           for (unsigned int i = 0; i < m; ++i)
             dgamma[i] -= dx[i];
-          eps_p -= dx_p;
+          if (rate_dependent)
+            {
+              deps -= dx_p;
+              eps_p = plastic_strain_old + deps;
+            }
+          else
+            eps_p -= dx_p;
         }
       if (!converged)
         {
           // accept a stagnating iteration only if it is close to round-off
           residual = evaluate();
+          // A rate-dependent friction may leave a set of planes without a
+          // solution where a larger set has one: try the next candidate.
+          if (!(residual <= 1e-10) && rate_dependent)
+            {
+              converged_out = false;
+              return false;
+            }
           if (!(residual <= 1e-10))
             fail(plane_names(planes),
                  eps_trial,
@@ -292,7 +360,20 @@ namespace Talus
           return false;
       if (tau[0] < tau[1] - tol_stress || tau[1] < tau[2] - tol_stress)
         return false;
-      if (yield_function(tau, eps_p) > tol_stress)
+      if (rate_dependent)
+        {
+          // the Mohr-Coulomb function with the friction of this step
+          const PlaneData main =
+            plane_data(Plane::main, strength_parameters, eps_p, rate);
+          const double         t1 = std::max({tau[0], tau[1], tau[2]});
+          const double         t3 = std::min({tau[0], tau[1], tau[2]});
+          dealii::Tensor<1, 3> sorted;
+          sorted[0] = t1;
+          sorted[2] = t3;
+          if (main.a * sorted - main.r > tol_stress)
+            return false;
+        }
+      else if (yield_function(tau, eps_p) > tol_stress)
         return false;
       if (tau[0] - strength_parameters.tension_cutoff > tol_stress)
         return false;
@@ -302,12 +383,14 @@ namespace Talus
       J.factorise(m);
       std::array<dealii::Tensor<1, 3>, 3> dgamma_deps;
       dealii::Tensor<1, 3>                dp_deps;
+      const double                        K = elastic.bulk_modulus();
       for (unsigned int e = 0; e < 3; ++e)
         {
           dealii::Tensor<1, 3> rhs, x;
           double               x_p;
+          // dR_i/d eps_e = (D a_i)_e + (da_i/dP . tau - dr_i/dP) dP/d eps_e
           for (unsigned int i = 0; i < m; ++i)
-            rhs[i] = -(D * p[i].a)[e];
+            rhs[i] = -(D * p[i].a)[e] + K * (p[i].da_dP * tau - p[i].dr_dP);
           J.solve(rhs, 0., x, x_p);
           for (unsigned int i = 0; i < m; ++i)
             dgamma_deps[i][e] = x[i];
@@ -327,7 +410,8 @@ namespace Talus
 
     PrincipalReturn
     MohrCoulomb::principal_return(const dealii::Tensor<1, 3> &eps_trial,
-                                  const double plastic_strain_old) const
+                                  const double plastic_strain_old,
+                                  const double time_step) const
     {
       const dealii::Tensor<1, 3> tau_trial = D * eps_trial;
       const GranularStrength    &s         = strength_parameters;
@@ -383,18 +467,32 @@ namespace Talus
         }
 
       PrincipalReturn result;
+      bool            all_converged = true;
       for (unsigned int c = 0; c < n_candidates; ++c)
-        if (return_to_planes(
-              dealii::ArrayView<const Plane>(candidates[c].planes.data(),
-                                             candidates[c].n_planes),
-              eps_trial,
-              plastic_strain_old,
-              stress_scale,
-              result))
-          {
-            result.return_type = candidates[c].type;
-            return result;
-          }
+        {
+          bool converged = true;
+          if (return_to_planes(
+                dealii::ArrayView<const Plane>(candidates[c].planes.data(),
+                                               candidates[c].n_planes),
+                eps_trial,
+                plastic_strain_old,
+                time_step,
+                stress_scale,
+                result,
+                converged))
+            {
+              result.return_type = candidates[c].type;
+              return result;
+            }
+          all_converged = all_converged && converged;
+        }
+      if (!all_converged && s.cohesion == 0. &&
+          eps_trial[0] + eps_trial[1] + eps_trial[2] < 0.)
+        fail("plane and edge returns with rate-dependent friction",
+             eps_trial,
+             plastic_strain_old,
+             "no set of planes gave a converged, admissible return, and a "
+             "compressed cohesionless state has no apex return");
 
       // Apex: tau = min(c cot(phi), t) (1, 1, 1)
       const auto apex = [&s](const double eps_p,

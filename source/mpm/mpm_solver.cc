@@ -528,6 +528,7 @@ namespace Talus
                              dealii::ArrayView<const double>(h_old.data(),
                                                              n_history),
                              dealii::ArrayView<double>(h_new.data(), n_history),
+                             0., // no rate: the virgin tangent
                              P,
                              &A);
         for (unsigned int i = 0; i < dim; ++i)
@@ -1075,6 +1076,7 @@ namespace Talus
                                                       Properties::history,
                                                     n_history),
                     dealii::ArrayView<double>(history_new.data(), n_history),
+                    dt,
                     P,
                     with_matrix ? &A : nullptr);
                 }
@@ -1445,6 +1447,7 @@ namespace Talus
                                                 Properties::history,
                                               n_history),
               dealii::ArrayView<double>(history_new.data(), n_history),
+              dt,
               P,
               A);
           }
@@ -2980,6 +2983,7 @@ namespace Talus
                                                   Properties::history,
                                                 n_history),
                 dealii::ArrayView<double>(history_new.data(), n_history),
+                dt,
                 P,
                 nullptr);
               // Cauchy stress sigma = P F^T / J.

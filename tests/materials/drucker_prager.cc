@@ -123,27 +123,14 @@ namespace
                                   "set tension cut-off = -1",
                                   "set residual friction angle = 40"})
       {
-        ParameterHandler p;
-        declare_parameters(p);
-        p.parse_input_from_string("subsection Material\n"
-                                  "  set model = Drucker-Prager\n"
-                                  "  subsection Drucker-Prager\n    " +
-                                  bad + "\n  end\nend\n");
         out << "invalid input <" << bad << ">: ";
-        try
-          {
-            create_model(p);
-            out << "FAILED, accepted" << std::endl;
-          }
-        catch (const ExcInvalidInput &e)
-          {
-            const std::string what = e.what();
-            out << "rejected"
-                << (what.find("Material/Drucker-Prager") != std::string::npos ?
-                      " (names Material/Drucker-Prager)" :
-                      "")
-                << std::endl;
-          }
+        report_rejection(out,
+                         "subsection Material\n"
+                         "  set model = Drucker-Prager\n"
+                         "  subsection Drucker-Prager\n    " +
+                           bad + "\n  end\nend\n",
+                         "Material/Drucker-Prager",
+                         "names Material/Drucker-Prager");
       }
   }
 

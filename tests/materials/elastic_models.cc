@@ -116,6 +116,7 @@ namespace
                          F,
                          make_array_view(std::as_const(history_old)),
                          make_array_view(history_new),
+                         0.,
                          P,
                          A);
     return P;

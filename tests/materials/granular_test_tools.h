@@ -115,7 +115,8 @@ namespace GranularTest
   evaluate(const ConstitutiveModel &model,
            const MaterialPoint     &p,
            const Tensor<2, 3>      &F,
-           const bool               tangent = true)
+           const bool               tangent   = true,
+           const double             time_step = 0.)
   {
     Step s;
     s.history.resize(p.history.size());
@@ -123,18 +124,20 @@ namespace GranularTest
                          F,
                          dealii::make_array_view(p.history),
                          dealii::make_array_view(s.history),
+                         time_step,
                          s.P,
                          tangent ? &s.A : nullptr);
     return s;
   }
 
-  // Accept the step to F.
+  // Accept the step to F (of length time_step [s]; 0: no rate).
   inline Step
   advance(const ConstitutiveModel &model,
           MaterialPoint           &p,
-          const Tensor<2, 3>      &F)
+          const Tensor<2, 3>      &F,
+          const double             time_step = 0.)
   {
-    const Step s = evaluate(model, p, F);
+    const Step s = evaluate(model, p, F, true, time_step);
     p.history    = s.history;
     p.F          = F;
     return s;
@@ -158,9 +161,10 @@ namespace GranularTest
   tangent_error(const ConstitutiveModel &model,
                 const MaterialPoint     &p,
                 const Tensor<2, 3>      &F,
-                const double             relative_step = 1e-7)
+                const double             relative_step = 1e-7,
+                const double             time_step     = 0.)
   {
-    const Tensor<4, 3> A = evaluate(model, p, F).A;
+    const Tensor<4, 3> A = evaluate(model, p, F, true, time_step).A;
     const double       h = relative_step * std::max(1., max_abs(F));
     Tensor<4, 3>       A_fd;
     for (unsigned int k = 0; k < 3; ++k)
@@ -169,9 +173,10 @@ namespace GranularTest
           Tensor<2, 3> F_plus = F, F_minus = F;
           F_plus[k][L] += h;
           F_minus[k][L] -= h;
-          const Tensor<2, 3> dP = (evaluate(model, p, F_plus, false).P -
-                                   evaluate(model, p, F_minus, false).P) /
-                                  (2. * h);
+          const Tensor<2, 3> dP =
+            (evaluate(model, p, F_plus, false, time_step).P -
+             evaluate(model, p, F_minus, false, time_step).P) /
+            (2. * h);
           for (unsigned int i = 0; i < 3; ++i)
             for (unsigned int J = 0; J < 3; ++J)
               A_fd[i][J][k][L] = dP[i][J];
@@ -194,6 +199,33 @@ namespace GranularTest
   private:
     std::uint64_t state = 12345;
   };
+
+  // Create the model of the parameter text @p input (subsection Material):
+  // prints "rejected" to out, followed by " (<note>)" if the message contains
+  // @p needle, or "FAILED, accepted" if the model was created.
+  inline void
+  report_rejection(std::ostream      &out,
+                   const std::string &input,
+                   const std::string &needle,
+                   const std::string &note)
+  {
+    dealii::ParameterHandler prm;
+    Talus::Materials::declare_parameters(prm);
+    prm.parse_input_from_string(input);
+    try
+      {
+        Talus::Materials::create_model(prm);
+        out << "FAILED, accepted" << std::endl;
+      }
+    catch (const Talus::ExcInvalidInput &e)
+      {
+        const std::string what = e.what();
+        out << "rejected"
+            << (what.find(needle) != std::string::npos ? " (" + note + ")" :
+                                                         std::string())
+            << std::endl;
+      }
+  }
 
   // prints "what: ok" to out (the number to the screen only)
   inline void

@@ -15,6 +15,8 @@
 //  - (h) objectivity, energy density of the elastic strain
 //  - (i) ExcReturnMappingFailed when the local problem has no solution
 //  - (j) major symmetry of the tangent for associative flow only
+//  - (k) rate-dependent friction mu(I): steady pure shear at constant rate
+//        against the closed form, the static limits, tangents, bad input
 // Numbers that depend on round-off are printed as "ok" only.
 
 #include <talus/materials/exceptions.h>
@@ -96,29 +98,16 @@ namespace
                                   "set residual cohesion = soft",
                                   "set softening plastic strain = 0"})
       {
-        ParameterHandler p;
-        declare_parameters(p);
-        p.parse_input_from_string(head +
-                                  "    set friction angle = 30\n"
-                                  "    set cohesion = 1\n"
-                                  "    set dilatancy angle = 10\n"
-                                  "    set residual cohesion = 0.5\n    " +
-                                  bad + "\n  end\nend\n");
         out << "invalid input <" << bad << ">: ";
-        try
-          {
-            create_model(p);
-            out << "FAILED, accepted" << std::endl;
-          }
-        catch (const ExcInvalidInput &e)
-          {
-            const std::string what = e.what();
-            out << "rejected"
-                << (what.find("Material/Mohr-Coulomb") != std::string::npos ?
-                      " (names Material/Mohr-Coulomb)" :
-                      "")
-                << std::endl;
-          }
+        report_rejection(out,
+                         head +
+                           "    set friction angle = 30\n"
+                           "    set cohesion = 1\n"
+                           "    set dilatancy angle = 10\n"
+                           "    set residual cohesion = 0.5\n    " +
+                           bad + "\n  end\nend\n",
+                         "Material/Mohr-Coulomb",
+                         "names Material/Mohr-Coulomb");
       }
   }
 
@@ -678,6 +667,217 @@ namespace
             << std::endl;
       }
   }
+
+  // (k) The mu(I) friction (Jop, Forterre & Pouliquen 2006, glass beads):
+  // phi_s = 20.9 deg, phi_2 = 32.76 deg, I_0 = 0.279, d = 0.5 mm,
+  // rho_s = 2450 kg/m^3.
+  GranularStrength
+  rate_strength(const double friction_angle = 20.9)
+  {
+    GranularStrength s = strength(friction_angle, 0., 0.);
+    s.friction_coefficient_increment =
+      std::tan(32.76 * deg) - std::tan(20.9 * deg);
+    s.reference_inertial_number = 0.279;
+    s.grain_diameter            = 5e-4;
+    s.grain_density             = 2450.;
+    return s;
+  }
+
+
+  void
+  check_rate_dependent_friction()
+  {
+    out << std::endl << "(k) rate-dependent friction mu(I)" << std::endl;
+    const GranularStrength s = rate_strength();
+    const MohrCoulomb      model(IsotropicElasticity(E, nu), s);
+    out << model.description() << std::endl;
+    const double mu_s = std::tan(20.9 * deg), mu_2 = std::tan(32.76 * deg);
+
+    // Steady pure shear at the principal log strain rates (r, 0, -r) after
+    // an isotropic compression e0 (P = 3 K e0, kept by the isochoric flow):
+    // at steady flow the plastic rate is the total rate, gamma_p = 2 r,
+    // I = 2 r d/sqrt(P/rho_s), and the stress lies on the Mohr-Coulomb
+    // surface with tan(phi) = mu_s + (mu_2 - mu_s) I/(I_0 + I):
+    // (tau_1 - tau_3)/(-(tau_1 + tau_3)) = sin(phi).
+    const double e0    = 1e-3;
+    const double K     = IsotropicElasticity(E, nu).bulk_modulus();
+    const double P     = 3. * K * e0;
+    const double delta = 2e-5; // strain increment per step
+    out << "steady pure shear, P = " << P << " Pa:" << std::endl;
+    out << "  I (closed form)  tan(phi) closed form  measured" << std::endl;
+    double worst = 0., worst_rate = 0.;
+    for (const double I_target : {1e-3, 1e-2, 0.1, 0.279, 1., 10.})
+      {
+        const double r =
+          I_target * std::sqrt(P / s.grain_density) / (2. * s.grain_diameter);
+        const double  dt = delta / r;
+        MaterialPoint p(model);
+        advance(model, p, stretch(-e0, -e0, -e0), 1.);
+        Step   st;
+        double eps_p_before = 0.;
+        double shear        = 0.;
+        for (unsigned int n = 0; n < 400; ++n)
+          {
+            eps_p_before = p.history[6];
+            shear += delta;
+            st = advance(model, p, stretch(-e0 + shear, -e0, -e0 - shear), dt);
+          }
+        const Tensor<1, 3> tau      = principal_kirchhoff(st.P, p.F);
+        const double       sin_phi  = (tau[0] - tau[2]) / (-(tau[0] + tau[2]));
+        const double       measured = std::tan(std::asin(sin_phi));
+        const double       exact    = mu_s + (mu_2 - mu_s) * I_target /
+                                      (s.reference_inertial_number + I_target);
+        // plastic shear rate of the last step: sqrt(3) d eps_p/dt = 2 r
+        const double gamma_p =
+          std::sqrt(3.) * (p.history[6] - eps_p_before) / dt;
+        worst = std::max(worst, std::abs(measured - exact) / exact);
+        worst_rate =
+          std::max(worst_rate, std::abs(gamma_p - 2. * r) / (2. * r));
+        out << "  " << std::setw(15) << I_target << "  " << std::setw(20)
+            << exact << "  " << std::setw(10) << std::setprecision(6)
+            << measured << std::setprecision(10) << "  (return type "
+            << return_type_name(st.history[8]) << ")" << std::endl;
+      }
+    report(out, "  tan(phi) = mu(I) to 1e-8", worst, 1e-8);
+    report(out, "  plastic shear rate = 2 r to 1e-8", worst_rate, 1e-8);
+
+    // Limits: no rate (time step 0) and a very slow step give the static
+    // model's stress; mu_2 is approached for I -> infinity.
+    {
+      const MohrCoulomb   static_model(IsotropicElasticity(E, nu),
+                                     strength(20.9, 0., 0.));
+      const Tensor<2, 3>  Q = rotation(vector(0.3, -1., 0.7), 0.8);
+      const Tensor<2, 3>  F = Q * stretch(0.002, -0.001, -0.006);
+      const MaterialPoint p(model), q(static_model);
+      const Tensor<2, 3>  P_static = evaluate(static_model, q, F).P;
+      report(out,
+             "  time step 0: the static stress (relative difference < 1e-14)",
+             max_abs(
+               Tensor<2, 3>(evaluate(model, p, F, true, 0.).P - P_static)) /
+               max_abs(P_static),
+             1e-14);
+      report(
+        out,
+        "  time step 1e6 s: the static stress (relative difference < 1e-9)",
+        max_abs(Tensor<2, 3>(evaluate(model, p, F, true, 1e6).P - P_static)) /
+          max_abs(P_static),
+        1e-9);
+      const Tensor<1, 3> tau =
+        principal_kirchhoff(evaluate(model, p, F, true, 1e-12).P, F);
+      const double sin_phi = (tau[0] - tau[2]) / (-(tau[0] + tau[2]));
+      report(out,
+             "  time step 1e-12 s: tan(phi) = mu_2 (relative error < 1e-4)",
+             std::abs(std::tan(std::asin(sin_phi)) - mu_2) / mu_2,
+             1e-4);
+    }
+
+    // Consistent tangent with the rate (central differences of P).
+    {
+      const Tensor<2, 3> Q              = rotation(vector(0.3, -1., 0.7), 0.8);
+      const Tensor<2, 3> Qz             = rotation(vector(0., 0., 1.), 0.5);
+      Tensor<2, 3>       shear          = unit_tensor();
+      shear[0][1]                       = 0.012;
+      shear[1][1]                       = 0.996;
+      GranularStrength cohesive         = rate_strength(20.9);
+      cohesive.cohesion                 = 1e4;
+      cohesive.residual_cohesion        = 1e4;
+      GranularStrength softening        = rate_strength(30.);
+      softening.residual_friction_angle = 25. * deg;
+      softening.softening_strain        = 0.02;
+      softening.friction_coefficient_increment =
+        std::tan(40. * deg) - std::tan(30. * deg);
+      struct Case
+      {
+        std::string      name;
+        GranularStrength strength;
+        Tensor<2, 3>     F;
+        double           dt;
+        unsigned int     expected_type;
+      };
+      const std::vector<Case> cases = {
+        {"main plane, I ~ 0.3", s, Q * stretch(0.002, -0.001, -0.006), 1e-4, 1},
+        {"main plane, I ~ 30", s, Q * stretch(0.002, -0.001, -0.006), 1e-6, 1},
+        {"main plane, c = 1e4 Pa",
+         cohesive,
+         Q * stretch(0.002, -0.001, -0.006),
+         1e-4,
+         1},
+        {"main plane, softening",
+         softening,
+         Q * stretch(0.002, -0.001, -0.006),
+         1e-4,
+         1},
+        {"edge, plane strain shear", s, Qz * shear, 1e-4, 2},
+        {"left edge", s, Q * stretch(0.0015, 0.0012, -0.006), 1e-4, 2},
+        {"right edge", s, Q * stretch(0.004, -0.006, -0.0064), 1e-4, 2},
+        {"right edge, c = 1e4 Pa",
+         cohesive,
+         Q * stretch(0.004, -0.006, -0.0064),
+         1e-4,
+         2}};
+      for (const Case &c : cases)
+        {
+          const MohrCoulomb   m(IsotropicElasticity(E, nu), c.strength);
+          const MaterialPoint p(m);
+          const Step          st   = evaluate(m, p, c.F, true, c.dt);
+          const unsigned int  type = static_cast<unsigned int>(st.history[8]);
+          const double        dphi =
+            c.strength
+              .phi(st.history[6],
+                   st.history[6], // the increment from eps_p = 0
+                   -(trace(Tensor<2, 3>(st.P * transpose(c.F)))) / 3.,
+                   c.dt)
+              .value -
+            c.strength.phi(st.history[6]).value;
+          out << c.name << ": return type " << return_type_name(type)
+              << (type != c.expected_type ? " UNEXPECTED" : "")
+              << ", friction raised by the rate: "
+              << (dphi > 0.1 * deg ? "yes" : "NO") << std::endl;
+          report(out, "  tangent", tangent_error(m, p, c.F, 1e-7, c.dt), 1e-6);
+        }
+    }
+
+    // Bad input.
+    const std::string head = "subsection Material\n"
+                             "  set model = Mohr-Coulomb\n"
+                             "  set density = 2000\n"
+                             "  subsection Mohr-Coulomb\n"
+                             "    set friction angle = 30\n";
+    {
+      ParameterHandler prm;
+      declare_parameters(prm);
+      prm.parse_input_from_string(head +
+                                  "    set limiting friction angle = 40\n"
+                                  "    set grain diameter = 0.001\n"
+                                  "  end\nend\n");
+      const auto  m = create_model(prm);
+      const auto &g = dynamic_cast<const MohrCoulomb &>(*m).strength();
+      out << "grain density 0 takes the material density: "
+          << (g.grain_density == 2000. ? "yes" : "NO") << std::endl;
+    }
+    for (const std::string bad : {"set limiting friction angle = 30",
+                                  "set limiting friction angle = 90",
+                                  "set limiting friction angle = fast",
+                                  "set reference inertial number = 0",
+                                  "set grain diameter = 0",
+                                  "set grain density = -1"})
+      {
+        const bool sets_angle = bad.find("limiting") != std::string::npos;
+        out << "invalid input <" << bad << ">: ";
+        report_rejection(out,
+                         head +
+                           (sets_angle ?
+                              std::string() :
+                              std::string(
+                                "    set limiting friction angle = 40\n")) +
+                           (bad.find("diameter") != std::string::npos ?
+                              std::string() :
+                              std::string("    set grain diameter = 0.001\n")) +
+                           "    " + bad + "\n  end\nend\n",
+                         bad.substr(4, bad.find(" =") - 4),
+                         "names the parameter");
+      }
+  }
 } // namespace
 
 
@@ -697,6 +897,7 @@ main()
   check_objectivity_and_energy();
   check_failure();
   check_symmetry();
+  check_rate_dependent_friction();
   out << std::endl << "done" << std::endl;
   return 0;
 }

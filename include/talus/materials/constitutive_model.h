@@ -81,6 +81,10 @@ namespace Talus
        * @param F_new  trial deformation gradient
        * @param history_old  history of the last accepted step (read only)
        * @param history_new  trial history (written)
+       * @param time_step  length of the step from F_old to F_new [s], for
+       *   rate-dependent models (the inertial number of the mu(I)
+       *   friction); a value <= 0 means "no rate": rate-dependent models
+       *   then return their rate-independent (static) response
        * @param P  first Piola-Kirchhoff stress [Pa]
        * @param A  if not nullptr: consistent tangent dP/dF [Pa]
        */
@@ -89,6 +93,7 @@ namespace Talus
                      const dealii::Tensor<2, 3>            &F_new,
                      const dealii::ArrayView<const double> &history_old,
                      const dealii::ArrayView<double>       &history_new,
+                     const double                           time_step,
                      dealii::Tensor<2, 3>                  &P,
                      dealii::Tensor<4, 3>                  *A) const = 0;
 

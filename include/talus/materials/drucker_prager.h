@@ -85,7 +85,8 @@ namespace Talus
       /** See the class documentation. */
       PrincipalReturn
       principal_return(const dealii::Tensor<1, 3> &eps_trial,
-                       const double plastic_strain_old) const override;
+                       const double                plastic_strain_old,
+                       const double                time_step) const override;
 
       /** Yield function f [Pa] at the accumulated plastic strain eps_p. */
       double

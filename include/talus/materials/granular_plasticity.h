@@ -28,6 +28,30 @@ namespace Talus
      * with peak values @f$X_p@f$, residual values @f$X_r \le X_p@f$ and the
      * softening plastic strain @f$\eta_s > 0@f$. With @f$X_r = X_p@f$ for
      * all three the material is perfectly plastic.
+     *
+     * *Rate-dependent friction* (optional; the @f$\mu(I)@f$ rheology of
+     * G.D.R. MiDi, EPJ E 14 (2004) 341 and P. Jop, Y. Forterre, O. Pouliquen,
+     * Nature 441 (2006) 727, in the elastoplastic form of S. Dunatunga,
+     * K. Kamrin, JFM 779 (2015) 483): the friction coefficient grows with
+     * the inertial number @f$I@f$ from its static (softened) value to a
+     * limit,
+     * @f[
+     *   \tan\phi = \tan\phi_s(\bar\varepsilon^p) + \Delta\mu\,
+     *     \frac{I}{I_0 + I},\qquad
+     *   I = \frac{\dot\gamma^p d}{\sqrt{P/\rho_s}},\qquad
+     *   \dot\gamma^p = \sqrt3\,\frac{\bar\varepsilon^p -
+     *     \bar\varepsilon^p_n}{\Delta t},
+     * @f]
+     * with @f$\Delta\mu = \tan\phi_2 - \tan\phi_p@f$ (limiting friction
+     * angle @f$\phi_2@f$), grain diameter @f$d@f$, grain density
+     * @f$\rho_s@f$ and the pressure @f$P = -\operatorname{tr}
+     * \boldsymbol\tau^{tr}/3@f$ of the trial state (exact for the plane
+     * and edge returns of an isochoric flow, @f$\psi = 0@f$, whose
+     * returns keep the pressure). @f$\dot\gamma^p@f$ is the plastic shear
+     * rate (@f$\sqrt2\|\dot{\boldsymbol\varepsilon}^p\|@f$; in simple
+     * shear the engineering shear rate). For @f$P \le 0@f$ and
+     * @f$\dot\gamma^p > 0@f$, @f$I = \infty@f$. The rate-independent
+     * model is @f$\Delta\mu = 0@f$ or @f$\Delta t \le 0@f$.
      */
     struct GranularStrength
     {
@@ -54,10 +78,25 @@ namespace Talus
        * Kamrin, JFM 779 (2015) 483) or kept as plastic dilation (false).
        */
       bool recoverable_separation = false;
+      /**
+       * Increment of the friction coefficient of the rate-dependent
+       * friction, tan(phi_2) - tan(phi) [-]; 0: rate-independent.
+       */
+      double friction_coefficient_increment = 0.;
+      /** Reference inertial number I_0 [-]; > 0. */
+      double reference_inertial_number = 0.279;
+      /** Grain diameter d [m]; > 0 if the friction is rate-dependent. */
+      double grain_diameter = 0.;
+      /** Grain (solid) density rho_s [kg/m^3]. */
+      double grain_density = 0.;
 
       /** Whether any residual value differs from its peak value. */
       bool
       softening() const;
+
+      /** Whether the friction depends on the inertial number. */
+      bool
+      rate_dependent() const;
 
       /** A softened value and its derivative with respect to eps_p. */
       struct Value
@@ -69,6 +108,35 @@ namespace Talus
       /** phi(eps_p) [rad] and d phi/d eps_p. */
       Value
       phi(const double eps_p) const;
+
+      /** A friction angle of the rate-dependent friction and its
+       * derivatives. */
+      struct RateValue
+      {
+        /** phi [rad] */
+        double value;
+        /** d phi/d eps_p [rad] (softening and rate) */
+        double d_plastic_strain;
+        /** d phi/d P [rad/Pa] */
+        double d_pressure;
+        /** The inertial number I [-] (infinity for P <= 0). */
+        double inertial_number;
+      };
+
+      /**
+       * The friction angle of the rate-dependent friction at the
+       * accumulated plastic strain @p eps_p, reached with the increment
+       * @p plastic_strain_increment over @p time_step [s] under the
+       * pressure @p pressure [Pa] (compression positive). Equals
+       * phi(eps_p) if rate_dependent() is false or @p time_step <= 0.
+       * d_plastic_strain is the derivative along eps_p =
+       * eps_p_old + increment.
+       */
+      RateValue
+      phi(const double eps_p,
+          const double plastic_strain_increment,
+          const double pressure,
+          const double time_step) const;
 
       /** c(eps_p) [Pa] and dc/d eps_p. */
       Value
@@ -204,6 +272,7 @@ namespace Talus
                      const dealii::Tensor<2, 3>            &F_new,
                      const dealii::ArrayView<const double> &history_old,
                      const dealii::ArrayView<double>       &history_new,
+                     const double                           time_step,
                      dealii::Tensor<2, 3>                  &P,
                      dealii::Tensor<4, 3>                  *A) const override;
 
@@ -231,12 +300,15 @@ namespace Talus
       /**
        * The return mapping in principal space: trial principal elastic
        * logarithmic strains @p eps_trial (sorted, largest first) and the
-       * accumulated plastic strain @p plastic_strain_old of the last step.
+       * accumulated plastic strain @p plastic_strain_old of the last step;
+       * @p time_step [s] is the length of the step (<= 0: no rate, the
+       * static friction of a rate-dependent strength is used).
        * Throws ExcReturnMappingFailed if it fails.
        */
       virtual PrincipalReturn
       principal_return(const dealii::Tensor<1, 3> &eps_trial,
-                       const double plastic_strain_old) const = 0;
+                       const double                plastic_strain_old,
+                       const double                time_step) const = 0;
 
     protected:
       const IsotropicElasticity elastic;

@@ -176,6 +176,7 @@ namespace Talus
                      const dealii::Tensor<2, 3>            &F_new,
                      const dealii::ArrayView<const double> &history_old,
                      const dealii::ArrayView<double>       &history_new,
+                     const double                           time_step,
                      dealii::Tensor<2, 3>                  &P,
                      dealii::Tensor<4, 3>                  *A) const override;
 

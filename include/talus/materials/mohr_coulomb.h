@@ -57,6 +57,15 @@ namespace Talus
      * softening; for @f$c = 0@f$ every tensile trial state is returned to
      * @f$\boldsymbol\tau = 0@f$.
      *
+     * With a rate-dependent strength (GranularStrength::rate_dependent(),
+     * the @f$\mu(I)@f$ friction) the friction angle of the main plane and
+     * the edges is @f$\phi(\bar\varepsilon^p, \bar\varepsilon^p_n,
+     * P^{tr}, \Delta t)@f$: the local Newton iteration solves for the
+     * plastic strain of the step together with the multipliers, and the
+     * tangent includes the dependence on the trial pressure. The elastic
+     * check uses the static friction (no plastic rate), the apex return the
+     * static apex.
+     *
      * The accumulated plastic strain (hardening variable) is the
      * equivalent plastic strain @f$\sum\sqrt{2/3}\|\Delta
      * \boldsymbol\varepsilon^p\|@f$, not de Souza Neto's
@@ -84,7 +93,8 @@ namespace Talus
       /** See the class documentation. */
       PrincipalReturn
       principal_return(const dealii::Tensor<1, 3> &eps_trial,
-                       const double plastic_strain_old) const override;
+                       const double                plastic_strain_old,
+                       const double                time_step) const override;
 
       /**
        * Mohr-Coulomb yield function f [Pa] for the principal stresses
@@ -108,14 +118,19 @@ namespace Talus
     private:
       /**
        * Solve the return to the planes @p planes (all active); returns
-       * false if the result is not admissible.
+       * false if the result is not admissible. @p converged is false if
+       * the local Newton iteration of a rate-dependent friction did not
+       * converge (then the return is false as well; without rate
+       * dependence this throws).
        */
       bool
       return_to_planes(const dealii::ArrayView<const Plane> &planes,
                        const dealii::Tensor<1, 3>           &eps_trial,
                        const double                          plastic_strain_old,
+                       const double                          time_step,
                        const double                          stress_scale,
-                       PrincipalReturn                      &result) const;
+                       PrincipalReturn                      &result,
+                       bool                                 &converged) const;
     };
   } // namespace Materials
 } // namespace Talus
