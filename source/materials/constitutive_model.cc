@@ -205,17 +205,12 @@ namespace Talus
         prm.enter_subsection("Drucker-Prager");
         try
           {
-            const GranularStrength s =
+            GranularStrength s =
               read_granular_strength(prm, subsection_name + "/Drucker-Prager");
-            if (s.rate_dependent())
-              InputFile::reject(subsection_name + "/Drucker-Prager",
-                                "limiting friction angle",
-                                prm.get("limiting friction angle"),
-                                "the rate-dependent friction is implemented "
-                                "for Mohr-Coulomb only; use 'none' with "
-                                "Drucker-Prager");
             const std::string fit = prm.get("cone fit");
             prm.leave_subsection();
+            if (s.rate_dependent() && s.grain_density == 0.)
+              s.grain_density = prm.get_double("density");
             return std::make_unique<DruckerPrager>(
               e,
               s,

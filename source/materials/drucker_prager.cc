@@ -114,7 +114,7 @@ namespace Talus
     PrincipalReturn
     DruckerPrager::principal_return(const dealii::Tensor<1, 3> &eps_trial,
                                     const double plastic_strain_old,
-                                    const double /*time_step*/) const
+                                    const double time_step) const
     {
       const GranularStrength    &s         = strength_parameters;
       const double               t         = s.tension_cutoff;
@@ -153,36 +153,46 @@ namespace Talus
 
       const double tol_stress = 1e-10 * stress_scale;
 
-      // 1. cone: unknowns dgamma and eps_p
+      // 1. cone: unknowns dgamma and eps_p (with a rate-dependent friction
+      // the increment deps = eps_p - eps_p,n, which the rate needs to more
+      // digits than eps_p holds)
+      const bool rate_dependent = s.rate_dependent() && time_step > 0.;
       if (cone_violated && has_deviator)
         {
-          double     dgamma = 0., eps_p = plastic_strain_old;
-          double     R1 = 0., R2 = 0., J11 = 0., J12 = 0., J21 = 0., J22 = 0.;
-          double     eta_bar = 0., deta_bar = 0.;
+          double dgamma = 0., eps_p = plastic_strain_old, deps = 0.;
+          double R1 = 0., R2 = 0., J11 = 0., J12 = 0., J21 = 0., J22 = 0.;
+          double eta_bar = 0., deta_bar = 0.;
+          // d R1/d P_trial of the rate-dependent friction (P = -p_trial)
+          double     dR1_dP   = 0.;
           const auto evaluate = [&]() {
-            const auto phi  = s.phi(eps_p);
-            const auto c    = s.c(eps_p);
-            const auto psi  = s.psi(eps_p);
-            const auto e    = eta(phi.value);
-            const auto x    = xi(phi.value);
-            const auto eb   = eta(psi.value);
-            eta_bar         = eb.value;
-            deta_bar        = eb.derivative * psi.derivative;
-            const double de = e.derivative * phi.derivative;
-            const double dxc =
-              x.derivative * phi.derivative * c.value + x.value * c.derivative;
+            const auto phi   = s.phi(eps_p, deps, -p_trial, time_step);
+            const auto c     = s.c(eps_p);
+            const auto psi   = s.psi(eps_p);
+            const auto e     = eta(phi.value);
+            const auto x     = xi(phi.value);
+            const auto eb    = eta(psi.value);
+            eta_bar          = eb.value;
+            deta_bar         = eb.derivative * psi.derivative;
+            const double de  = e.derivative * phi.d_plastic_strain;
+            const double dxc = x.derivative * phi.d_plastic_strain * c.value +
+                               x.value * c.derivative;
             const double kdp  = k * std::sqrt(0.5 + eta_bar * eta_bar / 3.);
             const double dkdp = k * (eta_bar * deta_bar / 3.) /
                                 std::sqrt(0.5 + eta_bar * eta_bar / 3.);
             const double p = p_trial - K * eta_bar * dgamma;
-            R1  = sJ2_trial - mu * dgamma + e.value * p - x.value * c.value;
-            R2  = eps_p - plastic_strain_old - kdp * dgamma;
+            R1 = sJ2_trial - mu * dgamma + e.value * p - x.value * c.value;
+            R2 = (rate_dependent ? deps : eps_p - plastic_strain_old) -
+                 kdp * dgamma;
+            dR1_dP =
+              (e.derivative * p - x.derivative * c.value) * phi.d_pressure;
             J11 = -mu - e.value * K * eta_bar;
             J12 = de * p - e.value * K * deta_bar * dgamma - dxc;
             J21 = -kdp;
             J22 = 1. - dkdp * dgamma;
-            const double r = std::max(std::abs(R1) / stress_scale,
-                                      std::abs(R2) / (1. + eps_p));
+            const double r =
+              std::max(std::abs(R1) / stress_scale,
+                       std::abs(R2) / (rate_dependent ? std::abs(deps) + 1e-12 :
+                                                        1. + eps_p));
             if (!std::isfinite(r))
               fail("cone",
                    eps_trial,
@@ -198,9 +208,29 @@ namespace Talus
                   converged = true;
                   break;
                 }
-              const double det = J11 * J22 - J12 * J21;
-              dgamma -= (J22 * R1 - J12 * R2) / det;
-              eps_p -= (-J21 * R1 + J11 * R2) / det;
+              const double det    = J11 * J22 - J12 * J21;
+              double       d_dg   = (J22 * R1 - J12 * R2) / det;
+              double       d_deps = (-J21 * R1 + J11 * R2) / det;
+              if (rate_dependent)
+                {
+                  // no overshoot to a negative multiplier or increment (the
+                  // friction saturates in the rate; see MohrCoulomb)
+                  double alpha = 1.;
+                  if (dgamma > 0. && d_dg > 0.9 * dgamma)
+                    alpha = std::min(alpha, 0.9 * dgamma / d_dg);
+                  if (deps > 0. && d_deps > 0.9 * deps)
+                    alpha = std::min(alpha, 0.9 * deps / d_deps);
+                  d_dg *= alpha;
+                  d_deps *= alpha;
+                  dgamma -= d_dg;
+                  deps -= d_deps;
+                  eps_p = plastic_strain_old + deps;
+                }
+              else
+                {
+                  dgamma -= d_dg;
+                  eps_p -= d_deps;
+                }
             }
           if (!converged && !(evaluate() <= 1e-10))
             fail("cone",
@@ -217,10 +247,13 @@ namespace Talus
               r.tau = p * one + std::sqrt(2.) * std::max(sJ2, 0.) * N;
               r.plastic_strain = eps_p;
               r.return_type    = 1;
-              // [d dgamma; d eps_p] = -J^{-1} [g; 0], g = dR1/deps
+              // [d dgamma; d eps_p] = -J^{-1} [g; 0], g = dR1/deps (with
+              // dP/deps = -K one for the rate-dependent friction)
               const dealii::Tensor<1, 3> g =
                 std::sqrt(2.) * mu * N +
-                eta(s.phi(eps_p).value).value * K * one;
+                eta(s.phi(eps_p, deps, -p_trial, time_step).value).value * K *
+                  one -
+                dR1_dP * K * one;
               const double               det     = J11 * J22 - J12 * J21;
               const dealii::Tensor<1, 3> ddgamma = -J22 / det * g;
               const dealii::Tensor<1, 3> deps_p  = J21 / det * g;

@@ -541,8 +541,10 @@ namespace Talus
         "(softened) friction angle, I = gamma_p d/sqrt(P/rho_s), gamma_p = "
         "sqrt(3) (equivalent plastic strain rate) the plastic shear rate and "
         "P the trial pressure. Jop et al. (glass beads): phi = 20.9, phi_2 = "
-        "32.76 deg, I_0 = 0.279. Implemented for Mohr-Coulomb (plane and "
-        "edge returns; the apex keeps the static friction).");
+        "32.76 deg, I_0 = 0.279. Used in the plane and edge returns of "
+        "Mohr-Coulomb and the cone return of Drucker-Prager (the cone "
+        "coefficients of the cone fit at phi(I)); the apex and the cap keep "
+        "the static friction.");
       prm.declare_entry("reference inertial number",
                         "0.279",
                         dealii::Patterns::Double(),

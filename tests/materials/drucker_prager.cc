@@ -15,6 +15,9 @@
 //  - (e) softening to the residual strength
 //  - (f) isochoric plastic flow for psi = 0, dilatancy for psi > 0
 //  - (h) objectivity, energy density of the elastic strain
+//  - (k) rate-dependent friction mu(I): steady pure shear at constant rate
+//        against the closed form for the three fits, the static limit,
+//        tangents of the cone return
 // Numbers that depend on round-off are printed as "ok" only.
 
 #include <talus/materials/drucker_prager.h>
@@ -588,6 +591,108 @@ namespace
                1e-8);
       }
   }
+
+
+  // (k) The mu(I) friction (Jop, Forterre & Pouliquen 2006, glass beads):
+  // phi_s = 20.9 deg, phi_2 = 32.76 deg, I_0 = 0.279, d = 0.5 mm,
+  // rho_s = 2450 kg/m^3; the cone coefficients follow phi(I).
+  void
+  check_rate_dependent_friction()
+  {
+    out << std::endl << "(k) rate-dependent friction mu(I)" << std::endl;
+    GranularStrength s = strength(20.9, 0., 0.);
+    s.friction_coefficient_increment =
+      std::tan(32.76 * deg) - std::tan(20.9 * deg);
+    s.reference_inertial_number = 0.279;
+    s.grain_diameter            = 5e-4;
+    s.grain_density             = 2450.;
+    const double mu_s = std::tan(20.9 * deg), mu_2 = std::tan(32.76 * deg);
+    const double e0 = 1e-3;
+    const double P  = 3. * IsotropicElasticity(E, nu).bulk_modulus() * e0;
+
+    // Steady pure shear (r, 0, -r) under P: the plastic rate is the total
+    // rate, gamma_p = 2 r, I = 2 r d/sqrt(P/rho_s), and the stress lies on
+    // the cone sqrt(J2) = eta(phi(I)) P with tan(phi(I)) = mu(I).
+    for (const Fit fit : {Fit::plane_strain,
+                          Fit::triaxial_compression,
+                          Fit::triaxial_extension})
+      {
+        const DruckerPrager model(IsotropicElasticity(E, nu), s, fit);
+        out << model.description() << std::endl;
+        double worst = 0., worst_rate = 0.;
+        for (const double I_target : {1e-3, 0.1, 1., 10.})
+          {
+            const double r = I_target * std::sqrt(P / s.grain_density) /
+                             (2. * s.grain_diameter);
+            const SteadyShear st = steady_pure_shear(model, e0, r);
+            const double      p  = (st.tau[0] + st.tau[1] + st.tau[2]) / 3.;
+            double            J2 = 0.;
+            for (unsigned int a = 0; a < 3; ++a)
+              J2 += 0.5 * (st.tau[a] - p) * (st.tau[a] - p);
+            const double mu = mu_s + (mu_2 - mu_s) * I_target /
+                                       (s.reference_inertial_number + I_target);
+            const double exact = model.eta(std::atan(mu)).value;
+            worst =
+              std::max(worst, std::abs(std::sqrt(J2) / (-p) - exact) / exact);
+            worst_rate =
+              std::max(worst_rate,
+                       std::abs(st.plastic_shear_rate - 2. * r) / (2. * r));
+            if (st.return_type != 1)
+              worst = 1.;
+          }
+        report(out,
+               "  I = 1e-3 .. 10: sqrt(J2)/P = eta(phi(I)) on the cone to 1e-8",
+               worst,
+               1e-8);
+        report(out, "  plastic shear rate = 2 r to 1e-8", worst_rate, 1e-8);
+      }
+
+    const DruckerPrager model(IsotropicElasticity(E, nu), s, Fit::plane_strain);
+    const DruckerPrager static_model(IsotropicElasticity(E, nu),
+                                     strength(20.9, 0., 0.),
+                                     Fit::plane_strain);
+    const Tensor<2, 3>  Q = rotation(vector(0.3, -1., 0.7), 0.8);
+    const Tensor<2, 3>  F = Q * stretch(0.002, -0.001, -0.006);
+    const MaterialPoint p(model), q(static_model);
+    const Tensor<2, 3>  P_static = evaluate(static_model, q, F).P;
+    report(out,
+           "  time step 0: the static stress (relative difference < 1e-14)",
+           max_abs(Tensor<2, 3>(evaluate(model, p, F, true, 0.).P - P_static)) /
+             max_abs(P_static),
+           1e-14);
+
+    // Consistent tangent of the cone return with the rate.
+    GranularStrength cohesive         = s;
+    cohesive.cohesion                 = 1e4;
+    cohesive.residual_cohesion        = 1e4;
+    GranularStrength softening        = s;
+    softening.residual_friction_angle = 15. * deg;
+    struct Case
+    {
+      std::string      name;
+      GranularStrength strength;
+      Fit              fit;
+      double           dt;
+    };
+    for (const Case &c : std::vector<Case>{
+           {"cone, plane strain, I ~ 0.3", s, Fit::plane_strain, 1e-4},
+           {"cone, plane strain, I ~ 30", s, Fit::plane_strain, 1e-6},
+           {"cone, triaxial compression", s, Fit::triaxial_compression, 1e-4},
+           {"cone, c = 1e4 Pa", cohesive, Fit::plane_strain, 1e-4},
+           {"cone, softening", softening, Fit::plane_strain, 1e-4}})
+      {
+        const DruckerPrager m(IsotropicElasticity(E, nu), c.strength, c.fit);
+        const MaterialPoint pt(m);
+        const Step          st        = evaluate(m, pt, F, true, c.dt);
+        const Step          st_static = evaluate(m, pt, F, true, 0.);
+        out << c.name << ": return type " << return_type_name(st.history[8])
+            << ", stress raised by the rate: "
+            << (max_abs(st.P) > max_abs(st_static.P) * (1. + 1e-3) ? "yes" :
+                                                                     "NO")
+            << std::endl;
+        report(out, "  tangent", tangent_error(m, pt, F, 1e-7, c.dt), 1e-6);
+      }
+  }
 } // namespace
 
 
@@ -606,6 +711,7 @@ main()
   check_softening();
   check_volume_change();
   check_objectivity_and_energy();
+  check_rate_dependent_friction();
   out << std::endl << "done" << std::endl;
   return 0;
 }

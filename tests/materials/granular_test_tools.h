@@ -200,6 +200,40 @@ namespace GranularTest
     std::uint64_t state = 12345;
   };
 
+  // Steady pure shear at the principal logarithmic strain rates (r, 0, -r)
+  // after an isotropic compression e0 (P = 3 K e0, kept by an isochoric
+  // flow), 400 steps of 2e-5 each: the principal Kirchhoff stresses of the
+  // last step, its plastic shear rate sqrt(3) d eps_p/dt (2 r at steady
+  // flow) and its return type.
+  struct SteadyShear
+  {
+    Tensor<1, 3> tau;
+    double       plastic_shear_rate;
+    double       return_type;
+  };
+
+  inline SteadyShear
+  steady_pure_shear(const ConstitutiveModel &model,
+                    const double             e0,
+                    const double             rate)
+  {
+    const double  delta = 2e-5;
+    const double  dt    = delta / rate;
+    MaterialPoint p(model);
+    advance(model, p, stretch(-e0, -e0, -e0), 1.);
+    Step   st;
+    double eps_p_before = 0., shear = 0.;
+    for (unsigned int n = 0; n < 400; ++n)
+      {
+        eps_p_before = p.history[6];
+        shear += delta;
+        st = advance(model, p, stretch(-e0 + shear, -e0, -e0 - shear), dt);
+      }
+    return {principal_kirchhoff(st.P, p.F),
+            std::sqrt(3.) * (p.history[6] - eps_p_before) / dt,
+            st.history[8]};
+  }
+
   // Create the model of the parameter text @p input (subsection Material):
   // prints "rejected" to out, followed by " (<note>)" if the message contains
   // @p needle, or "FAILED, accepted" if the model was created.

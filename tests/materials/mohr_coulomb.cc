@@ -699,10 +699,9 @@ namespace
     // I = 2 r d/sqrt(P/rho_s), and the stress lies on the Mohr-Coulomb
     // surface with tan(phi) = mu_s + (mu_2 - mu_s) I/(I_0 + I):
     // (tau_1 - tau_3)/(-(tau_1 + tau_3)) = sin(phi).
-    const double e0    = 1e-3;
-    const double K     = IsotropicElasticity(E, nu).bulk_modulus();
-    const double P     = 3. * K * e0;
-    const double delta = 2e-5; // strain increment per step
+    const double e0 = 1e-3;
+    const double K  = IsotropicElasticity(E, nu).bulk_modulus();
+    const double P  = 3. * K * e0;
     out << "steady pure shear, P = " << P << " Pa:" << std::endl;
     out << "  I (closed form)  tan(phi) closed form  measured" << std::endl;
     double worst = 0., worst_rate = 0.;
@@ -710,33 +709,20 @@ namespace
       {
         const double r =
           I_target * std::sqrt(P / s.grain_density) / (2. * s.grain_diameter);
-        const double  dt = delta / r;
-        MaterialPoint p(model);
-        advance(model, p, stretch(-e0, -e0, -e0), 1.);
-        Step   st;
-        double eps_p_before = 0.;
-        double shear        = 0.;
-        for (unsigned int n = 0; n < 400; ++n)
-          {
-            eps_p_before = p.history[6];
-            shear += delta;
-            st = advance(model, p, stretch(-e0 + shear, -e0, -e0 - shear), dt);
-          }
-        const Tensor<1, 3> tau      = principal_kirchhoff(st.P, p.F);
+        const SteadyShear  st       = steady_pure_shear(model, e0, r);
+        const Tensor<1, 3> tau      = st.tau;
         const double       sin_phi  = (tau[0] - tau[2]) / (-(tau[0] + tau[2]));
         const double       measured = std::tan(std::asin(sin_phi));
         const double       exact    = mu_s + (mu_2 - mu_s) * I_target /
                                       (s.reference_inertial_number + I_target);
-        // plastic shear rate of the last step: sqrt(3) d eps_p/dt = 2 r
-        const double gamma_p =
-          std::sqrt(3.) * (p.history[6] - eps_p_before) / dt;
         worst = std::max(worst, std::abs(measured - exact) / exact);
         worst_rate =
-          std::max(worst_rate, std::abs(gamma_p - 2. * r) / (2. * r));
+          std::max(worst_rate,
+                   std::abs(st.plastic_shear_rate - 2. * r) / (2. * r));
         out << "  " << std::setw(15) << I_target << "  " << std::setw(20)
             << exact << "  " << std::setw(10) << std::setprecision(6)
             << measured << std::setprecision(10) << "  (return type "
-            << return_type_name(st.history[8]) << ")" << std::endl;
+            << return_type_name(st.return_type) << ")" << std::endl;
       }
     report(out, "  tan(phi) = mu(I) to 1e-8", worst, 1e-8);
     report(out, "  plastic shear rate = 2 r to 1e-8", worst_rate, 1e-8);

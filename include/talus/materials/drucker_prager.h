@@ -50,6 +50,12 @@ namespace Talus
      * cap-cone corner (@f$p = t@f$, @f$\sqrt{J_2} = \xi c - \eta t@f$, type
      * 4); else the apex @f$p = \min(c\cot\phi, t)@f$, @f$\mathbf s = 0@f$
      * (type 3). Consistent tangents by implicit differentiation.
+     *
+     * With a rate-dependent strength (GranularStrength::rate_dependent(),
+     * the @f$\mu(I)@f$ friction) the cone coefficients are those of
+     * @f$\phi(\bar\varepsilon^p, \Delta\bar\varepsilon^p, P^{tr},
+     * \Delta t)@f$ in the cone return (unknowns Δγ and the increment of the
+     * plastic strain); cap and apex keep the static friction.
      */
     class DruckerPrager : public GranularPlasticity
     {
