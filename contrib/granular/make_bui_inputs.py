@@ -2,7 +2,8 @@
 """Write the Bui et al. 2008 granular column collapse inputs (one per cell size).
 
 usage: make_bui_inputs.py [-o benchmarks/granular_collapse] [--cells 0.02 0.01 0.005]
-                          [--floor friction|no-slip|both]
+                          [--floor friction|no-slip|both] [--rate-dependent]
+                          [--recoverable]
 
 Column 0.2 m long x 0.1 m high against a smooth wall at x = 0 (slip), on a
 floor with Coulomb friction, rho = 2650 kg/m^3, E = 0.84 MPa, nu = 0.3,
@@ -14,10 +15,29 @@ toe with 0.43 m (subsection "Deposit profile"). Run from the repository top.
 --floor no-slip writes bui2008_<cell>_noslip.prm with a fixed floor instead,
 the floor of Bui's own SPH model and of Kratos' validation example
 (doc/verification.md, "Update 2026-11-30").
+--rate-dependent writes bui2008_<cell>[_noslip]_muI.prm with the mu(I)
+friction (Material/Mohr-Coulomb, "limiting friction angle"; parameters
+MU_I below, chosen before the runs and not calibrated); --recoverable adds
+"separated volume = recoverable" (suffix _recoverable). Both together are
+the model of Dunatunga & Kamrin, JFM 779 (2015) 483 (doc/verification.md,
+"Update 2026-12-01 (5)").
 """
 
 import argparse
 import os
+
+# The mu(I) friction of --rate-dependent. Jop, Forterre & Pouliquen, Nature
+# 441 (2006) 727, glass beads: tan(phi_2) - tan(phi_s) = tan(32.76 deg) -
+# tan(20.9 deg) = 0.2616 and I_0 = 0.279. Added to Bui's phi = 19.8 deg:
+# phi_2 = atan(tan(19.8 deg) + 0.2616) = 31.87 deg. Grain diameter 1.25 mm,
+# the mean of Bui's aluminium rods of 1 and 1.5 mm; grain density = the
+# material density (2650 kg/m^3). Not calibrated against the experiment.
+MU_I = """\
+    # mu(I) friction (make_bui_inputs.py --rate-dependent, MU_I)
+    set limiting friction angle = 31.87
+    set reference inertial number = 0.279
+    set grain diameter = 0.00125
+"""
 
 TEMPLATE = """\
 # Granular column collapse after Bui et al. 2008 (IJNAMG 32:1537), plane
@@ -57,7 +77,7 @@ subsection Material
     set friction angle = 19.8
     set cohesion = 0
     set dilatancy angle = 0
-  end
+{separation}{mu_i}  end
 end
 subsection Solver
   set analysis = dynamic
@@ -104,12 +124,19 @@ def main():
                         help="cell sizes [m] (default 20, 10, 5 mm)")
     parser.add_argument("--floor", choices=["friction", "no-slip", "both"],
                         default="both")
+    parser.add_argument("--rate-dependent", action="store_true",
+                        help="mu(I) friction (MU_I), file names end in _muI")
+    parser.add_argument("--recoverable", action="store_true",
+                        help="separated volume = recoverable, file names "
+                        "end in _recoverable")
     args = parser.parse_args()
     floors = ["friction", "no-slip"] if args.floor == "both" else [args.floor]
     os.makedirs(args.directory, exist_ok=True)
     for cell, floor in [(c, f) for f in floors for c in args.cells]:
         mm = cell * 1000.
-        name = "bui2008_%gmm" % mm + ("_noslip" if floor == "no-slip" else "")
+        name = ("bui2008_%gmm" % mm + ("_noslip" if floor == "no-slip" else "")
+                + ("_muI" if args.rate_dependent else "")
+                + ("_recoverable" if args.recoverable else ""))
         path = os.path.join(args.directory, name.replace(".", "p") + ".prm")
         nx, ny = round(0.6 / cell), round(0.12 / cell)
         # Largest time step [s] = 0.1 x cell size [m] (2e-3 s at 20 mm,
@@ -129,6 +156,9 @@ def main():
                    "example).\n  set fixed boundaries = 2"),
             cell_mm=mm, n_points=4 * round(0.2 / cell) * round(0.1 / cell),
             path=path, nx=nx, ny=ny, dt=dt, name=name.replace(".", "p"),
+            mu_i=MU_I if args.rate_dependent else "",
+            separation=("    set separated volume = recoverable\n"
+                        if args.recoverable else ""),
             bin=cell, series=max(1, round(0.01 / dt)),
             # at 5 mm and below Newton stalls at a relative residual of
             # 1e-8 (doc/verification.md): use 1e-6 there
