@@ -2550,7 +2550,13 @@ namespace Talus
       // step (later solves after multiplier updates start near it)
       const bool first_solve = reference == 0.;
 
-      for (unsigned int it = 0; it <= max_newton_iterations; ++it)
+      // Iterations granted after a correction of held multiplier states
+      // (below): the correction restarts the semi-smooth Newton iteration
+      // from a changed active set, which needs a few iterations again.
+      unsigned int granted_iterations = 0;
+      for (unsigned int it = 0;
+           it <= max_newton_iterations + granted_iterations;
+           ++it)
         {
           std::string failure;
           bool        ok;
@@ -2671,12 +2677,14 @@ namespace Talus
                               bp.beta * bp.weight *
                                 boundary_particles->multiplier_tolerance())
                           continue;
-                        // held once in the wrong state: hold it in the
-                        // state the solution asks for and iterate on
-                        if (bp.switches < 100)
+                        // held in the wrong state: hold it in the state
+                        // the solution asks for and iterate on, at most
+                        // three times per point and step (switches counts
+                        // the moves from 100 on)
+                        if (bp.switches < 102)
                           {
                             bp.frozen   = state == 2 ? 3 : state;
-                            bp.switches = 100;
+                            bp.switches = std::max(bp.switches + 1, 100u);
                             ++moved;
                           }
                         else
@@ -2686,8 +2694,12 @@ namespace Talus
                                                          grid.mpi_communicator);
                   moved =
                     dealii::Utilities::MPI::sum(moved, grid.mpi_communicator);
-                  if (violated == 0 && moved > 0 && it < max_newton_iterations)
+                  if (violated == 0 && moved > 0 &&
+                      it < max_newton_iterations + granted_iterations)
                     {
+                      // at most max_newton_iterations more in all
+                      granted_iterations = std::min(granted_iterations + 10,
+                                                    max_newton_iterations);
                       if (std::getenv("TALUS_DEBUG_NEWTON"))
                         std::cerr << "    " << moved
                                   << " held multiplier point(s) moved to "
@@ -2711,7 +2723,7 @@ namespace Talus
               solved           = true;
               return;
             }
-          if (it == max_newton_iterations)
+          if (it == max_newton_iterations + granted_iterations)
             break;
 
           unsigned int n_linear = 0;
@@ -2757,8 +2769,13 @@ namespace Talus
           solved_since_update = true;
         }
       std::ostringstream msg;
-      msg << "no convergence in " << max_newton_iterations
-          << " Newton iterations (relative residual " << result.residual << ")";
+      msg << "no convergence in " << max_newton_iterations + granted_iterations
+          << " Newton iterations";
+      if (granted_iterations > 0)
+        msg << " (" << granted_iterations
+            << " of them granted after corrections of held Lagrange "
+               "multiplier states)";
+      msg << " (relative residual " << result.residual << ")";
       if (!grid.friction_boundaries.empty())
         msg << "; contact states on friction boundaries may still be "
                "changing";
@@ -4149,8 +4166,21 @@ namespace Talus
         }
       const dealii::Tensor<1, dim> F =
         b.lambda - k * g - (b.damping * k * s * dgn) * n;
-      const double Fn      = F * n;
-      const bool   pressed = Fn > 0.;
+      const double Fn = F * n;
+      // Lagrange multipliers: hysteresis at the kinks of the semi-smooth
+      // Newton iteration. A point that was open in the last iterate closes
+      // only when it penetrates by more than the gap tolerance, and a point
+      // that slid sticks only when its trial force lies more than k times
+      // the gap tolerance inside the Coulomb cone; a closed point opens, and
+      // a sticking one slides, as soon as the force asks for it (no
+      // adhesion, no force beyond the cone). Near convergence this keeps
+      // points whose force is zero (or at the cone) to round-off from
+      // flipping between the two states, at an error within the gap
+      // tolerance.
+      const bool   hysteresis = b.monolithic && b.frozen < 0;
+      const double margin =
+        hysteresis ? k * boundary_particles->multiplier_tolerance() : 0.;
+      const bool pressed = Fn > (hysteresis && b.last_state == 0 ? margin : 0.);
       switch (b.condition)
         {
           case Condition::fixed:
@@ -4183,7 +4213,9 @@ namespace Talus
                 const dealii::Tensor<1, dim> f_trial = F - Fn * n;
                 const double                 norm    = f_trial.norm();
                 const double                 limit   = b.mu * fn;
-                if (b.frozen < 0 ? norm <= limit :
+                const double                 stick_limit =
+                  limit - (hysteresis && b.last_state == 2 ? margin : 0.);
+                if (b.frozen < 0 ? norm <= stick_limit :
                                    (b.frozen == 1 || norm == 0.))
                   {
                     r.force     = fn * n + f_trial;

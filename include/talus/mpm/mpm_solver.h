@@ -274,9 +274,12 @@ namespace Talus
         dealii::Tensor<1, dim> dlambda;
         /**
          * Changes of state in the current Newton solve; a Lagrange
-         * multiplier point that changed 4 times (semi-smooth Newton cycling
+         * multiplier point that changed 6 times (semi-smooth Newton cycling
          * between two active sets) is held in the more constrained of its
-         * states (frozen) for the rest of the solve.
+         * states (frozen) for the rest of the solve. A held point that the
+         * converged solution does not satisfy is moved to the state the
+         * solution asks for, at most three times per step (counted from
+         * 100 on).
          */
         unsigned int switches = 0;
         /**
