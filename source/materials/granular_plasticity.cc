@@ -71,7 +71,7 @@ namespace Talus
     {
       const Value static_phi = phi(eps_p);
       if (!rate_dependent() || !(time_step > 0.))
-        return {static_phi.value, static_phi.derivative, 0., 0.};
+        return {static_phi.value, static_phi.derivative, 0.};
       // I/(I0 + I) = X/(X + Y) with X = gamma_dot d sqrt(rho_s) and
       // Y = I0 sqrt(P): finite for P -> 0
       const double dX_deps =
@@ -81,7 +81,6 @@ namespace Talus
       const double Y     = reference_inertial_number * sqrtP;
       const double tan_s = std::tan(static_phi.value);
       double       ratio = 0., dratio_deps = 0., dratio_dP = 0.;
-      double       I = 0.;
       if (X + Y > 0.)
         {
           ratio = X / (X + Y);
@@ -90,16 +89,13 @@ namespace Talus
           if (pressure > 0.)
             dratio_dP = -X / ((X + Y) * (X + Y)) * reference_inertial_number /
                         (2. * sqrtP);
-          I = (Y > 0. ? reference_inertial_number * X / Y :
-                        std::numeric_limits<double>::infinity());
         }
       const double mu    = tan_s + friction_coefficient_increment * ratio;
       const double dphi  = 1. / (1. + mu * mu); // d phi/d mu
       const double dmu_s = (1. + tan_s * tan_s) * static_phi.derivative;
       return {std::atan(mu),
               dphi * (dmu_s + friction_coefficient_increment * dratio_deps),
-              dphi * friction_coefficient_increment * dratio_dP,
-              I};
+              dphi * friction_coefficient_increment * dratio_dP};
     }
 
 

@@ -200,19 +200,19 @@ namespace Talus
                                   PrincipalReturn &result,
                                   bool            &converged_out) const
     {
-      converged_out              = true;
-      const unsigned int       m = planes.size();
-      const double             k = std::sqrt(2. / 3.);
-      dealii::Tensor<1, 3>     dgamma; // entries m..2 stay zero
-      double                   eps_p = plastic_strain_old;
-      std::array<PlaneData, 3> p;
+      converged_out                = true;
+      const unsigned int         m = planes.size();
+      const double               k = std::sqrt(2. / 3.);
+      dealii::Tensor<1, 3>       dgamma; // entries m..2 stay zero
+      double                     eps_p = plastic_strain_old;
+      std::array<PlaneData, 3>   p;
+      const dealii::Tensor<1, 3> tau_trial = D * eps_trial;
       // rate-dependent friction: the trial pressure P = -tr(tau_trial)/3
       // and dP/d eps_trial_c = -K
-      const dealii::Tensor<1, 3> tau_trial_0 = D * eps_trial;
-      RateState                  rate{0.,
-                     -(tau_trial_0[0] + tau_trial_0[1] + tau_trial_0[2]) / 3.,
+      RateState  rate{0.,
+                     -(tau_trial[0] + tau_trial[1] + tau_trial[2]) / 3.,
                      time_step};
-      const bool                 rate_dependent =
+      const bool rate_dependent =
         strength_parameters.rate_dependent() && time_step > 0.;
       // With a rate-dependent friction the unknown is the increment deps of
       // the plastic strain (eps_p = eps_p,n + deps), which the rate needs
@@ -228,9 +228,8 @@ namespace Talus
       // (exact without softening), then eps_p from it.
       update_planes();
       {
-        dealii::Tensor<2, 3>       J0;
-        dealii::Tensor<1, 3>       rhs;
-        const dealii::Tensor<1, 3> tau_trial = D * eps_trial;
+        dealii::Tensor<2, 3> J0;
+        dealii::Tensor<1, 3> rhs;
         for (unsigned int i = 0; i < m; ++i)
           {
             rhs[i] = p[i].a * tau_trial - p[i].r;
@@ -486,13 +485,18 @@ namespace Talus
             }
           all_converged = all_converged && converged;
         }
-      if (!all_converged && s.cohesion == 0. &&
-          eps_trial[0] + eps_trial[1] + eps_trial[2] < 0.)
+      const double apex_stress = s.c(plastic_strain_old).value /
+                                 std::tan(s.phi(plastic_strain_old).value);
+      // The apex is the return only for a trial mean stress beyond it (the
+      // plane and edge returns keep or lower the mean stress, psi >= 0): a
+      // state below it whose plane returns did not converge has no return.
+      if (!all_converged && (tau_trial[0] + tau_trial[1] + tau_trial[2]) / 3. <
+                              std::min(apex_stress, t))
         fail("plane and edge returns with rate-dependent friction",
              eps_trial,
              plastic_strain_old,
-             "no set of planes gave a converged, admissible return, and a "
-             "compressed cohesionless state has no apex return");
+             "no set of planes gave a converged, admissible return, and the "
+             "trial mean stress lies below the apex");
 
       // Apex: tau = min(c cot(phi), t) (1, 1, 1)
       const auto apex = [&s](const double eps_p,
@@ -510,8 +514,6 @@ namespace Talus
           }
         dT_deps = dealii::Tensor<2, 3>();
       };
-      const double apex_stress = s.c(plastic_strain_old).value /
-                                 std::tan(s.phi(plastic_strain_old).value);
       return prescribed_stress_return(
         eps_trial, plastic_strain_old, apex, apex_stress <= t ? 3 : 4, "apex");
     }

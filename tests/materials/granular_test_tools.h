@@ -234,6 +234,22 @@ namespace GranularTest
             st.history[8]};
   }
 
+  // max |P - P_static| / max |P_static| for one step from the virgin state
+  // to F of length time_step: how far a rate-dependent model is from its
+  // static counterpart
+  inline double
+  static_stress_difference(const ConstitutiveModel &model,
+                           const ConstitutiveModel &static_model,
+                           const Tensor<2, 3>      &F,
+                           const double             time_step)
+  {
+    const MaterialPoint p(model), q(static_model);
+    const Tensor<2, 3>  P_static = evaluate(static_model, q, F).P;
+    return max_abs(Tensor<2, 3>(evaluate(model, p, F, true, time_step).P -
+                                P_static)) /
+           max_abs(P_static);
+  }
+
   // Create the model of the parameter text @p input (subsection Material):
   // prints "rejected" to out, followed by " (<note>)" if the message contains
   // @p needle, or "FAILED, accepted" if the model was created.

@@ -734,19 +734,15 @@ namespace
                                      strength(20.9, 0., 0.));
       const Tensor<2, 3>  Q = rotation(vector(0.3, -1., 0.7), 0.8);
       const Tensor<2, 3>  F = Q * stretch(0.002, -0.001, -0.006);
-      const MaterialPoint p(model), q(static_model);
-      const Tensor<2, 3>  P_static = evaluate(static_model, q, F).P;
+      const MaterialPoint p(model);
       report(out,
              "  time step 0: the static stress (relative difference < 1e-14)",
-             max_abs(
-               Tensor<2, 3>(evaluate(model, p, F, true, 0.).P - P_static)) /
-               max_abs(P_static),
+             static_stress_difference(model, static_model, F, 0.),
              1e-14);
       report(
         out,
         "  time step 1e6 s: the static stress (relative difference < 1e-9)",
-        max_abs(Tensor<2, 3>(evaluate(model, p, F, true, 1e6).P - P_static)) /
-          max_abs(P_static),
+        static_stress_difference(model, static_model, F, 1e6),
         1e-9);
       const Tensor<1, 3> tau =
         principal_kirchhoff(evaluate(model, p, F, true, 1e-12).P, F);

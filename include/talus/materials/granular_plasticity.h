@@ -119,8 +119,6 @@ namespace Talus
         double d_plastic_strain;
         /** d phi/d P [rad/Pa] */
         double d_pressure;
-        /** The inertial number I [-] (infinity for P <= 0). */
-        double inertial_number;
       };
 
       /**
