@@ -315,9 +315,21 @@ namespace Talus
                           "CG",
                           Patterns::Selection("CG|GMRES|direct"),
                           "'CG' or 'GMRES' (Trilinos ML algebraic multigrid "
-                          "preconditioner with the translations as near null "
-                          "space), or 'direct' (Amesos KLU, for small "
+                          "preconditioner with the rigid body modes as near "
+                          "null space), or 'direct' (Amesos KLU, for small "
                           "problems).");
+        prm.declare_entry(
+          "AMG smoother",
+          "Chebyshev",
+          Patterns::Selection("Chebyshev|symmetric Gauss-Seidel"),
+          "Smoother of the ML algebraic multigrid (2 sweeps per level) [-]: "
+          "'Chebyshev' (polynomial in the point Jacobi-scaled matrix) or "
+          "'symmetric Gauss-Seidel' (processor-local, Jacobi across ranks). "
+          "Gauss-Seidel handles the stiff rank-one couplings of contact on "
+          "boundaries that are not aligned with the grid much better: the "
+          "Lagrange multiplier block solve on a fine 3D grid needs it "
+          "(doc/verification.md, saddle-point solve with AMG); combine it "
+          "with a 'ghost penalty factor' when cut cells are small.");
         prm.declare_entry(
           "saddle-point solver",
           "automatic",
@@ -471,6 +483,7 @@ namespace Talus
       increment_tolerance  = get_positive(prm, sub, "increment tolerance");
       linear_solver_type   = prm.get("linear solver");
       reuse_preconditioner = prm.get_bool("reuse preconditioner");
+      amg_smoother         = prm.get("AMG smoother");
       {
         const std::string s = prm.get("saddle-point solver");
         block_saddle_point =
@@ -548,6 +561,7 @@ namespace Talus
         grid.locally_owned_dofs,
         grid.mpi_communicator,
         grid.locally_relevant_dofs);
+      amg.reset();
       matrix.reinit(grid.locally_owned_dofs,
                     grid.locally_owned_dofs,
                     dsp,
@@ -980,6 +994,7 @@ namespace Talus
         {
           matrix                   = 0.;
           reversed_boundary_points = 0;
+          boundary_states_changed  = false;
         }
       residual            = 0.;
       multiplier_residual = 0.;
@@ -1235,7 +1250,14 @@ namespace Talus
                   bf        = boundary_force(bp, du_b);
                 }
               if (with_matrix)
-                bp.last_state = bf.state;
+                {
+                  // a changed contact state changes A (the trial-force
+                  // stiffness k N^T D N): the AMG hierarchy of an earlier
+                  // iterate no longer fits it
+                  if (bf.state != bp.last_state)
+                    boundary_states_changed = true;
+                  bp.last_state = bf.state;
+                }
               if (bp.monolithic)
                 {
                   // the multiplier's equation (lambda - f) / k = 0 and
@@ -1383,6 +1405,9 @@ namespace Talus
             if (constraints.is_constrained(i) && matrix.diag_element(i) == 0.)
               matrix.set(i, i, max_diagonal);
           matrix.compress(dealii::VectorOperation::insert);
+          if (dealii::Utilities::MPI::logical_or(boundary_states_changed,
+                                                 grid.mpi_communicator))
+            amg_current = false;
         }
 
       const bool all_ok =
@@ -1773,7 +1798,11 @@ namespace Talus
         grid.locally_owned_dofs,
         grid.mpi_communicator,
         grid.locally_relevant_dofs);
+      // the preconditioners reference the matrix: release them first (ML's
+      // Gauss-Seidel smoothers access it on destruction)
       factorisation.reset();
+      amg.reset();
+      amg_current = false;
       matrix.reinit(grid.locally_owned_dofs,
                     grid.locally_owned_dofs,
                     dsp,
@@ -2050,6 +2079,7 @@ namespace Talus
       data.elliptic              = true;
       data.higher_order_elements = false;
       data.smoother_sweeps       = 2;
+      data.smoother_type         = amg_smoother.c_str();
       data.aggregation_threshold = 0.02;
       // ML parameters with the rigid body modes (translations and
       // rotations) as near null space; deal.II 9.4's AdditionalData only
@@ -2161,6 +2191,9 @@ namespace Talus
           build_amg();
           krylov(control);
         }
+      if (std::getenv("TALUS_DEBUG_LINEAR") &&
+          dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) == 0)
+        std::cerr << "    Krylov " << control.last_step() << std::endl;
       constraints.distribute(x);
       return control.last_step();
     }
@@ -2348,7 +2381,7 @@ namespace Talus
                 const dealii::Tensor<1, dim> s =
                   (lm[p]->lm_force - lm[p]->lambda) / k;
                 for (unsigned int d = 0; d < dim; ++d)
-                  rhs.block(1).begin()[p * dim + d] = s[d];
+                  rhs.block(1).begin()[p * dim + d] = k * s[d];
               }
             Vector     masked(grid.locally_owned_dofs, comm);
             const auto apply_A_inverse = [&](Vector &dst, const Vector &src) {
@@ -2367,6 +2400,22 @@ namespace Talus
                 apply(dst, src);
               }
             };
+            // The multiplier rows are gaps [m]; scaled by each point's k
+            // they become forces [N] like the momentum rows, so that the
+            // FGMRES residual weighs both blocks alike (unscaled, the
+            // gap rows of a first contact could be left unsolved below a
+            // tolerance set by the force rows).
+            Vector     scaled(owned, comm);
+            const auto scale_rows = [&](Vector &v) {
+              for (unsigned int p = 0; p < lm.size(); ++p)
+                for (unsigned int d = 0; d < dim; ++d)
+                  v.begin()[p * dim + d] *= lm[p]->beta * lm[p]->weight;
+            };
+            const auto unscale_rows = [&](Vector &v) {
+              for (unsigned int p = 0; p < lm.size(); ++p)
+                for (unsigned int d = 0; d < dim; ++d)
+                  v.begin()[p * dim + d] /= lm[p]->beta * lm[p]->weight;
+            };
             // initial guess: x = A~^-1 r, y = 0
             apply_A_inverse(solution.block(0), residual);
             const BlockOperator system{[&](BlockVector       &dst,
@@ -2377,10 +2426,13 @@ namespace Talus
               spread(src.block(1), t);
               dst.block(0) -= t;
               multiplier_rows(dst.block(1), src.block(1), interpolate(masked));
+              scale_rows(dst.block(1));
             }};
             const BlockOperator block_preconditioner{
               [&](BlockVector &dst, const BlockVector &src) {
-                preconditioner.vmult(dst.block(1), src.block(1));
+                scaled = src.block(1);
+                unscale_rows(scaled);
+                preconditioner.vmult(dst.block(1), scaled);
                 spread(dst.block(1), t);
                 t += src.block(0);
                 apply_A_inverse(dst.block(0), t);
@@ -2407,6 +2459,18 @@ namespace Talus
                 fgmres.solve(system, solution, rhs, block_preconditioner);
               }
             n_iterations += control.last_step();
+            if (std::getenv("TALUS_DEBUG_NEWTON"))
+              {
+                BlockVector check(partitioning, comm);
+                system.vmult(check, solution);
+                check -= rhs;
+                const double r0 = check.block(0).l2_norm(),
+                             r1 = check.block(1).l2_norm();
+                if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+                  std::cerr << "    block residual: force " << r0 << " / "
+                            << rhs.block(0).l2_norm() << ", gap " << r1 << " / "
+                            << rhs.block(1).l2_norm() << std::endl;
+              }
             x = solution.block(0);
             constraints.set_zero(x);
             constraints.distribute(x);

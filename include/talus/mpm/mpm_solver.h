@@ -624,11 +624,15 @@ namespace Talus
       std::vector<dealii::IndexSet>                              slip_dofs;
       dealii::TrilinosWrappers::SparseMatrix                     matrix;
       std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
-      bool                                amg_current = false;
+      bool amg_current = false;
+      /** Whether a boundary particle's contact state changed in the last
+       * assembly of the matrix (the AMG hierarchy is then rebuilt). */
+      bool                                boundary_states_changed = false;
       std::unique_ptr<Epetra_MultiVector> rigid_body_modes;
       std::vector<dealii::Point<dim>>     owned_support_points;
       std::vector<unsigned int>           owned_components;
       bool                                reuse_preconditioner = true;
+      std::string                         amg_smoother         = "Chebyshev";
       std::vector<std::vector<bool>>      constant_modes;
 
       /**
