@@ -14,11 +14,16 @@
 
 #include <deal.II/fe/fe_nothing.h>
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_fe.h>
 #include <deal.II/fe/mapping_q1.h>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 namespace Talus
@@ -31,6 +36,127 @@ namespace Talus
       slot_name(const unsigned int k)
       {
         return "Boundary " + std::to_string(k + 1);
+      }
+
+      bool
+      has_stl_extension(const std::string &file_name)
+      {
+        const auto dot = file_name.rfind('.');
+        if (dot == std::string::npos)
+          return false;
+        std::string extension = file_name.substr(dot + 1);
+        for (auto &c : extension)
+          c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return extension == "stl";
+      }
+
+
+      /**
+       * Boundary particles on a triangle for 'particles per cell' = n: the
+       * centroid for n = 1, else the symmetric Witherden-Vincent rule of even
+       * order n - 1 (3, 6, 12, 16, 25, 33, 42 points for n = 2 ... 8). A
+       * triangle is about half a square of its diameter, so this is 1.3 to
+       * 1.5 times the density of the n x n points of a quadrilateral.
+       * Symmetric, so the points do not depend on the vertex order;
+       * positive weights, so each point carries a positive area.
+       */
+      dealii::Quadrature<2>
+      triangle_quadrature(const unsigned int n)
+      {
+        if (n == 1)
+          return dealii::QGaussSimplex<2>(1);
+        return dealii::QWitherdenVincentSimplex<2>(n - 1, false);
+      }
+
+
+      template <int spacedim>
+      std::string
+      describe_cell(
+        const typename dealii::Triangulation<spacedim - 1,
+                                             spacedim>::cell_iterator &cell)
+      {
+        std::ostringstream text;
+        text << "cell " << cell->index() + 1 << " at (" << cell->center()
+             << ")";
+        return text.str();
+      }
+
+
+      /**
+       * Check that the cells of a surface mesh, in their vertex order as
+       * read, are oriented consistently, so that the normals deal.II
+       * computes from that order point to one side of the surface.
+       *
+       * Each cell's boundary is traversed in its vertex order: a line
+       * v0 -> v1 starts at v0 and ends at v1; a triangle runs v0 v1 v2, a
+       * quadrilateral (deal.II's lexicographic numbering) v0 v1 v3 v2. Two
+       * neighbours are consistently oriented when they traverse their
+       * common edge in opposite directions (lines: the common vertex ends
+       * one and starts the other). GridIn makes the cells of a
+       * quadrilateral mesh consistent by itself through the cells'
+       * direction flags, and leaves triangles as they are; this check looks
+       * at the vertex order as read, so both are rejected alike instead of
+       * being re-oriented to the first cell without a word.
+       *
+       * @return an empty string, or which cells disagree (an orientation
+       * conflict, or an edge shared by more than two cells).
+       */
+      template <int spacedim>
+      std::string
+      orientation_conflict(
+        const dealii::Triangulation<spacedim - 1, spacedim> &surface)
+      {
+        constexpr int dim = spacedim - 1;
+        using Cell =
+          typename dealii::Triangulation<dim, spacedim>::cell_iterator;
+        // edge (sorted vertex indices) -> the cells that traverse it, with
+        // +1 for the direction of increasing vertex index, -1 for the other
+        std::map<std::vector<unsigned int>, std::vector<std::pair<Cell, int>>>
+          edges;
+        for (const auto &cell : surface.cell_iterators_on_level(0))
+          {
+            std::vector<unsigned int> cycle;
+            if (dim == 1)
+              cycle = {0, 1};
+            else if (cell->n_vertices() == 3)
+              cycle = {0, 1, 2};
+            else
+              cycle = {0, 1, 3, 2};
+            if (dim == 1)
+              {
+                edges[{cell->vertex_index(0)}].emplace_back(cell, -1);
+                edges[{cell->vertex_index(1)}].emplace_back(cell, +1);
+                continue;
+              }
+            for (unsigned int i = 0; i < cycle.size(); ++i)
+              {
+                const unsigned int a = cell->vertex_index(cycle[i]);
+                const unsigned int b =
+                  cell->vertex_index(cycle[(i + 1) % cycle.size()]);
+                edges[{std::min(a, b), std::max(a, b)}].emplace_back(
+                  cell, a < b ? +1 : -1);
+              }
+          }
+        for (const auto &[key, users] : edges)
+          {
+            (void)key;
+            if (users.size() > 2)
+              return std::string(dim == 1 ? "a vertex" : "an edge") + " of " +
+                     describe_cell<spacedim>(users[0].first) +
+                     " is shared by " + std::to_string(users.size()) +
+                     " cells: split a branching surface into several "
+                     "boundaries";
+            if (users.size() == 2 && users[0].second == users[1].second)
+              return describe_cell<spacedim>(users[0].first) + " and " +
+                     describe_cell<spacedim>(users[1].first) +
+                     " have opposite normals: " +
+                     (dim == 1 ?
+                        "a line must start where its neighbour ends" :
+                        "neighbours must run through their common edge in "
+                        "opposite directions") +
+                     "; reverse the vertex order of the inverted cells";
+          }
+        return "";
       }
 
       template <int dim>
@@ -170,15 +296,21 @@ namespace Talus
           prm.declare_entry("mesh file",
                             "",
                             Anything(),
-                            "Surface mesh of a 'mesh' boundary (Gmsh .msh, "
-                            "VTK .vtk or UCD .inp, read by deal.II's GridIn "
-                            "as Triangulation<dim-1, dim>). GridIn orders "
-                            "the cells consistently, so all normals follow "
-                            "the orientation of the first cell (in 2D: to "
-                            "the left of its direction from the first to the "
-                            "second vertex; in 3D: right-handed in its "
-                            "vertex order); they must point into the "
-                            "material, otherwise set 'flip normals' [-].");
+                            "Surface mesh of a 'mesh' boundary, read by "
+                            "deal.II's GridIn as Triangulation<dim-1, dim>: "
+                            "Gmsh .msh, VTK .vtk or UCD .inp (lines in 2D; "
+                            "quadrilaterals or triangles in 3D), or STL "
+                            "(3D, triangles, opened through the Gmsh API). "
+                            "The normals follow each cell's vertex order (in "
+                            "2D: to the left of the direction from the first "
+                            "to the second vertex; in 3D: right-handed in the "
+                            "order of the cell's vertices around it, as "
+                            "Gmsh and STL list them) and must point into the "
+                            "material, otherwise set 'flip normals'. A mesh "
+                            "whose neighbouring cells have opposite normals "
+                            "(an edge run through in the same direction by "
+                            "both), or with an edge shared by more than two "
+                            "cells, is rejected [-].");
           prm.declare_entry(
             "condition",
             "fixed",
@@ -299,7 +431,9 @@ namespace Talus
             Integer(1, 10),
             "Boundary particles per background cell length: the surface "
             "mesh is refined to the smallest background cell size and this "
-            "many Gauss points are placed per surface cell and direction. "
+            "many Gauss points are placed per surface cell and direction "
+            "(on triangles of a 3D mesh: 1, 3, 6, 12, 16, 25, 33, 42 points "
+            "for 1 to 8, symmetric Witherden-Vincent rules; at most 8). "
             "On curved walls use 1: two particles with different normals "
             "in one cell lock rotations of the material along the wall "
             "(doc/verification.md) [-].");
@@ -550,10 +684,32 @@ namespace Talus
       else
         {
           dealii::GridIn<dim - 1, dim> in(surface);
+          const bool                   stl = has_stl_extension(b.mesh_file);
+          if (stl && dim == 2)
+            InputFile::reject(sub,
+                              "mesh file",
+                              b.mesh_file,
+                              "in 2D a mesh of lines (Gmsh .msh, .vtk, "
+                              ".inp); STL files hold triangles, for 3D");
           try
             {
-              // format from the file name's extension (.msh, .vtk, .inp)
-              in.read(b.mesh_file);
+              if (stl)
+                {
+#ifdef DEAL_II_GMSH_WITH_API
+                  // Gmsh opens the STL as a discrete surface of triangles
+                  // and merges the facets' shared vertices.
+                  in.read_msh(b.mesh_file);
+#else
+                  InputFile::reject(sub,
+                                    "mesh file",
+                                    b.mesh_file,
+                                    "a Gmsh .msh, .vtk or .inp file (this "
+                                    "deal.II has no Gmsh API to read STL)");
+#endif
+                }
+              else
+                // format from the file name's extension (.msh, .vtk, .inp)
+                in.read(b.mesh_file);
             }
           catch (const dealii::ExceptionBase &e)
             {
@@ -584,6 +740,14 @@ namespace Talus
                               "mesh file",
                               b.mesh_file,
                               "a surface mesh with at least one cell");
+          const std::string conflict = orientation_conflict(surface);
+          if (!conflict.empty())
+            InputFile::reject(sub,
+                              "mesh file",
+                              b.mesh_file,
+                              "a surface mesh with consistent normals, each "
+                              "edge shared by at most two cells (" +
+                                conflict + ")");
         }
       // Refine until no surface cell is larger than the smallest grid cell.
       double h = std::numeric_limits<double>::max();
@@ -680,22 +844,51 @@ namespace Talus
           // Every rank builds the (small) surface; rank 0 inserts it.
           dealii::Triangulation<dim - 1, dim> surface;
           make_surface(desc, b, surface);
+          const auto flags = dealii::update_quadrature_points |
+                             dealii::update_JxW_values |
+                             dealii::update_normal_vectors;
           const dealii::QGauss<dim - 1>   quadrature(desc.particles_per_cell);
           dealii::FE_Q<dim - 1, dim>      fe(1);
           dealii::MappingQ1<dim - 1, dim> mapping;
-          dealii::FEValues<dim - 1, dim>  fe_values(
-            mapping,
-            fe,
-            quadrature,
-            dealii::update_quadrature_points | dealii::update_JxW_values |
-              dealii::update_normal_vectors);
+          dealii::FEValues<dim - 1, dim>  fe_values(mapping,
+                                                   fe,
+                                                   quadrature,
+                                                   flags);
+          // Triangles of a triangulated surface (3D only): P1 geometry.
+          std::unique_ptr<dealii::FiniteElement<dim - 1, dim>> fe_triangle;
+          std::unique_ptr<dealii::Mapping<dim - 1, dim>>       mapping_triangle;
+          std::unique_ptr<dealii::FEValues<dim - 1, dim>>      values_triangle;
+          if constexpr (dim == 3)
+            if (!surface.all_reference_cells_are_hyper_cube())
+              {
+                if (desc.particles_per_cell > 8)
+                  InputFile::reject("Boundary particles/" + slot_name(b),
+                                    "particles per cell",
+                                    std::to_string(desc.particles_per_cell),
+                                    "at most 8 on a surface mesh of "
+                                    "triangles");
+                fe_triangle =
+                  std::make_unique<dealii::FE_SimplexP<dim - 1, dim>>(1);
+                mapping_triangle =
+                  std::make_unique<dealii::MappingFE<dim - 1, dim>>(
+                    *fe_triangle);
+                values_triangle =
+                  std::make_unique<dealii::FEValues<dim - 1, dim>>(
+                    *mapping_triangle,
+                    *fe_triangle,
+                    triangle_quadrature(desc.particles_per_cell),
+                    flags);
+              }
           for (const auto &cell : surface.active_cell_iterators())
             {
-              fe_values.reinit(cell);
-              for (unsigned int q = 0; q < quadrature.size(); ++q)
+              dealii::FEValues<dim - 1, dim> &values =
+                cell->reference_cell().is_hyper_cube() ? fe_values :
+                                                         *values_triangle;
+              values.reinit(cell);
+              for (unsigned int q = 0; q < values.n_quadrature_points; ++q)
                 {
-                  const auto            &x = fe_values.quadrature_point(q);
-                  dealii::Tensor<1, dim> n = fe_values.normal_vector(q);
+                  const auto            &x = values.quadrature_point(q);
+                  dealii::Tensor<1, dim> n = values.normal_vector(q);
                   if (desc.geometry == "line")
                     {
                       // left of the direction of travel of this segment
@@ -715,7 +908,7 @@ namespace Talus
                     off_faces(x + prescribed_displacement(b, x, 0.), n);
                   std::vector<double> prop(Properties::n_properties, 0.);
                   prop[Properties::boundary] = b;
-                  prop[Properties::weight]   = fe_values.JxW(q);
+                  prop[Properties::weight]   = values.JxW(q);
                   for (unsigned int d = 0; d < dim; ++d)
                     {
                       prop[Properties::normal + d]             = n[d];
