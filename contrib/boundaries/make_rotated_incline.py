@@ -18,7 +18,7 @@ H = 0.05  # background cell size [m]
 
 
 def write(path, rho_deg, mu, condition, method_lines="", end_time=1.0,
-          mpi_note="", max_penetration=None):
+          mpi_note="", max_penetration=None, solver_lines=""):
     rho = math.radians(rho_deg)
     t = (math.cos(rho), math.sin(rho))
     n = (-math.sin(rho), math.cos(rho))
@@ -73,7 +73,7 @@ end
 subsection Solver
   set gravity = {fmt(gvec)}
   set linear solver = direct
-end
+{solver_lines}end
 subsection Time
   set end time = {end_time}
   set time step = 0.01
@@ -139,7 +139,7 @@ if __name__ == "__main__":
     write(f"{out}/incline_rotated_45_mu0_lagrange_factor1000.prm", 45, 0.0,
           "contact", method_lines=lm + "    set penalty factor = 1000\n",
           max_penetration=1e-5 * H)
-    # Nitsche's method (symmetric, default stabilisation factor 100)
+    # Nitsche's method (theta = -1, the default; stabilisation factor 100)
     ni = "    set method = Nitsche\n"
     write(f"{out}/incline_rotated_45_mu0_nitsche.prm", 45, 0.0, "contact",
           method_lines=ni)
@@ -147,3 +147,11 @@ if __name__ == "__main__":
           method_lines=ni)
     write(f"{out}/incline_rotated_30_stick_nitsche.prm", 30, 0.7, "friction",
           method_lines=ni)
+    # symmetric Nitsche (theta = 1): stable in the cut cells with the ghost
+    # penalty, from stabilisation factor 10 on (doc/verification.md)
+    sym = ni + "    set Nitsche symmetry = 1\n    set penalty factor = 10\n"
+    ghost = "  set ghost penalty factor = 1\n"
+    write(f"{out}/incline_rotated_45_mu0_nitsche_symmetric.prm", 45, 0.0,
+          "contact", method_lines=sym, solver_lines=ghost)
+    write(f"{out}/incline_rotated_30_stick_nitsche_symmetric.prm", 30, 0.7,
+          "friction", method_lines=sym, solver_lines=ghost)

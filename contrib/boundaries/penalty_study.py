@@ -11,10 +11,13 @@ penetration, the Newton iterations and multiplier updates per step
 1 to 30 s.
 
     usage: penalty_study.py <talus executable> [rho] [mu] [methods]
-                            [factors] [cell sizes]
+                            [factors] [cell sizes] [ghost penalty factor]
 
 methods: comma-separated, "penalty,augmented Lagrangian,Nitsche" by
-default; factors and cell sizes comma-separated (defaults below).
+default; "Nitsche theta=1" is Nitsche's method with 'Nitsche symmetry' = 1
+(symmetric; plain "Nitsche" is the default theta = -1); factors and cell
+sizes comma-separated (defaults below); the ghost penalty factor (subsection
+Solver, default 0) applies to every run.
 """
 import os
 import re
@@ -29,14 +32,19 @@ FACTORS = (1., 10., 100., 1000., 1e4)
 CELL_SIZES = (0.1, 0.05, 0.025)
 
 
-def run(talus, rho, mu, factor, h, method, workdir):
+def run(talus, rho, mu, factor, h, method, workdir, ghost=0.):
     incline.H = h
     condition = "friction" if mu > 0. else "contact"
     path = os.path.join(workdir, "incline.prm")
-    incline.write(path, rho, mu, condition,
-                  method_lines="    set penalty factor = %g\n"
-                  "    set method = %s\n" % (factor, method))
+    name, _, theta = method.partition(" theta=")
+    lines = "    set penalty factor = %g\n    set method = %s\n" % (factor, name)
+    if theta:
+        lines += "    set Nitsche symmetry = %s\n" % theta
+    incline.write(path, rho, mu, condition, method_lines=lines)
     text = open(path).read()
+    text = text.replace("subsection Solver\n",
+                        "subsection Solver\n  set ghost penalty factor = %g\n"
+                        % ghost, 1)
     # no pass/fail here: the table shows the numbers
     text = re.sub(r"set displacement error tolerance = .*",
                   "set displacement error tolerance = 1e9", text)
@@ -75,11 +83,12 @@ def main():
                if len(sys.argv) > 5 else FACTORS)
     cell_sizes = (tuple(float(x) for x in sys.argv[6].split(","))
                   if len(sys.argv) > 6 else CELL_SIZES)
+    ghost = float(sys.argv[7]) if len(sys.argv) > 7 else 0.
     g, theta = incline.G, incline.THETA
     import math
     a = g * (math.sin(theta) - mu * math.cos(theta))
-    print("Rotated incline rho = %g deg, mu = %g: s(1 s) = %.4f m" %
-          (rho, mu, a / 2))
+    print("Rotated incline rho = %g deg, mu = %g: s(1 s) = %.4f m, ghost "
+          "penalty factor %g" % (rho, mu, a / 2, ghost))
     print()
     print("| method | factor | h [m] | error at 1 s [m] | error / s | "
           "penetration [m] | penetration / h | Newton its/step | "
@@ -89,7 +98,8 @@ def main():
         for method in methods:
             for factor in factors:
                 for h in cell_sizes:
-                    r = run(talus, rho, mu, factor, h, method, workdir)
+                    r = run(talus, rho, mu, factor, h, method, workdir,
+                            ghost)
                     if r is None:
                         print("| %s | %g | %g | failed | | | | | | |" %
                               (method, factor, h))

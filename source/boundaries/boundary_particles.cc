@@ -396,9 +396,12 @@ namespace Talus
             "theta of Nitsche's method, the weight of the adjoint term: -1 "
             "skew-symmetric (stable for any stabilisation factor; the "
             "default, robust in all the rotated-incline tests), 0 "
-            "incomplete, 1 symmetric (needs penalty factor >= 100 and "
-            "failed in Newton on the 45 degree incline, see "
-            "doc/verification.md) [-].");
+            "incomplete, 1 symmetric (consistent and adjoint consistent, "
+            "coercive only for a stabilisation above a threshold that grows "
+            "without bound in small cuts: use it with the 'ghost penalty "
+            "factor' of subsection Solver, e.g. 1, and penalty factor >= "
+            "10; without the ghost penalty it failed in Newton on the "
+            "rotated inclines, see doc/verification.md) [-].");
           prm.declare_entry(
             "penalty factor",
             "100",

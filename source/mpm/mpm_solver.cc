@@ -3474,6 +3474,22 @@ namespace Talus
       Boundaries::BoundaryParticles<dim> &boundaries)
     {
       boundary_particles = boundaries.empty() ? nullptr : &boundaries;
+      // The symmetric Nitsche form is coercive only above a stabilisation
+      // that grows without bound as a cut shrinks (doc/verification.md).
+      if (ghost_penalty_factor == 0. &&
+          dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) == 0)
+        for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
+          if (boundaries.boundary(b).nitsche &&
+              boundaries.boundary(b).nitsche_theta > 0.)
+            std::cerr << "Warning: boundary " << boundaries.name(b)
+                      << " uses Nitsche's method with 'Nitsche symmetry' > 0 "
+                         "without the ghost penalty (subsection Solver, "
+                         "'ghost penalty factor' = 0): the form is then "
+                         "stable only for a stabilisation above a threshold "
+                         "that grows as the cut cells shrink, and Newton may "
+                         "fail; set the ghost penalty factor (e.g. 1) or "
+                         "'Nitsche symmetry' = -1."
+                      << std::endl;
     }
 
 
