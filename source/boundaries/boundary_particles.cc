@@ -237,8 +237,8 @@ namespace Talus
           prm.declare_entry(
             "geometry",
             "none",
-            Selection(dim == 2 ? "none|line|circle|box|mesh" :
-                                 "none|plane|box|mesh"),
+            Selection(dim == 2 ? "none|line|circle|box|mesh|external" :
+                                 "none|plane|box|mesh|external"),
             "Shape of this boundary that does not follow the grid: 'none' "
             "(unused slot), " +
               std::string(dim == 2 ?
@@ -253,7 +253,10 @@ namespace Talus
               "'upper corner'), 'mesh' (a surface mesh of dimension " +
               std::to_string(dim - 1) +
               " in 'mesh file', material on the side of the normals deal.II "
-              "computes from the cell orientation).");
+              "computes from the cell orientation), 'external' (a surface "
+              "mesh handed over by the program, as the structure coupling "
+              "does through BoundaryParticles::set_surface(); the talus "
+              "application alone has none to give).");
           prm.declare_entry("name",
                             "boundary" + std::to_string(k + 1),
                             Anything(),
@@ -287,12 +290,13 @@ namespace Talus
                             "For 'circle' and 'box': whether the material "
                             "is inside (a container) or outside (an "
                             "obstacle) [-].");
-          prm.declare_entry("flip normals",
-                            "false",
-                            Bool(),
-                            "Reverse the normals of a 'line', 'plane' or "
-                            "'mesh' (the material is then on the other "
-                            "side) [-].");
+          prm.declare_entry(
+            "flip normals",
+            "false",
+            Bool(),
+            "Reverse the normals of a 'line', 'plane', 'mesh' or "
+            "'external' (the material is then on the other "
+            "side) [-].");
           prm.declare_entry("mesh file",
                             "",
                             Anything(),
@@ -684,6 +688,29 @@ namespace Talus
                                                  b.upper_corner);
           dealii::GridGenerator::extract_boundary_mesh(volume, surface);
         }
+      else if (b.geometry == "external")
+        {
+          if (b.external_surface == nullptr)
+            InputFile::reject(sub,
+                              "geometry",
+                              b.geometry,
+                              "a geometry this input can describe: "
+                              "'external' needs a surface that the program "
+                              "hands over with "
+                              "BoundaryParticles::set_surface(), as the "
+                              "structure coupling does; the talus "
+                              "application alone has none");
+          surface.copy_triangulation(*b.external_surface);
+          const std::string conflict = orientation_conflict(surface);
+          if (!conflict.empty())
+            InputFile::reject(sub,
+                              "geometry",
+                              b.geometry,
+                              "a surface with consistent normals, each "
+                              "edge shared by at most two cells (the "
+                              "surface given to set_surface(): " +
+                                conflict + ")");
+        }
       else
         {
           dealii::GridIn<dim - 1, dim> in(surface);
@@ -1016,6 +1043,24 @@ namespace Talus
                                      "boundary and a callable function"));
       boundaries[b].external_displacement = u;
       boundaries[b].moving                = true;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::set_surface(
+      const unsigned int                         b,
+      const dealii::Triangulation<dim - 1, dim> &surface)
+    {
+      AssertThrow(b < boundaries.size() && boundaries[b].geometry == "external",
+                  dealii::ExcMessage("set_surface() needs a boundary with "
+                                     "geometry = external"));
+      AssertThrow(surface.n_active_cells() > 0,
+                  dealii::ExcMessage("set_surface() needs a surface with "
+                                     "at least one cell"));
+      auto flat = std::make_shared<dealii::Triangulation<dim - 1, dim>>();
+      dealii::GridGenerator::flatten_triangulation(surface, *flat);
+      boundaries[b].external_surface = flat;
     }
 
 

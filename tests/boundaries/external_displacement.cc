@@ -14,7 +14,11 @@
 //  - the points follow the line as a rigid body (error < 1e-3 m, as the
 //    .prm test with the parsed function);
 //  - the committed step does not depend on the discarded first iteration:
-//    the same run without it gives the same positions (< 1e-12 m).
+//    the same run without it gives the same positions (< 1e-12 m);
+//  - the line handed over as a Triangulation<1, 2> of the program
+//    (geometry = external, BoundaryParticles::set_surface(), as the
+//    structure coupling will hand over the net) gives the positions of the
+//    'line' boundary (< 1e-12 m).
 #include <talus/base/input.h>
 #include <talus/base/time_control.h>
 #include <talus/boundaries/boundary_particles.h>
@@ -85,7 +89,8 @@ end
   run(const bool with_first_guess,
       double    &max_error,
       bool      &all_converged,
-      double    &largest_initial_acceleration)
+      double    &largest_initial_acceleration,
+      const bool external_surface = false)
   {
     largest_initial_acceleration = 0.;
     ParameterHandler prm;
@@ -95,6 +100,14 @@ end
     Talus::MPM::MPMSolver<2>::declare_parameters(prm);
     Talus::Boundaries::BoundaryParticles<2>::declare_parameters(prm);
     prm.parse_input_from_string(input);
+    if (external_surface)
+      {
+        prm.enter_subsection("Boundary particles");
+        prm.enter_subsection("Boundary 1");
+        prm.set("geometry", "external");
+        prm.leave_subsection();
+        prm.leave_subsection();
+      }
 
     TimerOutput                   timer(MPI_COMM_WORLD,
                       std::cout,
@@ -112,6 +125,17 @@ end
     solver.setup();
     Talus::Boundaries::BoundaryParticles<2> boundaries(grid);
     boundaries.parse_parameters(prm);
+    if (external_surface)
+      {
+        // the conveyor line as the program's own codimension-one mesh
+        Triangulation<1, 2>         line;
+        const std::vector<Point<2>> vertices = {Point<2>(0.1267949192, 0.037),
+                                                Point<2>(1.0, 0.5412)};
+        std::vector<CellData<1>>    cells(1);
+        cells[0].vertices = {0, 1};
+        line.create_triangulation(vertices, cells, SubCellData());
+        boundaries.set_surface(0, line);
+      }
     boundaries.generate(model->p_wave_modulus());
     solver.attach_boundary_particles(boundaries);
 
@@ -192,6 +216,14 @@ main(int argc, char **argv)
   double       difference = 0.;
   for (const auto &[id, x] : x_direct)
     difference = std::max(difference, x.distance(x_iterated.at(id)));
+  double     error_external, a_max_external;
+  bool       converged_external;
+  const auto x_external =
+    run(false, error_external, converged_external, a_max_external, true);
+  double difference_external = 0.;
+  for (const auto &[id, x] : x_direct)
+    difference_external =
+      std::max(difference_external, x.distance(x_external.at(id)));
 
   out << "largest initial point acceleration within 2 % below A omega^2 "
          "(and not above it): "
@@ -202,9 +234,14 @@ main(int argc, char **argv)
       << (error_iterated < 1e-3 ? "yes" : "no") << '\n'
       << "committed steps independent of the discarded iteration "
          "(< 1e-12 m): "
-      << (difference < 1e-12 ? "yes" : "no") << '\n';
+      << (difference < 1e-12 ? "yes" : "no") << '\n'
+      << "the line handed over as a Triangulation<1, 2> (geometry = "
+         "external) gives the same positions (< 1e-12 m): "
+      << (converged_external && difference_external < 1e-12 ? "yes" : "no")
+      << '\n';
   std::cout << "largest initial acceleration " << a_max << " (A omega^2 "
             << a_bar << "), largest error " << error_iterated << " m (direct "
-            << error_direct << " m), difference " << difference << " m"
-            << std::endl;
+            << error_direct << " m), difference " << difference
+            << " m, external surface against line " << difference_external
+            << " m" << std::endl;
 }

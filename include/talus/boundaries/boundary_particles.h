@@ -133,6 +133,13 @@ namespace Talus
       bool                            material_inside = true;
       bool                            flip_normals    = false;
       std::string                     mesh_file;
+      /**
+       * Surface handed over by the program (geometry = external), e.g.
+       * the coupled structure's mesh: a flattened copy of its active cells
+       * (BoundaryParticles::set_surface()).
+       */
+      std::shared_ptr<const dealii::Triangulation<dim - 1, dim>>
+                                                              external_surface;
       std::unique_ptr<dealii::Functions::ParsedFunction<dim>> displacement;
       /**
        * Displacement set from outside (the coupling), u(X, t) [m]; when
@@ -293,6 +300,24 @@ namespace Talus
         const unsigned int                                         b,
         const std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &,
                                                    const double)> &u);
+
+      /**
+       * Give boundary @p b (geometry = external in the parameter file) its
+       * surface: a codimension-one mesh of the program, e.g. the coupled
+       * structure's membrane (a serial or parallel::shared
+       * Triangulation<dim-1, dim>, possibly refined). Its active cells are
+       * copied into a coarse mesh (GridGenerator::flatten_triangulation),
+       * which generate() checks for consistent normals like a read 'mesh',
+       * refines to the grid's cell size and fills with particles at its
+       * Gauss points (as deal.II step-70 does for an immersed solid). The
+       * normals follow deal.II's orientation of the cells and must point
+       * into the material ('flip normals' reverses them). Call it before
+       * generate(); the displacement of the surface then comes from
+       * set_displacement().
+       */
+      void
+      set_surface(const unsigned int                         b,
+                  const dealii::Triangulation<dim - 1, dim> &surface);
 
       /**
        * Move the particles of moving boundaries to X + u_bar(X, t) and sort
