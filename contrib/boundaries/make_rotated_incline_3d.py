@@ -43,12 +43,13 @@ def write_block_mesh(path, P, s_range, w_range, h_range):
         f.write("$EndElements\n")
 
 
-def plane_triangles(P, s_range, w_range, ns, nw):
-    """The parallelogram {P(s, w, 0)} as ns x nw quadrilaterals, each split
-    into two triangles along alternating diagonals; vertices of each
-    triangle ordered right-handed about the plane's normal t x e2."""
-    (s0, s1), (w0, w1) = s_range, w_range
-    point = lambda i, j: P(s0 + (s1 - s0) * i / ns, w0 + (w1 - w0) * j / nw, 0.)
+def plane_triangles(P, s_nodes, w_nodes):
+    """The parallelogram {P(s, w, 0)} cut at the coordinates s_nodes and
+    w_nodes into quadrilaterals, each split into two triangles along
+    alternating diagonals; vertices of each triangle ordered right-handed
+    about the plane's normal t x e2."""
+    ns, nw = len(s_nodes) - 1, len(w_nodes) - 1
+    point = lambda i, j: P(s_nodes[i], w_nodes[j], 0.)
     tris = []
     for j in range(nw):
         for i in range(ns):
@@ -86,10 +87,11 @@ def write_surface(path, nodes, tris, normal):
 
 
 def write(out, name, rho_deg, mu, condition, end_time=0.5, suffix="",
-          surface=None):
+          surface=None, s_nodes=None):
     """surface: None (a 'plane' boundary) or 'msh' / 'stl': the same plane
     as a triangulated surface mesh ('mesh' boundary, <name><suffix>.msh or
-    .stl); the run then ends at end_time and reports there."""
+    .stl, cut at s_nodes along the incline, 3 x 2 equal cells by default);
+    the run then ends at end_time and reports there."""
     r = math.radians(rho_deg)
     t = (math.cos(r), 0., math.sin(r))
     e2 = (0., 1., 0.)
@@ -105,7 +107,9 @@ def write(out, name, rho_deg, mu, condition, end_time=0.5, suffix="",
     set name = incline
     set vertices = {'; '.join(", ".join("%.10g" % x for x in p) for p in plane)}"""
     else:
-        nodes, tris = plane_triangles(P, (-0.1, 1.6), (-0.003, 0.58), 3, 2)
+        nodes, tris = plane_triangles(
+            P, s_nodes or [-0.1 + 1.7 * i / 3 for i in range(4)],
+            [-0.003 + 0.583 * j / 2 for j in range(3)])
         surface_file = f"{name}{suffix}.{surface}"
         write_surface(f"{out}/{surface_file}", nodes, tris, n)
         boundary = f"""    set geometry = mesh
@@ -122,7 +126,7 @@ def write(out, name, rho_deg, mu, condition, end_time=0.5, suffix="",
     with open(f"{out}/{name}{suffix}.prm.in", "w") as f:
         f.write(f"""# 3D block on a 30 degree incline rotated by {rho_deg} degrees about y
 # against the grid, mu = {mu} ({condition}); the incline is a {"'plane'" if surface is None else "'mesh'"} boundary
-# imposed by boundary particles{"" if surface is None else " (the plane as 12 triangles, " + ("Gmsh .msh" if surface == "msh" else "ASCII STL") + ")"}, the block a Gmsh mesh ({name}.msh).
+# imposed by boundary particles{"" if surface is None else " (the plane as " + str(4 * (len(s_nodes) - 1) if s_nodes else 12) + (" graded" if s_nodes else "") + " triangles, " + ("Gmsh .msh" if surface == "msh" else "ASCII STL") + ")"}, the block a Gmsh mesh ({name}.msh).
 # Written by contrib/boundaries/make_rotated_incline_3d.py.
 # Reference: a = g (sin 30 - mu cos 30) = {a:.6g} m/s^2 along
 # t = ({t[0]:.6g}, 0, {t[2]:.6g}); s({end_time} s) = {s_end:.6g} m.
@@ -189,3 +193,7 @@ if __name__ == "__main__":
           "_triangles", "msh")
     write(out, "incline_plane_3d_20_mu01", 20, 0.1, "friction", 0.2,
           "_stl", "stl")
+    # graded: triangles from 0.05 to 0.8 m along the incline, refined cell
+    # by cell to the grid's 0.1 m
+    write(out, "incline_plane_3d_20_mu01", 20, 0.1, "friction", 0.2,
+          "_graded", "msh", [-0.1, 0.0, 0.05, 0.1, 0.2, 0.4, 0.8, 1.6])

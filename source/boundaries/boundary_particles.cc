@@ -780,19 +780,33 @@ namespace Talus
                                 conflict + ")");
         }
       // Refine until no surface cell is larger than the smallest grid cell.
+      // The built-in shapes are refined globally (their cells have one
+      // size); a mesh of the user or the program cell by cell, so that the
+      // small cells of a graded mesh (a terrain, a net refined at its
+      // edges) are not refined with the largest ones (the particles need
+      // no conforming surface, hanging nodes are harmless).
       double h = std::numeric_limits<double>::max();
       for (unsigned int d = 0; d < dim; ++d)
         h = std::min(h,
                      grid.is_cartesian ? grid.cell_extent[d] :
                                          grid.minimal_cell_diameter);
+      const bool graded = b.geometry == "mesh" || b.geometry == "external";
       for (unsigned int level = 0; level < 20; ++level)
         {
-          double largest = 0.;
+          bool too_large = false;
           for (const auto &cell : surface.active_cell_iterators())
-            largest = std::max(largest, cell->diameter());
-          if (largest <= 1.0001 * h)
+            if (cell->diameter() > 1.0001 * h)
+              {
+                too_large = true;
+                if (graded)
+                  cell->set_refine_flag();
+              }
+          if (!too_large)
             break;
-          surface.refine_global(1);
+          if (graded)
+            surface.execute_coarsening_and_refinement();
+          else
+            surface.refine_global(1);
         }
     }
 
