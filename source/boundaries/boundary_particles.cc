@@ -701,15 +701,6 @@ namespace Talus
                               "structure coupling does; the talus "
                               "application alone has none");
           surface.copy_triangulation(*b.external_surface);
-          const std::string conflict = orientation_conflict(surface);
-          if (!conflict.empty())
-            InputFile::reject(sub,
-                              "geometry",
-                              b.geometry,
-                              "a surface with consistent normals, each "
-                              "edge shared by at most two cells (the "
-                              "surface given to set_surface(): " +
-                                conflict + ")");
         }
       else
         {
@@ -770,13 +761,20 @@ namespace Talus
                               "mesh file",
                               b.mesh_file,
                               "a surface mesh with at least one cell");
+        }
+      if (b.geometry == "mesh" || b.geometry == "external")
+        {
+          const bool        read     = b.geometry == "mesh";
           const std::string conflict = orientation_conflict(surface);
           if (!conflict.empty())
             InputFile::reject(sub,
-                              "mesh file",
-                              b.mesh_file,
+                              read ? "mesh file" : "geometry",
+                              read ? b.mesh_file : b.geometry,
                               "a surface mesh with consistent normals, each "
                               "edge shared by at most two cells (" +
+                                std::string(read ? "" :
+                                                   "the surface given to "
+                                                   "set_surface(): ") +
                                 conflict + ")");
         }
       // Refine until no surface cell is larger than the smallest grid cell.
