@@ -193,6 +193,9 @@ if __name__ == "__main__":
           "_triangles", "msh")
     write(out, "incline_plane_3d_20_mu01", 20, 0.1, "friction", 0.2,
           "_stl", "stl")
+    # stuck on the triangulated incline for 1 s: reaction = weight
+    write(out, "incline_plane_3d_20_stick", 20, 0.7, "friction", 1.0,
+          "_triangles", "msh")
     # graded: triangles from 0.05 to 0.8 m along the incline, refined cell
     # by cell to the grid's 0.1 m
     write(out, "incline_plane_3d_20_mu01", 20, 0.1, "friction", 0.2,
