@@ -178,7 +178,7 @@ subsection Verification
   # 1 % of s({report} s), or 1 % of h at rest
   set displacement error tolerance = {0.01 * 0.5 * a * report ** 2 if sliding else 0.01 * H:.6g}
   set maximum penetration = {1e-3 * H:.6g}
-{"  set maximum final speed = 1e-4" + chr(10) if not sliding else ""}end
+{"  set maximum final speed = 1e-4" + chr(10) if not sliding else ""}{"  # at rest: the summed reaction is the weight m g, m = 2000 kg/m^3 x 0.4 x 0.2 x 0.2 m^3" + chr(10) + "  set expected reaction = %.10g" % (2000 * 0.4 * 0.2 * 0.2 * G) + chr(10) if not sliding and surface else ""}end
 """)
 
 

@@ -124,6 +124,19 @@ namespace Talus
                           "penetration of the material into a boundary of "
                           "subsection <Boundary particles> during the run "
                           "exceeds this value [m].");
+        prm.declare_entry(
+          "expected reaction",
+          "0",
+          Patterns::Double(0),
+          "If > 0: the magnitude of the summed reaction of all boundaries of "
+          "subsection <Boundary particles> at the end of the run is compared "
+          "with this value [N], e.g. the weight m g of a body at rest "
+          "(equilibrium); 0: off.");
+        prm.declare_entry("reaction tolerance",
+                          "1e-6",
+                          Patterns::Double(0),
+                          "Allowed relative error of the summed reaction "
+                          "against 'expected reaction' [-].");
         prm.declare_entry("energy balance tolerance",
                           "0",
                           Patterns::Double(0),
@@ -385,7 +398,15 @@ namespace Talus
     const double speed_limit       = prm.get_double("maximum final speed");
     const double balance_tolerance = prm.get_double("energy balance tolerance");
     const double penetration_limit = prm.get_double("maximum penetration");
-    const bool   speed_of_grid =
+    const double expected_reaction = prm.get_double("expected reaction");
+    const double reaction_tolerance = prm.get_double("reaction tolerance");
+    if (expected_reaction > 0. && boundaries.empty())
+      InputFile::reject("Verification",
+                        "expected reaction",
+                        prm.get("expected reaction"),
+                        "0 unless subsection <Boundary particles> describes "
+                        "a boundary (the reaction is theirs)");
+    const bool speed_of_grid =
       prm.get("final speed measure") == "grid velocity";
     const auto normal_entry  = read_direction("impulse normal");
     const bool impulse_check = normal_entry.first;
@@ -939,6 +960,17 @@ namespace Talus
                 << (r.tangential_force < 1e-8 ? 0. : r.tangential_force)
                 << " N, " << r.active << " particles in contact\n";
         }
+    if (expected_reaction > 0.)
+      {
+        dealii::Tensor<1, dim> total;
+        for (const auto &r : final_state.boundaries)
+          total += r.force;
+        pcout << "  summed reaction: " << std::setprecision(10) << total.norm()
+              << " N (expected " << expected_reaction << " N)\n";
+        check("relative reaction error",
+              std::abs(total.norm() - expected_reaction) / expected_reaction,
+              reaction_tolerance);
+      }
     if (penetration_limit > 0.)
       check("penetration", max_penetration, penetration_limit);
     if (impulse_check)
