@@ -64,6 +64,71 @@ namespace Talus
         return o.str();
       }
 
+      /**
+       * Read a CSV file of 'x, h' pairs [m] (h >= 0; '#' comments, an
+       * optional 'x,h' header) named by @p parameter; rejects an
+       * unreadable, malformed or empty file naming the parameter.
+       */
+      std::vector<std::pair<double, double>>
+      read_pairs(const std::string &file, const std::string &parameter)
+      {
+        std::vector<std::pair<double, double>> pairs;
+
+        std::ifstream in(file);
+        if (!in)
+          InputFile::reject(section,
+                            parameter,
+                            file,
+                            "this file cannot be opened for reading");
+        std::string  line;
+        unsigned int line_n      = 0;
+        bool         seen_header = false;
+        while (std::getline(in, line))
+          {
+            ++line_n;
+            const auto hash = line.find('#');
+            if (hash != std::string::npos)
+              line.erase(hash);
+            line = trim(line);
+            if (line.empty())
+              continue;
+            const auto comma = line.find(',');
+            if (!seen_header && pairs.empty() && comma != std::string::npos &&
+                trim(line.substr(0, comma)) == "x" &&
+                trim(line.substr(comma + 1)) == "h")
+              {
+                seen_header = true;
+                continue;
+              }
+            double x = 0., h = 0.;
+            if (comma == std::string::npos ||
+                !parse_number(line.substr(0, comma), x) ||
+                !parse_number(line.substr(comma + 1), h))
+              InputFile::reject(section,
+                                parameter,
+                                file,
+                                "line " + std::to_string(line_n) +
+                                  " of that file is not an 'x, h' pair of "
+                                  "two numbers: <" +
+                                  line + ">");
+            if (h < 0.)
+              InputFile::reject(section,
+                                parameter,
+                                file,
+                                "line " + std::to_string(line_n) +
+                                  " of that file has a negative height <" +
+                                  line + ">");
+            pairs.emplace_back(x, h);
+          }
+        if (pairs.empty())
+          InputFile::reject(section,
+                            parameter,
+                            file,
+                            "that file holds no 'x, h' pair");
+        return pairs;
+      }
+
+
       /** Broadcast a vector of doubles from rank 0. */
       void
       broadcast(std::vector<double> &data, const MPI_Comm communicator)
@@ -206,6 +271,34 @@ namespace Talus
                         "each reference station, as a fraction of H0 [-], "
                         ">= 0.");
       prm.declare_entry(
+        "reference failure line file",
+        "",
+        Patterns::Anything(),
+        "CSV file of a reference failure line, 'x, h' pairs [m] along it "
+        "(x from the wall, h above the base; same format as the reference "
+        "profile file), e.g. data/bui2008_failure_line.csv. Empty: the "
+        "failure line is neither measured nor compared. Otherwise it is "
+        "measured in bands of initial height of one bin width over the "
+        "height range of the file: the largest initial distance from the "
+        "wall (plus d_p/2) of the points that did not move (see 'failure "
+        "line displacement'), written to failure_line.csv and compared "
+        "with the file's points, each in the band nearest to its height "
+        "(between the points the file's straight segments are an "
+        "interpolation, written to the CSV for plotting only).");
+      prm.declare_entry("failure line displacement",
+                        "0.002",
+                        Patterns::Double(),
+                        "A point whose displacement from its initial "
+                        "position is below this did not move (it lies "
+                        "behind the failure line) [m], > 0. Take it above "
+                        "the elastic settlement of the column and below "
+                        "the displacements of the sliding mass.");
+      prm.declare_entry("failure line tolerance",
+                        "0.1",
+                        Patterns::Double(),
+                        "Allowed error |s_f - s_ref| of the failure line at "
+                        "each band, as a fraction of L0 [-], >= 0.");
+      prm.declare_entry(
         "compare with Lube law",
         "false",
         Patterns::Bool(),
@@ -263,72 +356,47 @@ namespace Talus
       bin_width       = get_positive(prm, section, "bin width");
       listed_stations = dealii::Utilities::string_to_double(
         dealii::Utilities::split_string_list(prm.get("stations")));
-      series_interval  = prm.get_integer("time series interval");
-      given_H0         = get_non_negative(prm, section, "initial height");
-      given_L0         = get_non_negative(prm, section, "initial length");
-      reference_runout = get_non_negative(prm, section, "reference runout");
-      runout_tolerance = get_non_negative(prm, section, "runout tolerance");
-      height_tolerance = get_non_negative(prm, section, "height tolerance");
-      compare_lube     = prm.get_bool("compare with Lube law");
-      lube_tolerance   = get_non_negative(prm, section, "Lube tolerance");
-      reference_file   = trim(prm.get("reference profile file"));
+      series_interval   = prm.get_integer("time series interval");
+      given_H0          = get_non_negative(prm, section, "initial height");
+      given_L0          = get_non_negative(prm, section, "initial length");
+      reference_runout  = get_non_negative(prm, section, "reference runout");
+      runout_tolerance  = get_non_negative(prm, section, "runout tolerance");
+      height_tolerance  = get_non_negative(prm, section, "height tolerance");
+      compare_lube      = prm.get_bool("compare with Lube law");
+      lube_tolerance    = get_non_negative(prm, section, "Lube tolerance");
+      reference_file    = trim(prm.get("reference profile file"));
+      failure_line_file = trim(prm.get("reference failure line file"));
+      failure_displacement =
+        get_positive(prm, section, "failure line displacement");
+      failure_line_tolerance =
+        get_non_negative(prm, section, "failure line tolerance");
       prm.leave_subsection();
 
       reference_profile.clear();
-      if (!active || reference_file.empty())
+      reference_failure_line.clear();
+      if (!active)
         return;
-      std::ifstream in(reference_file);
-      if (!in)
-        InputFile::reject(section,
-                          "reference profile file",
-                          reference_file,
-                          "this file cannot be opened for reading");
-      std::string  line;
-      unsigned int line_n      = 0;
-      bool         seen_header = false;
-      while (std::getline(in, line))
+      if (!reference_file.empty())
+        reference_profile =
+          read_pairs(reference_file, "reference profile file");
+      if (!failure_line_file.empty())
         {
-          ++line_n;
-          const auto hash = line.find('#');
-          if (hash != std::string::npos)
-            line.erase(hash);
-          line = trim(line);
-          if (line.empty())
-            continue;
-          const auto comma = line.find(',');
-          if (!seen_header && reference_profile.empty() &&
-              comma != std::string::npos &&
-              trim(line.substr(0, comma)) == "x" &&
-              trim(line.substr(comma + 1)) == "h")
-            {
-              seen_header = true;
-              continue;
-            }
-          double x = 0., h = 0.;
-          if (comma == std::string::npos ||
-              !parse_number(line.substr(0, comma), x) ||
-              !parse_number(line.substr(comma + 1), h))
-            InputFile::reject(section,
-                              "reference profile file",
-                              reference_file,
-                              "line " + std::to_string(line_n) +
-                                " of that file is not an 'x, h' pair of "
-                                "two numbers: <" +
-                                line + ">");
-          if (h < 0.)
-            InputFile::reject(section,
-                              "reference profile file",
-                              reference_file,
-                              "line " + std::to_string(line_n) +
-                                " of that file has a negative height <" + line +
-                                ">");
-          reference_profile.emplace_back(x, h);
+          for (const auto &p :
+               read_pairs(failure_line_file, "reference failure line file"))
+            reference_failure_line.emplace_back(p.second, p.first);
+          std::sort(reference_failure_line.begin(),
+                    reference_failure_line.end());
+          if (reference_failure_line.size() < 2 ||
+              reference_failure_line.back().first -
+                  reference_failure_line.front().first <
+                bin_width)
+            InputFile::reject(
+              section,
+              "reference failure line file",
+              failure_line_file,
+              "a failure line needs at least two 'x, h' pairs spanning a "
+              "height range of at least one 'bin width'");
         }
-      if (reference_profile.empty())
-        InputFile::reject(section,
-                          "reference profile file",
-                          reference_file,
-                          "that file holds no 'x, h' pair");
     }
 
 
@@ -343,6 +411,41 @@ namespace Talus
                     listed_stations.begin(),
                     listed_stations.end());
       return result;
+    }
+
+
+    template <int dim>
+    std::vector<double>
+    DepositProfile<dim>::failure_line_heights() const
+    {
+      std::vector<double> result;
+      if (reference_failure_line.empty())
+        return result;
+      const double       low  = reference_failure_line.front().first;
+      const double       high = reference_failure_line.back().first;
+      const unsigned int n =
+        static_cast<unsigned int>(std::floor((high - low) / bin_width + 1e-9));
+      for (unsigned int k = 0; k < n; ++k)
+        result.push_back(low + (k + 0.5) * bin_width);
+      return result;
+    }
+
+
+    template <int dim>
+    double
+    DepositProfile<dim>::reference_failure_position(const double v) const
+    {
+      const auto &line = reference_failure_line;
+      for (std::size_t i = 1; i < line.size(); ++i)
+        if (v <= line[i].first || i + 1 == line.size())
+          {
+            const double dv = line[i].first - line[i - 1].first;
+            if (dv <= 0.)
+              return line[i].second;
+            const double t = (v - line[i - 1].first) / dv;
+            return (1. - t) * line[i - 1].second + t * line[i].second;
+          }
+      return line.front().second;
     }
 
 
@@ -370,8 +473,10 @@ namespace Talus
     typename DepositProfile<dim>::Measurement
     DepositProfile<dim>::measure(const MPM::MaterialPoints<dim> &points) const
     {
-      // Local (s, v + d/2, m, d) of every point, gathered on rank 0.
-      std::vector<double> local;
+      // Local (s, v + d/2, m, d, s0, v0, |x - X0|) of every point (s0, v0:
+      // the initial position), gathered on rank 0.
+      constexpr unsigned int n_data = 7;
+      std::vector<double>    local;
       for (const auto &p : points.particle_handler())
         {
           const auto   props = p.get_properties();
@@ -379,23 +484,34 @@ namespace Talus
             point_size > 0. ?
               point_size :
               std::pow(props[Properties::initial_volume], 1. / dim);
-          local.push_back(direction *
-                          (p.get_location()[horizontal] - wall_position));
-          local.push_back(p.get_location()[vertical] - base_level + 0.5 * d);
+          const auto        &x = p.get_location();
+          dealii::Point<dim> X0;
+          for (unsigned int c = 0; c < dim; ++c)
+            X0[c] = props[Properties::initial_position + c];
+          local.push_back(direction * (x[horizontal] - wall_position));
+          local.push_back(x[vertical] - base_level + 0.5 * d);
           local.push_back(props[Properties::mass]);
           local.push_back(d);
+          local.push_back(direction * (X0[horizontal] - wall_position));
+          local.push_back(X0[vertical] - base_level);
+          local.push_back(x.distance(X0));
         }
       const auto gathered =
         dealii::Utilities::MPI::gather(communicator, local, 0);
 
-      const auto          station_list = stations();
+      const auto          station_list    = stations();
+      const auto          failure_heights = failure_line_heights();
       std::vector<double> packed;
       if (is_root)
         {
-          std::vector<std::array<double, 4>> all;
+          std::vector<std::array<double, n_data>> all;
           for (const auto &g : gathered)
-            for (std::size_t i = 0; i + 3 < g.size(); i += 4)
-              all.push_back({{g[i], g[i + 1], g[i + 2], g[i + 3]}});
+            for (std::size_t i = 0; i + n_data - 1 < g.size(); i += n_data)
+              {
+                std::array<double, n_data> q;
+                std::copy(g.begin() + i, g.begin() + i + n_data, q.begin());
+                all.push_back(q);
+              }
           // Largest s first; ties broken by the other entries, so the
           // order (and every sum) is independent of the partition.
           std::sort(all.begin(), all.end(), [](const auto &a, const auto &b) {
@@ -454,6 +570,17 @@ namespace Talus
           packed.insert(packed.end(),
                         m.station_heights.begin(),
                         m.station_heights.end());
+          // Failure line: per band of initial height, the largest initial
+          // s0 + d/2 of the points that did not move.
+          for (const double v : failure_heights)
+            {
+              double s_f = 0.;
+              for (const auto &q : all)
+                if (std::abs(q[5] - v) <= 0.5 * bin_width * (1. + 1e-12) &&
+                    q[6] < failure_displacement)
+                  s_f = std::max(s_f, q[4] + 0.5 * q[3]);
+              packed.push_back(s_f);
+            }
           for (unsigned int k = 0; k < n; ++k)
             {
               packed.push_back(k * bin_width);
@@ -467,7 +594,12 @@ namespace Talus
       m.mass       = packed[2];
       m.station_heights.assign(packed.begin() + 3,
                                packed.begin() + 3 + station_list.size());
-      for (std::size_t i = 3 + station_list.size(); i + 1 < packed.size();
+      const std::size_t first_failure = 3 + station_list.size();
+      for (std::size_t k = 0; k < failure_heights.size(); ++k)
+        m.failure_line.emplace_back(failure_heights[k],
+                                    packed[first_failure + k]);
+      for (std::size_t i = first_failure + failure_heights.size();
+           i + 1 < packed.size();
            i += 2)
         m.profile.emplace_back(packed[i], packed[i + 1]);
       return m;
@@ -594,6 +726,22 @@ namespace Talus
                   << lube_runout(a) << ',' << lube_height(a) << ',' << m.mass
                   << '\n';
           files_ok = (profile && summary) ? 1 : 0;
+          if (!m.failure_line.empty())
+            {
+              std::ofstream failure(directory + "/failure_line.csv");
+              failure << "# failure line: per band of initial height v "
+                         "(width "
+                      << bin_width
+                      << " m), the largest initial distance from the wall "
+                         "s_f of the points displaced less than "
+                      << failure_displacement
+                      << " m, and the reference s_ref [m]\nv,s_f,s_ref\n"
+                      << std::setprecision(12);
+              for (const auto &f : m.failure_line)
+                failure << f.first << ',' << f.second << ','
+                        << reference_failure_position(f.first) << '\n';
+              files_ok = (files_ok && failure) ? 1 : 0;
+            }
         }
       files_ok = dealii::Utilities::MPI::min(files_ok, communicator);
       if (!files_ok)
@@ -617,8 +765,9 @@ namespace Talus
         << "deposit_profile.csv (" << m.profile.size()
         << " stations, bin width " << round(bin_width) << " m)\n";
 
-      const bool has_reference =
-        !reference_profile.empty() || reference_runout > 0. || compare_lube;
+      const bool has_reference = !reference_profile.empty() ||
+                                 reference_runout > 0. || compare_lube ||
+                                 !m.failure_line.empty();
       if (!station_list.empty() || has_reference)
         o << "  " << std::left << std::setw(26) << "quantity" << std::setw(13)
           << "measured" << std::setw(13) << "reference" << std::setw(13)
@@ -663,6 +812,27 @@ namespace Talus
               std::abs(m.station_heights[i] - h_ref),
               height_tolerance * H0);
         }
+      // The failure line is compared where the reference gives a point
+      // (in the band nearest to its height); between them the reference's
+      // straight segments are an interpolation, not data, and are only
+      // written to failure_line.csv.
+      if (!m.failure_line.empty())
+        for (const auto &r : reference_failure_line)
+          {
+            const auto nearest =
+              std::min_element(m.failure_line.begin(),
+                               m.failure_line.end(),
+                               [&](const auto &f1, const auto &f2) {
+                                 return std::abs(f1.first - r.first) <
+                                        std::abs(f2.first - r.first);
+                               });
+            row("failure s_f(" + round(nearest->first) + ") [m]",
+                nearest->second,
+                true,
+                r.second,
+                std::abs(nearest->second - r.second),
+                failure_line_tolerance * L0);
+          }
       if (compare_lube)
         {
           const double pL = lube_runout(a);
@@ -681,8 +851,16 @@ namespace Talus
               lube_tolerance);
         }
       if (has_reference)
-        o << "  (errors: runout and Lube relative, h absolute in m with "
-             "tolerance 'height tolerance' x H0)\n";
+        {
+          o << "  (errors: runout and Lube relative, h absolute in m with "
+               "tolerance 'height tolerance' x H0";
+          if (!m.failure_line.empty())
+            o << ", s_f absolute in m with tolerance 'failure line "
+                 "tolerance' x L0; s_f(v): largest initial distance from the "
+                 "wall of the points displaced less than "
+              << round(failure_displacement) << " m with initial height v";
+          o << ")\n";
+        }
       if (is_root)
         out << o.str() << std::flush;
       return passed;

@@ -38,6 +38,12 @@ namespace Talus
      *  - maximum height H = max (v + d_p/2) over all points (H0 at t = 0).
      *  - free surface h(x) = max (v + d_p/2) over the points with
      *    |s - x| <= 'bin width'/2; 0 if the bin holds no point.
+     *  - failure line s_f(v) (optional, with a reference failure line): in
+     *    horizontal bands of initial height of width 'bin width', the
+     *    largest initial s0 + d_p/2 of the points whose displacement from
+     *    their initial position is below 'failure line displacement': the
+     *    edge of the material that did not move (Bui et al. 2008, Fig. 10;
+     *    0 if every point of the band moved).
      *
      * The profile (h on stations every bin width from the wall to beyond
      * the front) is written to <output directory>/deposit_profile.csv at
@@ -59,6 +65,9 @@ namespace Talus
         double              mass       = 0.; ///< total mass [kg]
         std::vector<double> station_heights; ///< h at stations() [m]
         std::vector<std::pair<double, double>> profile; ///< (x, h) [m]
+        /// failure line (v, s_f) at the band centres of the reference
+        /// failure line [m]; empty without one
+        std::vector<std::pair<double, double>> failure_line;
       };
 
       explicit DepositProfile(const MPI_Comm communicator);
@@ -121,6 +130,20 @@ namespace Talus
       std::vector<double>
       stations() const;
 
+      /**
+       * Heights v at which the failure line is measured: band centres every
+       * bin width over the height range of the reference failure line.
+       */
+      std::vector<double>
+      failure_line_heights() const;
+
+      /**
+       * Reference failure line at height @p v: linear interpolation of the
+       * file's (x, h) pairs in h.
+       */
+      double
+      reference_failure_position(const double v) const;
+
       MPI_Comm communicator;
       bool     is_root;
 
@@ -141,6 +164,11 @@ namespace Talus
       double                                 given_L0;
       std::string                            reference_file;
       std::vector<std::pair<double, double>> reference_profile;
+      std::string                            failure_line_file;
+      /// (h, x) of the reference failure line, sorted by h
+      std::vector<std::pair<double, double>> reference_failure_line;
+      double                                 failure_displacement;
+      double                                 failure_line_tolerance;
       double                                 reference_runout;
       double                                 runout_tolerance;
       double                                 height_tolerance;
