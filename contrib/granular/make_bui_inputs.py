@@ -10,8 +10,9 @@ floor with Coulomb friction, rho = 2650 kg/m^3, E = 0.84 MPa, nu = 0.3,
 phi = 19.8 deg, c = 0, psi = 0, plane strain, 2 x 2 points per cell, t = 1 s,
 largest (adaptive) time step 0.1 s per m of cell size (converged on the
 no-slip floor, not on the friction floor: doc/verification.md).
-The final surface is compared with data/bui2008_final_surface.csv and the
-toe with 0.43 m (subsection "Deposit profile"). Run from the repository top.
+The final surface is compared with data/bui2008_final_surface.csv, the
+toe with 0.43 m and the failure line with data/bui2008_failure_line.csv
+(subsection "Deposit profile"). Run from the repository top.
 --floor no-slip writes bui2008_<cell>_noslip.prm with a fixed floor instead,
 the floor of Bui's own SPH model and of Kratos' validation example
 (doc/verification.md, "Update 2026-11-30").
@@ -109,6 +110,11 @@ subsection Deposit profile
   set reference runout = 0.43
   set runout tolerance = 0.1
   set height tolerance = 0.1
+  # Failure line: edge of the material displaced less than 2 mm, against
+  # the experiment's x = 0.02 m at the top and 0.18 m at the base (10 % L0).
+  set reference failure line file = data/bui2008_failure_line.csv
+  set failure line displacement = 0.002
+  set failure line tolerance = 0.1
   # Lube et al. 2005 (sand) would give L = 0.32 m; the aluminium rods run
   # out further, so the law is not a reference here.
   set compare with Lube law = false
