@@ -4,6 +4,8 @@
 usage: make_lube_series.py [-o benchmarks/granular_collapse/lube2005]
                            [--aspect-ratios 0.5 1 1.5 3 5 8] [--length 0.1]
                            [--cell 0.005] [--friction-angle 30]
+                           [--rate-dependent] [--wall-friction MU]
+                           [--output-prefix output/granular]
 
 Plane strain columns of fixed length L0 (default 0.1 m) and height
 H0 = a L0 against a smooth wall at x = 0, released onto a floor with Coulomb
@@ -16,6 +18,14 @@ doc/verification.md). Each input compares the deposit with the Lube laws (15 %):
   (L - L0)/L0 = 1.2 a (a < 1.8), 1.9 a^(2/3) (a > 2.8), no law in between
   H/L0 = a (a < 1.15), a^(2/5) above.
 Aspect ratios in [1.8, 2.8] are refused. Run from the repository top.
+--rate-dependent adds the model that validates Bui (separated volume =
+recoverable and mu(I) with Jop et al.'s friction increment tan phi_2 - tan
+phi = 0.2616, I_0 = 0.279 and a grain diameter of 0.5 mm, a guess: Lube's
+grain sizes are not in the data we hold); --wall-friction MU replaces the
+smooth wall by a Coulomb wall with friction coefficient MU (the friction of
+the experiment's end wall is not given either); --output-prefix sets where
+the runs write (default output/granular). doc/verification.md, "Update
+2026-12-02", uses these options for the sensitivity study.
 """
 
 import argparse
@@ -38,10 +48,10 @@ subsection Background grid
   set lower corner = 0, 0
   set upper corner = {X:g}, {Y:g}
   set subdivisions = {nx}, {ny}
-  set slip boundaries = 0
+  set slip boundaries = {slip}
   # Coulomb friction on the floor, mu = tan(phi) (basal friction angle =
-  # internal friction angle; not calibrated).
-  set friction boundaries = 2: {mu:.3g}
+  # internal friction angle; not calibrated).{wall_comment}
+  set friction boundaries = {wall}2: {mu:.3g}
 end
 subsection Body
   set geometry = box
@@ -57,7 +67,7 @@ subsection Material
   subsection Mohr-Coulomb
     set friction angle = {phi:g}
     set cohesion = 0
-    set dilatancy angle = 0
+    set dilatancy angle = 0{mu_i}
   end
 end
 subsection Solver
@@ -74,7 +84,7 @@ subsection Time
   set maximum step halvings = 8
 end
 subsection Output
-  set output directory = output/granular/{name}
+  set output directory = {prefix}/{name}
   set output interval = {out:g}
   set format = vtu
 end
@@ -107,6 +117,16 @@ TALL_COLUMN_TOLERANCE = """
   set residual tolerance = 1e-6"""
 
 
+# make_lube_series.py --rate-dependent: the model that converges within 10 %
+# on Bui (doc/verification.md, "Update 2026-12-01 (5)").
+MU_I = """
+    # recoverable volume and mu(I) (make_lube_series.py --rate-dependent)
+    set separated volume = recoverable
+    set limiting friction angle = {phi2:.2f}
+    set reference inertial number = 0.279
+    set grain diameter = 0.0005"""
+
+
 def lube_runout(a):
     """Predicted (L - L0)/L0, None in the gap 1.8 <= a <= 2.8."""
     if a < 1.8:
@@ -132,6 +152,13 @@ def main():
                         help="cell size [m] (default 0.005)")
     parser.add_argument("--friction-angle", type=float, default=30.,
                         help="phi [deg] (default 30, a sand-like material)")
+    parser.add_argument("--rate-dependent", action="store_true",
+                        help="recoverable volume and mu(I) (MU_I)")
+    parser.add_argument("--wall-friction", type=float, default=None,
+                        help="Coulomb friction coefficient of the wall "
+                        "(default: smooth wall)")
+    parser.add_argument("--output-prefix", default="output/granular",
+                        help="directory of the runs' output directories")
     args = parser.parse_args()
     os.makedirs(args.directory, exist_ok=True)
     L0, cell = args.length, args.cell
@@ -166,7 +193,18 @@ def main():
             X=round(nx * cell, 12), Y=round(ny * cell, 12), nx=nx, ny=ny,
             T=T, dt=dt, out=T / 20., name=name.replace(".", "p"),
             series=max(1, round(0.01 / dt)),
-            tolerance=TALL_COLUMN_TOLERANCE if a > 5 else "")
+            tolerance=TALL_COLUMN_TOLERANCE if a > 5 else "",
+            slip="" if args.wall_friction is not None else "0",
+            wall=("" if args.wall_friction is None
+                  else "0: %g, " % args.wall_friction),
+            wall_comment=(
+                "" if args.wall_friction is None else
+                "\n  # Coulomb wall, mu = %g (make_lube_series.py "
+                "--wall-friction)" % args.wall_friction),
+            mu_i=(MU_I.format(phi2=math.degrees(math.atan(
+                math.tan(math.radians(args.friction_angle)) + 0.2616)))
+                  if args.rate_dependent else ""),
+            prefix=args.output_prefix)
         with open(path, "w") as f:
             f.write(text)
         print("wrote %s (a = %g, grid %d x %d, end %g s, dt %g s)"

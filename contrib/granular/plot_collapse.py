@@ -99,9 +99,20 @@ def main():
         except OSError:
             print("no profile %s" % row["profile"], file=sys.stderr)
             continue
-        ax.step(x, h, where="mid",
-                label="%s (exit %s)" % (os.path.basename(row["input"]),
-                                        row["exit_code"]))
+        line = ax.step(x, h, where="mid",
+                       label="%s (exit %s)" % (os.path.basename(row["input"]),
+                                               row["exit_code"]))[0]
+        # The measured failure line (edge of the unmoved material, initial
+        # positions), if the input compared one.
+        failure = os.path.join(os.path.dirname(row["profile"]),
+                               "failure_line.csv")
+        if os.path.exists(failure):
+            v, s_f = [], []
+            with open(failure) as f:
+                for r in csv.DictReader(l for l in f if not l.startswith("#")):
+                    v.append(float(r["v"]))
+                    s_f.append(float(r["s_f"]))
+            ax.plot(s_f, v, ls="--", lw=1, color=line.get_color())
     ax.set_xlabel("distance from the wall x [m]")
     ax.set_ylabel("height h [m]")
     ax.set_xlim(0, 0.5)
