@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Plot granular column collapse results against Bui et al. 2008 and Lube et al. 2005.
 
-usage: plot_collapse.py results.csv [-o doc/figures] [--data data]
+usage: plot_collapse.py results.csv [-o doc/figures] [--data data] [--bui-only]
 
 results.csv is written by contrib/granular/run_collapse_series.sh (one row
 per run: input, exit_code, L0, H0, a, runout, max_height, ..., profile).
@@ -9,7 +9,8 @@ Writes three PNGs to the output directory:
   collapse_bui2008_surface.png  final surface h(x) of the runs whose input
       name contains 'bui' (their deposit_profile.csv) against the
       experimental points (data/bui2008_final_surface.csv, +-3 mm), the toe
-      range 0.42-0.44 m and the failure line;
+      range 0.42-0.44 m and the failure line, with the measured failure
+      lines (failure_line.csv, dashed) of the runs that compared one;
   collapse_lube2005_runout.png  (L - L0)/L0 against a = H0/L0 with the Lube
       2D law (1.2 a for a < 1.8, 1.9 a^(2/3) for a > 2.8) and a +-15 % band;
   collapse_lube2005_height.png  H/L0 against a with a (a < 1.15) and
@@ -64,6 +65,8 @@ def main():
     parser.add_argument("-o", "--output", default="doc/figures")
     parser.add_argument("--data", default="data",
                         help="directory of bui2008_*.csv (default data)")
+    parser.add_argument("--bui-only", action="store_true",
+                        help="draw collapse_bui2008_surface.png only")
     parser.add_argument("--tolerance", type=float, default=0.15,
                         help="band around the Lube laws (default 0.15)")
     args = parser.parse_args()
@@ -122,6 +125,10 @@ def main():
     fig.tight_layout()
     fig.savefig(os.path.join(args.output, "collapse_bui2008_surface.png"), dpi=150)
     plt.close(fig)
+
+    if args.bui_only:
+        print("wrote collapse_bui2008_surface.png in %s" % args.output)
+        return
 
     # (ii), (iii) Lube et al. 2005.
     tol = args.tolerance

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Sensitivity of the Lube et al. 2005 series to the friction angle, the grid
+# and the wall friction (doc/verification.md, granular column collapse,
+# "Update 2026-12-02"). Model: the one that validates Bui (recoverable
+# volume + mu(I), make_lube_series.py --rate-dependent), floor mu = tan phi.
+#   usage: bash contrib/granular/lube_study/run.sh [STUDY...]
+#   STUDY: phi30 phi33 phi36 (10 mm, a = 0.5 ... 8), phi33_5mm (5 mm,
+#          a = 1.5, 3, 5), grid (phi 30 and 33: a = 0.5 and 1 at 5 mm,
+#          a = 0.5 at 2.5 mm; phi 30: a = 0.5 at 1.25 mm, about 50 min),
+#          halfbui (a = 0.5 with Bui's material, phi 19.8, floor tan 19.8,
+#          grain 0.625 mm: Bui's column at half the size, at 10, 5 and
+#          2.5 mm), wall (10 mm, phi 30, wall mu = tan 30, a = 1.5, 3, 8);
+#          default: all. Each study writes its inputs to
+#          output/lube_study/<study>/inputs and its results to
+#          output/lube_study/<study>.csv (run_collapse_series.sh columns).
+# Run from the repository top; one core per study (run two at a time on
+# this 2-core machine). Wall times at 10 mm: a = 8 about 8 min, a = 5 about
+# 4 min; at 5 mm a = 5 about 40 min.
+set -euo pipefail
+top=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
+cd "$top"
+gen=contrib/granular/make_lube_series.py
+run=contrib/granular/run_collapse_series.sh
+studies=("$@")
+[[ ${#studies[@]} -gt 0 ]] || studies=(phi30 phi33 phi36 phi33_5mm grid halfbui wall)
+
+series() { # name cell phi "aspect ratios" [extra generator options]
+  local name=$1 cell=$2 phi=$3 ratios=$4
+  shift 4
+  local dir=output/lube_study/$name
+  rm -rf "$dir/inputs"
+  python3 $gen -o "$dir/inputs" --cell "$cell" --friction-angle "$phi" \
+    --aspect-ratios $ratios --rate-dependent --output-prefix "$dir" "$@"
+  local files=()
+  for a in $ratios; do files+=("$dir/inputs/lube2005_a${a/./p}.prm"); done
+  bash $run -o "output/lube_study/$name.csv" "${files[@]}"
+}
+
+for s in "${studies[@]}"; do
+  case $s in
+    phi30 | phi33 | phi36) series "$s" 0.01 "${s#phi}" "0.5 1 1.5 3 5 8" ;;
+    phi33_5mm) series "$s" 0.005 33 "1.5 3 5" ;;
+    grid)
+      for phi in 30 33; do
+        series "grid_phi${phi}_0.005" 0.005 "$phi" "0.5 1"
+        series "grid_phi${phi}_0.0025" 0.0025 "$phi" "0.5"
+      done
+      series grid_phi30_0.00125 0.00125 30 "0.5" ;;
+    halfbui)
+      for cell in 0.01 0.005 0.0025; do
+        dir=output/lube_study/halfbui_$cell
+        rm -rf "$dir/inputs"
+        python3 $gen -o "$dir/inputs" --cell $cell --friction-angle 19.8 \
+          --aspect-ratios 0.5 --rate-dependent --output-prefix "$dir"
+        sed -i 's/set grain diameter = 0.0005/set grain diameter = 0.000625/' \
+          "$dir/inputs/lube2005_a0p5.prm"
+        bash $run -o output/lube_study/halfbui.csv "$dir/inputs/lube2005_a0p5.prm"
+      done ;;
+    wall) series wall 0.01 30 "1.5 3 8" --wall-friction 0.577 ;;
+    *) echo "run.sh: unknown study <$s>" >&2; exit 2 ;;
+  esac
+done
