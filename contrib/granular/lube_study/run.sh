@@ -9,7 +9,9 @@
 #          a = 0.5 at 2.5 mm; phi 30: a = 0.5 at 1.25 mm, about 50 min),
 #          halfbui (a = 0.5 with Bui's material, phi 19.8, floor tan 19.8,
 #          grain 0.625 mm: Bui's column at half the size, at 10, 5 and
-#          2.5 mm), wall (10 mm, phi 30, wall mu = tan 30, a = 1.5, 3, 8);
+#          2.5 mm), grain125 (phi 30, a = 0.5, grain 1.25 mm instead of
+#          0.5 mm, at 10, 5 and 2.5 mm), wall (10 mm, phi 30, wall
+#          mu = tan 30, a = 1.5, 3, 8);
 #          default: all. Each study writes its inputs to
 #          output/lube_study/<study>/inputs and its results to
 #          output/lube_study/<study>.csv (run_collapse_series.sh columns).
@@ -22,7 +24,7 @@ cd "$top"
 gen=contrib/granular/make_lube_series.py
 run=contrib/granular/run_collapse_series.sh
 studies=("$@")
-[[ ${#studies[@]} -gt 0 ]] || studies=(phi30 phi33 phi36 phi33_5mm grid halfbui wall)
+[[ ${#studies[@]} -gt 0 ]] || studies=(phi30 phi33 phi36 phi33_5mm grid halfbui grain125 wall)
 
 series() { # name cell phi "aspect ratios" [extra generator options]
   local name=$1 cell=$2 phi=$3 ratios=$4
@@ -46,15 +48,16 @@ for s in "${studies[@]}"; do
         series "grid_phi${phi}_0.0025" 0.0025 "$phi" "0.5"
       done
       series grid_phi30_0.00125 0.00125 30 "0.5" ;;
-    halfbui)
+    halfbui | grain125)
+      if [[ $s == halfbui ]]; then phi=19.8 d=0.000625; else phi=30 d=0.00125; fi
       for cell in 0.01 0.005 0.0025; do
-        dir=output/lube_study/halfbui_$cell
+        dir=output/lube_study/${s}_$cell
         rm -rf "$dir/inputs"
-        python3 $gen -o "$dir/inputs" --cell $cell --friction-angle 19.8 \
+        python3 $gen -o "$dir/inputs" --cell $cell --friction-angle $phi \
           --aspect-ratios 0.5 --rate-dependent --output-prefix "$dir"
-        sed -i 's/set grain diameter = 0.0005/set grain diameter = 0.000625/' \
+        sed -i "s/set grain diameter = 0.0005/set grain diameter = $d/" \
           "$dir/inputs/lube2005_a0p5.prm"
-        bash $run -o output/lube_study/halfbui.csv "$dir/inputs/lube2005_a0p5.prm"
+        bash $run -o "output/lube_study/$s.csv" "$dir/inputs/lube2005_a0p5.prm"
       done ;;
     wall) series wall 0.01 30 "1.5 3 8" --wall-friction 0.577 ;;
     *) echo "run.sh: unknown study <$s>" >&2; exit 2 ;;
