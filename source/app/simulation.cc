@@ -9,6 +9,7 @@
 #include <talus/io/visualization_output.h>
 #include <talus/materials/constitutive_model.h>
 #include <talus/mpm/background_grid.h>
+#include <talus/mpm/initial_stress.h>
 #include <talus/mpm/material_points.h>
 #include <talus/mpm/mpm_solver.h>
 
@@ -269,6 +270,7 @@ namespace Talus
                       "or 3.");
     MPM::BackgroundGrid<dim>::declare_parameters(prm);
     MPM::MaterialPoints<dim>::declare_parameters(prm);
+    MPM::InitialStress<dim>::declare_parameters(prm);
     Materials::declare_parameters(prm);
     MPM::MPMSolver<dim>::declare_parameters(prm);
     Boundaries::BoundaryParticles<dim>::declare_parameters(prm);
@@ -335,6 +337,8 @@ namespace Talus
 
     MPM::MaterialPoints<dim> points(grid);
     points.parse_parameters(prm);
+    MPM::InitialStress<dim> initial_stress;
+    initial_stress.parse_parameters(prm);
 
     MPM::MPMSolver<dim> solver(
       grid, points, *model, time_control.newmark, timer);
@@ -427,6 +431,8 @@ namespace Talus
                     [&](const dealii::ArrayView<double> &h) {
                       model->initialize_history(h);
                     });
+    initial_stress.apply(
+      points, *model, solver.gravity(), communicator, solver.load_ramp());
     solver.setup();
     boundaries.generate(model->p_wave_modulus());
     solver.attach_boundary_particles(boundaries);
@@ -448,6 +454,8 @@ namespace Talus
           << "  material points: " << points.n_global_points() << '\n'
           << "  material: " << model->name() << ", density " << density
           << " kg/m^3\n";
+    if (initial_stress.enabled())
+      pcout << "  initial stress: " << initial_stress.description() << '\n';
     if (solver.ghost_penalty() > 0.)
       pcout << "  ghost penalty: factor " << solver.ghost_penalty()
             << " (gamma = factor * P-wave modulus), on the faces of cut "

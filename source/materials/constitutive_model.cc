@@ -32,6 +32,16 @@ namespace Talus
 
 
 
+    bool
+    ConstitutiveModel::initialize_history_for_stress(
+      const dealii::SymmetricTensor<2, 3> & /*stress*/,
+      const dealii::ArrayView<double> & /*history*/) const
+    {
+      return false;
+    }
+
+
+
     std::string
     ConstitutiveModel::description() const
     {

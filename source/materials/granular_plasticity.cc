@@ -196,6 +196,48 @@ namespace Talus
 
 
 
+    bool
+    GranularPlasticity::initialize_history_for_stress(
+      const dealii::SymmetricTensor<2, 3> &stress,
+      const dealii::ArrayView<double>     &history) const
+    {
+      initialize_history(history);
+      // Hencky: eps^e = (tau - lambda/(3 lambda + 2 mu) tr(tau) I) / (2 mu).
+      const double lambda = elastic.lambda;
+      const double mu     = elastic.mu;
+      const auto   eps =
+        (stress - lambda / (3. * lambda + 2. * mu) * dealii::trace(stress) *
+                    dealii::unit_symmetric_tensor<3>()) /
+        (2. * mu);
+      const auto                    eigen = dealii::eigenvectors(eps);
+      dealii::SymmetricTensor<2, 3> G;
+      for (const auto &e : eigen)
+        G += std::exp(2. * e.first) *
+             dealii::symmetrize(dealii::outer_product(e.second, e.second));
+      history[0] = G[0][0];
+      history[1] = G[1][1];
+      history[2] = G[2][2];
+      history[3] = G[0][1];
+      history[4] = G[1][2];
+      history[5] = G[0][2];
+
+      // Admissible if F = I from this state returns elastically.
+      std::vector<double> trial(history.size());
+      const auto I = dealii::Tensor<2, 3>(dealii::unit_symmetric_tensor<3>());
+      dealii::Tensor<2, 3> P;
+      compute_stress(I,
+                     I,
+                     dealii::ArrayView<const double>(history.data(),
+                                                     history.size()),
+                     dealii::ArrayView<double>(trial.data(), trial.size()),
+                     0.,
+                     P,
+                     nullptr);
+      return trial[return_type_index] == 0.;
+    }
+
+
+
     std::vector<std::string>
     GranularPlasticity::history_names() const
     {

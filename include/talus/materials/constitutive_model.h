@@ -3,6 +3,7 @@
 
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
 #include <functional>
@@ -63,6 +64,20 @@ namespace Talus
       /** Write the history of a stress-free, undeformed material point. */
       virtual void
       initialize_history(const dealii::ArrayView<double> &history) const;
+
+      /**
+       * Write the history of an undeformed material point (F = I) that
+       * carries the Cauchy (= Kirchhoff) stress @p stress [Pa], tension
+       * positive: an initial stress such as the geostatic one. Returns
+       * false if the model cannot hold such a state elastically: the
+       * default (models without an elastic strain in their history, whose
+       * stress at F = I is zero) always; a plastic model when @p stress
+       * lies outside its yield surface. The history is then unspecified.
+       */
+      virtual bool
+      initialize_history_for_stress(
+        const dealii::SymmetricTensor<2, 3> &stress,
+        const dealii::ArrayView<double>     &history) const;
 
       /**
        * Names of the history variables (identifiers without spaces, for

@@ -260,6 +260,17 @@ namespace Talus
       initialize_history(
         const dealii::ArrayView<double> &history) const override;
 
+      /**
+       * G = b^e = exp(2 eps^e) with the Hencky elastic strain
+       * eps^e = D^-1 : stress of the given stress at F = I, all other
+       * values 0; false if the stress lies outside the yield surface (the
+       * return mapping of F = I from that state is not elastic).
+       */
+      bool
+      initialize_history_for_stress(
+        const dealii::SymmetricTensor<2, 3> &stress,
+        const dealii::ArrayView<double>     &history) const override;
+
       /** Names of the 10 history values. */
       std::vector<std::string>
       history_names() const override;

@@ -182,6 +182,14 @@ namespace Talus
         return gravity_vector;
       }
 
+      /** Time over which gravity and body forces are ramped up [s] (0: none).
+       */
+      double
+      load_ramp() const
+      {
+        return load_ramp_time;
+      }
+
       /** Number of active (not constrained) degrees of freedom. */
       dealii::types::global_dof_index
       n_active_dofs() const
