@@ -27,7 +27,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_collapse import lube_height, lube_runout, linspace  # noqa: E402
 
-MARKERS = "osD^v<>ph*"
+MARKERS = "osD^v<>"
 
 
 def main():
@@ -39,7 +39,7 @@ def main():
     parser.add_argument("--tolerance", type=float, default=0.15)
     args = parser.parse_args()
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    fig, axes = plt.subplots(1, 2, figsize=(10, 5.2))
     tol = args.tolerance
     for ax, law, ranges, label in (
             (axes[0], lube_runout, [(0.3, 1.8), (2.8, 10.)], "(L - L0)/L0"),
@@ -83,8 +83,9 @@ def main():
                     marker=marker, ls=":", lw=0.8, ms=5, label=name)
     axes[0].set_title("Runout")
     axes[1].set_title("Final height")
-    axes[0].legend(fontsize=7)
-    fig.tight_layout()
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7)
+    fig.tight_layout(rect=[0, 0.2, 1, 1])
     fig.savefig(args.output, dpi=150)
     print("wrote %s" % args.output)
 
