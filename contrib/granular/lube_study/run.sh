@@ -10,8 +10,9 @@
 #          halfbui (a = 0.5 with Bui's material, phi 19.8, floor tan 19.8,
 #          grain 0.625 mm: Bui's column at half the size, at 10, 5 and
 #          2.5 mm), grain125 (phi 30, a = 0.5, grain 1.25 mm instead of
-#          0.5 mm, at 10, 5 and 2.5 mm), wall (10 mm, phi 30, wall
-#          mu = tan 30, a = 1.5, 3, 8);
+#          0.5 mm, at 10, 5 and 2.5 mm), floor (phi 30, a = 0.5 on a
+#          no-slip floor and on a floor mu = 0.36, at 10, 5 and 2.5 mm),
+#          wall (10 mm, phi 30, wall mu = tan 30, a = 1.5, 3, 8);
 #          default: all. Each study writes its inputs to
 #          output/lube_study/<study>/inputs and its results to
 #          output/lube_study/<study>.csv (run_collapse_series.sh columns).
@@ -24,7 +25,7 @@ cd "$top"
 gen=contrib/granular/make_lube_series.py
 run=contrib/granular/run_collapse_series.sh
 studies=("$@")
-[[ ${#studies[@]} -gt 0 ]] || studies=(phi30 phi33 phi36 phi33_5mm grid halfbui grain125 wall)
+[[ ${#studies[@]} -gt 0 ]] || studies=(phi30 phi33 phi36 phi33_5mm grid halfbui grain125 floor wall)
 
 series() { # name cell phi "aspect ratios" [extra generator options]
   local name=$1 cell=$2 phi=$3 ratios=$4
@@ -58,6 +59,23 @@ for s in "${studies[@]}"; do
         sed -i "s/set grain diameter = 0.0005/set grain diameter = $d/" \
           "$dir/inputs/lube2005_a0p5.prm"
         bash $run -o "output/lube_study/$s.csv" "$dir/inputs/lube2005_a0p5.prm"
+      done ;;
+    floor)
+      for kind in noslip floor036; do
+        for cell in 0.01 0.005 0.0025; do
+          dir=output/lube_study/${kind}_$cell
+          rm -rf "$dir/inputs"
+          python3 $gen -o "$dir/inputs" --cell $cell --friction-angle 30 \
+            --aspect-ratios 0.5 --rate-dependent --output-prefix "$dir"
+          if [[ $kind == noslip ]]; then
+            sed -i 's/  set slip boundaries = 0/  set slip boundaries = 0\n  set fixed boundaries = 2/; s/  set friction boundaries = 2: 0.577/  set friction boundaries =/' \
+              "$dir/inputs/lube2005_a0p5.prm"
+          else
+            sed -i 's/  set friction boundaries = 2: 0.577/  set friction boundaries = 2: 0.36/' \
+              "$dir/inputs/lube2005_a0p5.prm"
+          fi
+          bash $run -o "output/lube_study/$kind.csv" "$dir/inputs/lube2005_a0p5.prm"
+        done
       done ;;
     wall) series wall 0.01 30 "1.5 3 8" --wall-friction 0.577 ;;
     *) echo "run.sh: unknown study <$s>" >&2; exit 2 ;;
