@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -230,5 +231,17 @@ namespace Talus
         InputFile::reject(subsection, entry, prm.get(entry), allowed.str());
       }
     return value;
+  }
+
+
+  bool
+  parse_double(const std::string &text, double &value)
+  {
+    std::istringstream in(text);
+    in >> value;
+    if (in.fail() || !std::isfinite(value))
+      return false;
+    in >> std::ws;
+    return in.eof();
   }
 } // namespace Talus

@@ -40,21 +40,6 @@ namespace Talus
         return s.substr(begin, end - begin + 1);
       }
 
-      /** Parse a whole string as one finite double. */
-      bool
-      parse_number(const std::string &text, double &value)
-      {
-        const std::string t = trim(text);
-        if (t.empty())
-          return false;
-        std::istringstream in(t);
-        in >> value;
-        if (in.fail() || !std::isfinite(value))
-          return false;
-        in >> std::ws;
-        return in.eof();
-      }
-
       /** Deterministic rounding for the terminal (6 significant digits). */
       std::string
       round(const double x)
@@ -102,8 +87,8 @@ namespace Talus
               }
             double x = 0., h = 0.;
             if (comma == std::string::npos ||
-                !parse_number(line.substr(0, comma), x) ||
-                !parse_number(line.substr(comma + 1), h))
+                !parse_double(line.substr(0, comma), x) ||
+                !parse_double(line.substr(comma + 1), h))
               InputFile::reject(section,
                                 parameter,
                                 file,
@@ -471,7 +456,8 @@ namespace Talus
 
     template <int dim>
     typename DepositProfile<dim>::Measurement
-    DepositProfile<dim>::measure(const MPM::MaterialPoints<dim> &points) const
+    DepositProfile<dim>::measure(const MPM::MaterialPoints<dim> &points,
+                                 const bool with_failure_line) const
     {
       // Local (s, v + d/2, m, d, s0, v0, |x - X0|) of every point (s0, v0:
       // the initial position), gathered on rank 0.
@@ -499,8 +485,9 @@ namespace Talus
       const auto gathered =
         dealii::Utilities::MPI::gather(communicator, local, 0);
 
-      const auto          station_list    = stations();
-      const auto          failure_heights = failure_line_heights();
+      const auto station_list = stations();
+      const auto failure_heights =
+        with_failure_line ? failure_line_heights() : std::vector<double>();
       std::vector<double> packed;
       if (is_root)
         {
@@ -698,7 +685,7 @@ namespace Talus
     {
       if (!active)
         return true;
-      const auto         m            = measure(points);
+      const auto         m            = measure(points, true);
       const auto         station_list = stations();
       const double       a            = L0 > 0. ? H0 / L0 : 0.;
       const double       dL           = L0 > 0. ? (m.runout - L0) / L0 : 0.;

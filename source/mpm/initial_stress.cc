@@ -73,24 +73,12 @@ namespace Talus
       const std::string surface = prm.get("free surface level");
       surface_given = surface.find_first_not_of(" \t") != std::string::npos;
       surface_level = 0.;
-      if (surface_given)
-        {
-          try
-            {
-              std::size_t used = 0;
-              surface_level    = std::stod(surface, &used);
-              if (surface.find_first_not_of(" \t", used) != std::string::npos)
-                throw std::invalid_argument(surface);
-            }
-          catch (const std::exception &)
-            {
-              InputFile::reject(section,
-                                "free surface level",
-                                surface,
-                                "it must be a number [m] or empty (the top "
-                                "of the body)");
-            }
-        }
+      if (surface_given && !parse_double(surface, surface_level))
+        InputFile::reject(section,
+                          "free surface level",
+                          surface,
+                          "it must be a number [m] or empty (the top of the "
+                          "body)");
       prm.leave_subsection();
     }
 
@@ -204,12 +192,7 @@ namespace Talus
                   "(Mohr-Coulomb with c = 0: (1 - sin phi)/(1 + sin phi) < " +
                   "K0 < (1 + sin phi)/(1 - sin phi))";
             }
-          props[Properties::stress + 0] = sigma[0][0];
-          props[Properties::stress + 1] = sigma[1][1];
-          props[Properties::stress + 2] = sigma[2][2];
-          props[Properties::stress + 3] = sigma[0][1];
-          props[Properties::stress + 4] = sigma[1][2];
-          props[Properties::stress + 5] = sigma[0][2];
+          Properties::store_stress(props, sigma);
         }
       // Every rank stops with the same message.
       const auto all =

@@ -3070,12 +3070,7 @@ namespace Talus
               // Cauchy stress sigma = P F^T / J.
               const dealii::Tensor<2, 3> sigma =
                 P * dealii::transpose(F3) / dealii::determinant(F3);
-              props[Properties::stress + 0] = sigma[0][0];
-              props[Properties::stress + 1] = sigma[1][1];
-              props[Properties::stress + 2] = sigma[2][2];
-              props[Properties::stress + 3] = sigma[0][1];
-              props[Properties::stress + 4] = sigma[1][2];
-              props[Properties::stress + 5] = sigma[0][2];
+              Properties::store_stress(props, sigma);
               for (unsigned int h = 0; h < n_history; ++h)
                 props[Properties::history + h] = history_new[h];
               for (unsigned int i = 0; i < dim; ++i)

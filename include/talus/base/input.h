@@ -66,6 +66,13 @@ namespace Talus
   };
 
   /**
+   * Parse the whole of @p text (surrounding blanks allowed) as one finite
+   * double; false if it is empty, not a number or followed by anything.
+   */
+  bool
+  parse_double(const std::string &text, double &value);
+
+  /**
    * Read a double from @p prm and require it to be strictly positive.
    */
   double

@@ -113,9 +113,13 @@ namespace Talus
                std::ostream                   &out,
                const bool                      test_mode);
 
-      /** Measure the current state (collective). */
+      /**
+       * Measure the current state (collective); the failure line only with
+       * @p with_failure_line (at the end: the time series does not use it).
+       */
       Measurement
-      measure(const MPM::MaterialPoints<dim> &points) const;
+      measure(const MPM::MaterialPoints<dim> &points,
+              const bool                      with_failure_line = false) const;
 
       /** Lube et al. 2005 (2D): predicted (L - L0)/L0 for aspect ratio a. */
       static double

@@ -83,6 +83,22 @@ namespace Talus
         return history + n_history;
       }
 
+      /**
+       * Store the Cauchy stress @p sigma [Pa] in a point's properties in
+       * the order xx yy zz xy yz xz (symmetric part of the upper triangle).
+       */
+      static void
+      store_stress(const dealii::ArrayView<double> &props,
+                   const dealii::Tensor<2, 3>      &sigma)
+      {
+        props[stress + 0] = sigma[0][0];
+        props[stress + 1] = sigma[1][1];
+        props[stress + 2] = sigma[2][2];
+        props[stress + 3] = sigma[0][1];
+        props[stress + 4] = sigma[1][2];
+        props[stress + 5] = sigma[0][2];
+      }
+
       /** Names for output, one per property (history as history_i). */
       static std::vector<std::string>
       names(const unsigned int n_history);
