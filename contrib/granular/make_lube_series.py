@@ -3,8 +3,10 @@
 
 usage: make_lube_series.py [-o benchmarks/granular_collapse/lube2005]
                            [--aspect-ratios 0.5 1 1.5 3 5 8] [--length 0.1]
-                           [--cell 0.005] [--friction-angle 30]
-                           [--rate-dependent] [--wall-friction MU]
+                           [--cell 0.005 | --cells-per-side N]
+                           [--friction-angle 30]
+                           [--rate-dependent] [--friction-increment DMU]
+                           [--wall-friction MU]
                            [--output-prefix output/granular]
 
 Plane strain columns of fixed length L0 (default 0.1 m) and height
@@ -17,11 +19,16 @@ column; the run lasts twice the flow duration t = 3 sqrt(H0/g), at least
 doc/verification.md). Each input compares the deposit with the Lube laws (15 %):
   (L - L0)/L0 = 1.2 a (a < 1.8), 1.9 a^(2/3) (a > 2.8), no law in between
   H/L0 = a (a < 1.15), a^(2/5) above.
-Aspect ratios in [1.8, 2.8] are refused. Run from the repository top.
+Aspect ratios in [1.8, 2.8] are refused. --cells-per-side N replaces the
+fixed cell size by N cells over the column's shorter side, min(H0, L0)
+(20 reaches within about 5 % of the refined runout, doc/verification.md,
+"Update 2026-12-02 (2)"). Run from the repository top.
 --rate-dependent adds the model that validates Bui (separated volume =
 recoverable and mu(I) with Jop et al.'s friction increment tan phi_2 - tan
 phi = 0.2616, I_0 = 0.279 and a grain diameter of 0.5 mm, a guess: Lube's
-grain sizes are not in the data we hold); --wall-friction MU replaces the
+grain sizes are not in the data we hold); --friction-increment DMU replaces
+Jop et al.'s mu_2 - mu_s = 0.2616 (the well-posedness study of
+doc/verification.md, "Update 2026-12-02 (2)"); --wall-friction MU replaces the
 smooth wall by a Coulomb wall with friction coefficient MU (the friction of
 the experiment's end wall is not given either); --output-prefix sets where
 the runs write (default output/granular). doc/verification.md, "Update
@@ -150,10 +157,15 @@ def main():
                         help="L0 [m] (default 0.1)")
     parser.add_argument("--cell", type=float, default=0.005,
                         help="cell size [m] (default 0.005)")
+    parser.add_argument("--cells-per-side", type=int, default=None,
+                        help="cells over min(H0, L0), instead of --cell")
     parser.add_argument("--friction-angle", type=float, default=30.,
                         help="phi [deg] (default 30, a sand-like material)")
     parser.add_argument("--rate-dependent", action="store_true",
                         help="recoverable volume and mu(I) (MU_I)")
+    parser.add_argument("--friction-increment", type=float, default=0.2616,
+                        help="mu_2 - mu_s of mu(I) with --rate-dependent "
+                        "(default 0.2616, Jop et al. 2006)")
     parser.add_argument("--wall-friction", type=float, default=None,
                         help="Coulomb friction coefficient of the wall "
                         "(default: smooth wall)")
@@ -161,8 +173,11 @@ def main():
                         help="directory of the runs' output directories")
     args = parser.parse_args()
     os.makedirs(args.directory, exist_ok=True)
-    L0, cell = args.length, args.cell
+    L0 = args.length
     for a in args.aspect_ratios:
+        cell = args.cell
+        if args.cells_per_side:
+            cell = float("%.4g" % (min(a, 1.) * L0 / args.cells_per_side))
         dL = lube_runout(a)
         if dL is None:
             parser.error("a = %g lies in [1.8, 2.8]: Lube et al. 2005 give no "
@@ -202,7 +217,8 @@ def main():
                 "\n  # Coulomb wall, mu = %g (make_lube_series.py "
                 "--wall-friction)" % args.wall_friction),
             mu_i=(MU_I.format(phi2=math.degrees(math.atan(
-                math.tan(math.radians(args.friction_angle)) + 0.2616)))
+                math.tan(math.radians(args.friction_angle))
+                + args.friction_increment)))
                   if args.rate_dependent else ""),
             prefix=args.output_prefix)
         with open(path, "w") as f:

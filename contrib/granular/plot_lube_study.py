@@ -7,10 +7,14 @@ usage: plot_lube_study.py [contrib/granular/lube_study/results.csv]
 results.csv holds one row per run (study, a, cell, phi, note, exit_code,
 runout, max_height, runout_normalised, height_normalised, ...); the runs
 with the same friction angle, cell size and note form one labelled marker
-series (the columns with another material, phi < 25 deg, are left out). Left panel:
+series (the columns with another material, phi < 25 deg, and the series of
+a single column, which plot_lube_convergence.py shows, are left out). Left panel:
 (L - L0)/L0 against a = H0/L0 with the Lube law (1.2 a for a < 1.8,
 1.9 a^(2/3) for a > 2.8) and its +-15 % band; right panel: H/L0 with a
-(a < 1.15) and a^(2/5) above. Used for the friction-angle, grid and wall
+(a < 1.15) and a^(2/5) above, and, dashed, the final height of true-2D
+collapses of aluminium rods (h0/h = 1.42 a^(2/3) for a > 0.65, H/L0 = a
+below; abstract of arXiv:1512.05180, "Failure mechanism of true 2D
+granular flows"). Used for the friction-angle, grid and wall
 sensitivity study of doc/verification.md ("Update 2026-12-02"). Needs
 Debian's python3-matplotlib (/usr/bin/python3).
 """
@@ -28,6 +32,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_collapse import lube_height, lube_runout, linspace  # noqa: E402
 
 MARKERS = "osD^v<>"
+
+
+def true2d_height(a):
+    """H/L0 of true-2D rod collapses: h0/h = 1.42 a^(2/3) above a = 0.65."""
+    return a if a < 0.65 else a / (1.42 * a ** (2. / 3.))
 
 
 def main():
@@ -52,6 +61,10 @@ def main():
             ax.fill_between(a, [v * (1 - tol) for v in y],
                             [v * (1 + tol) for v in y], color="0.85",
                             label="±%g %%" % (100 * tol) if i == 0 else None)
+        if law is lube_height:
+            a = linspace(0.3, 10.)
+            ax.plot(a, [true2d_height(v) for v in a], "k--", lw=1,
+                    label="true 2D, aluminium rods (arXiv:1512.05180)")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("aspect ratio a = H0/L0")
@@ -74,7 +87,11 @@ def main():
     for k, key in enumerate(sorted(groups)):
         phi, cell, note = key[0], -key[1], key[2]
         rows = sorted(groups[key])
-        name = "phi = %g deg, %g mm" % (phi, 1000. * cell)
+        if len(rows) < 2:
+            continue  # one column only: plot_lube_convergence.py shows it
+        name = "phi = %g deg" % phi
+        if cell > 0.:  # cell 0: runs of several cell sizes, see the note
+            name += ", %g mm" % (1000. * cell)
         if note and not note.startswith("from doc"):
             name += ", " + note
         marker = MARKERS[k % len(MARKERS)]
@@ -84,6 +101,9 @@ def main():
     axes[0].set_title("Runout")
     axes[1].set_title("Final height")
     handles, labels = axes[0].get_legend_handles_labels()
+    h1, l1 = axes[1].get_legend_handles_labels()
+    handles += [h for h, l in zip(h1, l1) if l.startswith("true 2D")]
+    labels += [l for l in l1 if l.startswith("true 2D")]
     fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7)
     fig.tight_layout(rect=[0, 0.2, 1, 1])
     fig.savefig(args.output, dpi=150)
