@@ -7,7 +7,7 @@
 #   STUDY: phi30 phi33 phi36 (10 mm, a = 0.5 ... 8), phi33_5mm (5 mm,
 #          a = 1.5, 3, 5), phi36_5mm (a = 0.5, 1, 1.5, 3), phi36_2p5mm
 #          (a = 0.5, 1), phi36_2p5mm_a1p5, phi36_5mm_a5 and phi36_5mm_a8
-#          (one column each: 40 min to hours), grid (phi 30 and 33: a = 0.5 and 1 at 5 mm,
+#          (one column each: 25 to 55 min), grid (phi 30 and 33: a = 0.5 and 1 at 5 mm,
 #          a = 0.5 at 2.5 mm; phi 30: a = 0.5 at 1.25 mm, about 50 min),
 #          halfbui (a = 0.5 with Bui's material, phi 19.8, floor tan 19.8,
 #          grain 0.625 mm: Bui's column at half the size, at 10, 5 and
@@ -45,8 +45,15 @@ variant() { # study name cell sed-expression: phi 30, a = 0.5, edited input
   rm -rf "$dir/inputs"
   python3 $gen -o "$dir/inputs" --cell "$cell" --friction-angle 30 \
     --aspect-ratios 0.5 --rate-dependent --output-prefix "$dir"
-  sed -i "$expr" "$dir/inputs/lube2005_a0p5.prm"
-  bash $run -o "output/lube_study/$study.csv" "$dir/inputs/lube2005_a0p5.prm" || true
+  local input=$dir/inputs/lube2005_a0p5.prm
+  cp "$input" "$input.orig"
+  sed -i "$expr" "$input"
+  if cmp -s "$input" "$input.orig"; then
+    echo "run.sh: <$expr> changed nothing in $input" >&2
+    exit 1
+  fi
+  rm "$input.orig"
+  bash $run -o "output/lube_study/$study.csv" "$input" || true
 }
 
 series() { # name cell phi "aspect ratios" [extra generator options]
