@@ -699,15 +699,18 @@ namespace Talus
         max_constraint_gap =
           std::max(max_constraint_gap, result.constraint_gap);
 
-        const unsigned int n_lost    = points.take_lost_count();
-        const double       lost_mass = points.take_lost_mass();
+        const auto         lost_region = points.take_lost_region();
+        const unsigned int n_lost      = points.take_lost_count();
+        const double       lost_mass   = points.take_lost_mass();
         if (n_lost > 0)
           {
             total_lost_mass += lost_mass;
             std::ostringstream msg;
             msg << n_lost << " material point(s) with a mass of " << lost_mass
                 << " kg left the background grid at t = " << time_control.time
-                << " s and were removed (lost so far: " << total_lost_mass
+                << " s at x in [" << lost_region.first << "] .. ["
+                << lost_region.second
+                << "] m and were removed (lost so far: " << total_lost_mass
                 << " kg)";
             if (solver.abort_on_lost_points)
               throw ExcSimulationFailed(

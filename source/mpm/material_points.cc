@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <tuple>
 
@@ -490,6 +491,14 @@ namespace Talus
           const typename dealii::Particles::ParticleIterator<dim> &p,
           const typename dealii::Triangulation<dim>::active_cell_iterator &) {
           lost_mass += p->get_properties()[Properties::mass];
+          const dealii::Point<dim> x = p->get_location();
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lost_lower[d] =
+                lost_count == 0 ? x[d] : std::min(lost_lower[d], x[d]);
+              lost_upper[d] =
+                lost_count == 0 ? x[d] : std::max(lost_upper[d], x[d]);
+            }
           ++lost_count;
         });
 
@@ -662,6 +671,29 @@ namespace Talus
         dealii::Utilities::MPI::sum(lost_count, grid.mpi_communicator);
       lost_count = 0;
       return n;
+    }
+
+
+    template <int dim>
+    std::pair<dealii::Point<dim>, dealii::Point<dim>>
+    MaterialPoints<dim>::take_lost_region()
+    {
+      const MPI_Comm     comm = grid.mpi_communicator;
+      const unsigned int n    = dealii::Utilities::MPI::sum(lost_count, comm);
+      std::pair<dealii::Point<dim>, dealii::Point<dim>> region;
+      if (n == 0)
+        return region;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double big = std::numeric_limits<double>::max();
+          region.first[d] =
+            dealii::Utilities::MPI::min(lost_count > 0 ? lost_lower[d] : big,
+                                        comm);
+          region.second[d] =
+            dealii::Utilities::MPI::max(lost_count > 0 ? lost_upper[d] : -big,
+                                        comm);
+        }
+      return region;
     }
 
 

@@ -173,6 +173,14 @@ namespace Talus
       unsigned int
       take_lost_count();
 
+      /**
+       * Bounding box of the positions (outside the grid) of the points lost
+       * since the last call (global); empty when none was lost. Called with
+       * take_lost_count() so that a report can say where points left.
+       */
+      std::pair<dealii::Point<dim>, dealii::Point<dim>>
+      take_lost_region();
+
       /** Keep a copy of all points (state of the last accepted step). */
       void
       save_state();
@@ -217,6 +225,9 @@ namespace Talus
 
       double       lost_mass;
       unsigned int lost_count;
+      /** Bounds of the positions of the points lost since the last call. */
+      dealii::Point<dim> lost_lower;
+      dealii::Point<dim> lost_upper;
     };
   } // namespace MPM
 } // namespace Talus
