@@ -16,13 +16,14 @@
 # Writes output/block_rest_study/<variant>_<cell>/ and a table of the
 # largest grid velocity at the points at t = 1, 1.5, 2, 2.5, 2.75 and 3 s,
 # the released gravitational energy, the energy balance and the wall time
-# to output/block_rest_study/summary.csv. About 6 min on one core.
+# to output/block_rest_study/summary.csv (OUT=dir: elsewhere). About 15 min
+# on one core.
 #   usage: bash contrib/granular/block_rest_study.sh [VARIANT...]
 set -euo pipefail
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 cd "$top"
 talus=${TALUS:-build/talus}
-out=output/block_rest_study
+out=${OUT:-output/block_rest_study}
 mkdir -p "$out"
 variants=("$@")
 [[ ${#variants[@]} -gt 0 ]] || variants=(flip pic99 apic mui newmark)

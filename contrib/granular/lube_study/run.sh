@@ -7,7 +7,8 @@
 #   STUDY: phi30 phi33 phi36 (10 mm, a = 0.5 ... 8), phi33_5mm (5 mm,
 #          a = 1.5, 3, 5), phi36_5mm (a = 0.5, 1, 1.5, 3), phi36_2p5mm
 #          (a = 0.5, 1), phi36_2p5mm_a1p5, phi36_5mm_a5 and phi36_5mm_a8
-#          (one column each: 25 to 55 min), grid (phi 30 and 33: a = 0.5 and 1 at 5 mm,
+#          (one column each: 25 to 55 min), phi36_1p25mm_a0p5 (a = 0.5 at
+#          1.25 mm: 40 cells over its height; about 1 h), grid (phi 30 and 33: a = 0.5 and 1 at 5 mm,
 #          a = 0.5 at 2.5 mm; phi 30: a = 0.5 at 1.25 mm, about 50 min),
 #          halfbui (a = 0.5 with Bui's material, phi 19.8, floor tan 19.8,
 #          grain 0.625 mm: Bui's column at half the size, at 10, 5 and
@@ -37,7 +38,7 @@ cd "$top"
 gen=contrib/granular/make_lube_series.py
 run=contrib/granular/run_collapse_series.sh
 studies=("$@")
-[[ ${#studies[@]} -gt 0 ]] || studies=(phi30 phi33 phi36 phi33_5mm phi36_5mm phi36_2p5mm phi36_2p5mm_a1p5 phi36_5mm_a5 phi36_5mm_a8 grid halfbui grain125 floor wall floor084 dilatancy timestep wellposed)
+[[ ${#studies[@]} -gt 0 ]] || studies=(phi30 phi33 phi36 phi33_5mm phi36_5mm phi36_2p5mm phi36_2p5mm_a1p5 phi36_1p25mm_a0p5 phi36_5mm_a5 phi36_5mm_a8 grid halfbui grain125 floor wall floor084 dilatancy timestep wellposed)
 
 variant() { # study name cell sed-expression: phi 30, a = 0.5, edited input
   local study=$1 name=$2 cell=$3 expr=$4
@@ -76,6 +77,7 @@ for s in "${studies[@]}"; do
     phi36_5mm) series "$s" 0.005 36 "0.5 1 1.5 3" ;;
     phi36_2p5mm) series "$s" 0.0025 36 "0.5 1" ;;
     phi36_2p5mm_a1p5) series "$s" 0.0025 36 "1.5" ;;
+    phi36_1p25mm_a0p5) series "$s" 0.00125 36 "0.5" ;;
     phi36_5mm_a5) series "$s" 0.005 36 "5" ;;
     phi36_5mm_a8) series "$s" 0.005 36 "8" ;;
     grid)

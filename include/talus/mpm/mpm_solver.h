@@ -708,6 +708,8 @@ namespace Talus
         ContactState              state;
         dealii::Tensor<1, dim>    slip_direction;
         unsigned int              switches;
+        /** Held in its state after too many changes in this step. */
+        bool held = false;
       };
       std::vector<FrictionNode> friction_nodes;
       /** normal dof -> index in friction_nodes */
