@@ -777,7 +777,10 @@ namespace Talus
           {
             {
               dealii::TimerOutput::Scope s(timer, "output");
-              output.write(time_control.time, grid, points);
+              output.write(time_control.time,
+                           grid,
+                           points,
+                           &solver.grid_velocity());
             }
             if (!test_mode)
               {

@@ -3,12 +3,14 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <deal.II/numerics/data_component_interpretation.h>
 #include <deal.II/numerics/data_out.h>
 
 #include <deal.II/particles/data_out.h>
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace Talus
 {
@@ -35,14 +37,19 @@ namespace Talus
                           "vtu",
                           Patterns::Selection("vtu|hdf5|none"),
                           "'vtu': VTU pieces + PVTU + PVD (ParaView); 'hdf5': "
-                          "one HDF5 file per output + an XDMF index; 'none': "
-                          "no visualization files (the CSV time series is "
-                          "always written).");
+                          "one HDF5 file per output + an XDMF index (with "
+                          "several MPI ranks only while every rank owns "
+                          "material points: deal.II 9.4's parallel writer "
+                          "hangs otherwise, which is reported as an error); "
+                          "'none': no visualization files (the CSV time "
+                          "series is always written).");
         prm.declare_entry("write grid",
                           "true",
                           Patterns::Bool(),
                           "Also write the background grid with the number of "
-                          "material points per cell.");
+                          "material points per cell, the subdomain and the "
+                          "nodal grid velocity of the last step (the "
+                          "velocity the points moved with).");
       }
       prm.leave_subsection();
     }
@@ -92,9 +99,11 @@ namespace Talus
 
     template <int dim>
     void
-    VisualizationOutput<dim>::write(const double                    time,
-                                    const MPM::BackgroundGrid<dim> &grid,
-                                    const MPM::MaterialPoints<dim> &points)
+    VisualizationOutput<dim>::write(
+      const double                                 time,
+      const MPM::BackgroundGrid<dim>              &grid,
+      const MPM::MaterialPoints<dim>              &points,
+      const dealii::TrilinosWrappers::MPI::Vector *grid_velocity)
     {
       last_output_time = time;
       if (!enabled)
@@ -121,9 +130,23 @@ namespace Talus
                   handler.n_particles_in_cell(cell);
                 subdomain(cell->active_cell_index()) = cell->subdomain_id();
               }
-          grid_out.attach_triangulation(grid.triangulation);
-          grid_out.add_data_vector(n_points, "material_points");
-          grid_out.add_data_vector(subdomain, "subdomain");
+          grid_out.attach_dof_handler(grid.dof_handler);
+          grid_out.add_data_vector(n_points,
+                                   "material_points",
+                                   dealii::DataOut<dim>::type_cell_data);
+          grid_out.add_data_vector(subdomain,
+                                   "subdomain",
+                                   dealii::DataOut<dim>::type_cell_data);
+          if (grid_velocity != nullptr && grid_velocity->size() > 0)
+            grid_out.add_data_vector(
+              *grid_velocity,
+              std::vector<std::string>(dim, "grid_velocity"),
+              dealii::DataOut<dim>::type_dof_data,
+              std::vector<dealii::DataComponentInterpretation::
+                            DataComponentInterpretation>(
+                dim,
+                dealii::DataComponentInterpretation::
+                  component_is_part_of_vector));
           grid_out.build_patches();
         }
 
@@ -152,6 +175,23 @@ namespace Talus
         }
       else
         {
+          // deal.II 9.4's parallel HDF5 writer hangs when a rank has no
+          // patches (its collective calls no longer match: measured with
+          // 2 ranks and all material points on one); stop with a message
+          // instead.
+          const unsigned int empty_ranks = dealii::Utilities::MPI::sum(
+            handler.n_locally_owned_particles() == 0 ? 1u : 0u, comm);
+          if (dealii::Utilities::MPI::n_mpi_processes(comm) > 1 &&
+              empty_ranks > 0)
+            {
+              std::ostringstream allowed;
+              allowed << "at t = " << time << " s, " << empty_ranks << " of "
+                      << dealii::Utilities::MPI::n_mpi_processes(comm)
+                      << " MPI ranks own no material points, and the "
+                         "parallel HDF5 writer of deal.II 9.4 hangs then; "
+                         "use 'vtu' with several ranks (or 'hdf5' on one)";
+              InputFile::reject("Output", "format", format, allowed.str());
+            }
           const std::string number =
             dealii::Utilities::int_to_string(counter, 5);
           {

@@ -2992,6 +2992,20 @@ namespace Talus
       // velocity the boundary removes (with dv alone they kept it and
       // handed it back to the free nodes of their cell at every P2G).
       // Elsewhere v_P2G = v_n exactly and the increment is dv.
+      {
+        // end-of-step grid velocity v_n + dv (zero without mass)
+        dealii::TrilinosWrappers::MPI::Vector v(grid.locally_owned_dofs,
+                                                grid.mpi_communicator);
+        if (!quasi_static)
+          for (const auto i : grid.locally_owned_dofs)
+            if (nodal_mass(i) > 0.)
+              v(i) = velocity_n(i) + dv(i);
+        v.compress(dealii::VectorOperation::insert);
+        committed_grid_velocity.reinit(grid.locally_owned_dofs,
+                                       grid.locally_relevant_dofs,
+                                       grid.mpi_communicator);
+        committed_grid_velocity = v;
+      }
       dealii::TrilinosWrappers::MPI::Vector dv_flip(dv_ghosted);
       if (!quasi_static)
         {

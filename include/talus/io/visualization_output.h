@@ -7,6 +7,8 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <deal.II/lac/trilinos_vector.h>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,10 +45,18 @@ namespace Talus
       bool
       due(const double time) const;
 
+      /**
+       * Write the material points and (with 'write grid') the background
+       * grid with the number of points per cell, the subdomain and, when
+       * @p grid_velocity is given and not empty, the nodal grid velocity
+       * of the last step (MPM::MPMSolver::grid_velocity()).
+       */
       void
-      write(const double                    time,
-            const MPM::BackgroundGrid<dim> &grid,
-            const MPM::MaterialPoints<dim> &points);
+      write(
+        const double                                 time,
+        const MPM::BackgroundGrid<dim>              &grid,
+        const MPM::MaterialPoints<dim>              &points,
+        const dealii::TrilinosWrappers::MPI::Vector *grid_velocity = nullptr);
 
       const std::string &
       directory() const

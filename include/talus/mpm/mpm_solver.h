@@ -175,6 +175,18 @@ namespace Talus
       Diagnostics<dim>
       compute_diagnostics() const;
 
+      /**
+       * Nodal grid velocity at the end of the last committed step [m/s]
+       * (ghosted, on grid.dof_handler; zero where a node had no mass). The
+       * velocity the points were moved with (v_p = sum_I N_I v_I), for the
+       * grid output. Empty before the first step.
+       */
+      const dealii::TrilinosWrappers::MPI::Vector &
+      grid_velocity() const
+      {
+        return committed_grid_velocity;
+      }
+
       /** Gravity vector [m/s^2]. */
       const dealii::Tensor<1, dim> &
       gravity() const
@@ -758,6 +770,8 @@ namespace Talus
       dealii::TrilinosWrappers::MPI::Vector increment;        // owned
       dealii::TrilinosWrappers::MPI::Vector displacement;     // ghosted du
       dealii::TrilinosWrappers::MPI::Vector acceleration_new; // ghosted
+      /** v_n + dv of the last committed step (ghosted); grid_velocity(). */
+      dealii::TrilinosWrappers::MPI::Vector committed_grid_velocity;
 
       Boundaries::BoundaryParticles<dim> *boundary_particles = nullptr;
       std::vector<BoundaryPoint>          boundary_points;
