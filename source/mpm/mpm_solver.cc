@@ -1934,6 +1934,14 @@ namespace Talus
       unsigned int changed    = 0;
       std::vector<std::pair<dealii::types::global_dof_index, double>> values;
       std::vector<dealii::types::global_dof_index>                    released;
+      // Project the increment onto the constraints of a node's new state.
+      const auto project_increment = [&](const FrictionNode &fn) {
+        if (fn.state != ContactState::free)
+          values.emplace_back(fn.normal_dof, 0.);
+        if (fn.state == ContactState::stick)
+          for (const auto t : fn.tangential_dofs)
+            values.emplace_back(t, resting_increment(t));
+      };
       for (auto &fn : friction_nodes)
         {
           if (!fn.owned || nodal_mass(fn.normal_dof) <= 0.)
@@ -2024,10 +2032,7 @@ namespace Talus
               fn.slip_direction = old_direction;
               if (fn.state != old_state)
                 {
-                  // project the increment onto the stick constraint
-                  values.emplace_back(fn.normal_dof, 0.);
-                  for (const auto t : fn.tangential_dofs)
-                    values.emplace_back(t, resting_increment(t));
+                  project_increment(fn);
                   ++changed;
                 }
               if (!fn.held)
@@ -2042,12 +2047,7 @@ namespace Talus
           if (old_state != ContactState::free &&
               fn.state == ContactState::free && !quasi_static)
             released.push_back(fn.normal_dof);
-          // Project the increment onto the new constraints.
-          if (fn.state != ContactState::free)
-            values.emplace_back(fn.normal_dof, 0.);
-          if (fn.state == ContactState::stick)
-            for (const auto t : fn.tangential_dofs)
-              values.emplace_back(t, resting_increment(t));
+          project_increment(fn);
         }
       changed = dealii::Utilities::MPI::sum(changed, grid.mpi_communicator);
       if (changed == 0)
