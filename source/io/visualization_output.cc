@@ -1,6 +1,7 @@
 #include <talus/base/input.h>
 #include <talus/io/visualization_output.h>
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
 #include <deal.II/numerics/data_component_interpretation.h>
@@ -37,10 +38,9 @@ namespace Talus
                           "vtu",
                           Patterns::Selection("vtu|hdf5|none"),
                           "'vtu': VTU pieces + PVTU + PVD (ParaView); 'hdf5': "
-                          "one HDF5 file per output + an XDMF index (with "
-                          "several MPI ranks only while every rank owns "
-                          "material points: deal.II 9.4's parallel writer "
-                          "hangs otherwise, which is reported as an error); "
+                          "one HDF5 file per output + an XDMF index, "
+                          "written in parallel by the ranks that own material "
+                          "points (grid cells); "
                           "'none': no visualization files (the CSV time "
                           "series is always written).");
         prm.declare_entry("write grid",
@@ -175,50 +175,85 @@ namespace Talus
         }
       else
         {
-          // deal.II 9.4's parallel HDF5 writer hangs when a rank has no
-          // patches (its collective calls no longer match: measured with
-          // 2 ranks and all material points on one); stop with a message
-          // instead.
-          const unsigned int empty_ranks = dealii::Utilities::MPI::sum(
-            handler.n_locally_owned_particles() == 0 ? 1u : 0u, comm);
-          if (dealii::Utilities::MPI::n_mpi_processes(comm) > 1 &&
-              empty_ranks > 0)
-            {
-              std::ostringstream allowed;
-              allowed << "at t = " << time << " s, " << empty_ranks << " of "
-                      << dealii::Utilities::MPI::n_mpi_processes(comm)
-                      << " MPI ranks own no material points, and the "
-                         "parallel HDF5 writer of deal.II 9.4 hangs then; "
-                         "use 'vtu' with several ranks (or 'hdf5' on one)";
-              InputFile::reject("Output", "format", format, allowed.str());
-            }
           const std::string number =
             dealii::Utilities::int_to_string(counter, 5);
           {
             dealii::DataOutBase::DataOutFilter filter(
               dealii::DataOutBase::DataOutFilterFlags(false, true));
             particle_out.write_filtered_data(filter);
-            const std::string h5 = "particles-" + number + ".h5";
-            particle_out.write_hdf5_parallel(filter, dir + h5, comm);
-            particle_xdmf.push_back(
-              particle_out.create_xdmf_entry(filter, h5, time, comm));
-            particle_out.write_xdmf_file(particle_xdmf,
-                                         dir + "particles.xdmf",
-                                         comm);
+            write_hdf5(particle_out,
+                       filter,
+                       handler.n_locally_owned_particles() > 0,
+                       "particles",
+                       number,
+                       time,
+                       comm,
+                       particle_xdmf);
           }
           if (write_grid)
             {
               dealii::DataOutBase::DataOutFilter filter(
                 dealii::DataOutBase::DataOutFilterFlags(true, true));
               grid_out.write_filtered_data(filter);
-              const std::string h5 = "grid-" + number + ".h5";
-              grid_out.write_hdf5_parallel(filter, dir + h5, comm);
-              grid_xdmf.push_back(
-                grid_out.create_xdmf_entry(filter, h5, time, comm));
-              grid_out.write_xdmf_file(grid_xdmf, dir + "grid.xdmf", comm);
+              write_hdf5(grid_out,
+                         filter,
+                         grid.triangulation.n_locally_owned_active_cells() > 0,
+                         "grid",
+                         number,
+                         time,
+                         comm,
+                         grid_xdmf);
             }
         }
       ++counter;
+    }
+
+
+    template <int dim>
+    template <typename DataOutType>
+    void
+    VisualizationOutput<dim>::write_hdf5(
+      const DataOutType                        &data_out,
+      const dealii::DataOutBase::DataOutFilter &filter,
+      const bool                                has_data,
+      const std::string                        &name,
+      const std::string                        &number,
+      const double                              time,
+      const MPI_Comm                            comm,
+      std::vector<dealii::XDMFEntry>           &entries) const
+    {
+      // deal.II 9.4's parallel HDF5 writer hangs when a rank of its
+      // communicator has no patches (its collective calls no longer match:
+      // measured with 2 ranks and all material points on one). Write with
+      // the sub-communicator of the ranks that have data, and hand the
+      // XDMF entry from the first of them to every rank, so that rank 0
+      // writes the index whether or not it has data itself.
+      const unsigned int rank = dealii::Utilities::MPI::this_mpi_process(comm);
+      const unsigned int first_with_data = dealii::Utilities::MPI::min(
+        has_data ? rank : dealii::numbers::invalid_unsigned_int, comm);
+      if (first_with_data == dealii::numbers::invalid_unsigned_int)
+        return; // nothing to write on any rank (e.g. every point lost)
+      MPI_Comm  writers;
+      const int ierr = MPI_Comm_split(comm,
+                                      has_data ? 0 : MPI_UNDEFINED,
+                                      static_cast<int>(rank),
+                                      &writers);
+      AssertThrowMPI(ierr);
+      const std::string h5 = name + "-" + number + ".h5";
+      dealii::XDMFEntry entry;
+      if (has_data)
+        {
+          data_out.write_hdf5_parallel(filter,
+                                       output_directory + "/" + h5,
+                                       writers);
+          entry = data_out.create_xdmf_entry(filter, h5, time, writers);
+          MPI_Comm_free(&writers);
+        }
+      entries.push_back(
+        dealii::Utilities::MPI::broadcast(comm, entry, first_with_data));
+      data_out.write_xdmf_file(entries,
+                               output_directory + "/" + name + ".xdmf",
+                               comm);
     }
 
 

@@ -67,6 +67,22 @@ namespace Talus
       double output_interval = 0.;
 
     private:
+      /**
+       * Write one HDF5 file `name`-`number`.h5 of @p data_out with the ranks
+       * that have data (@p has_data) and rewrite `name`.xdmf with the new
+       * entry appended to @p entries (kept on every rank).
+       */
+      template <typename DataOutType>
+      void
+      write_hdf5(const DataOutType                        &data_out,
+                 const dealii::DataOutBase::DataOutFilter &filter,
+                 bool                                      has_data,
+                 const std::string                        &name,
+                 const std::string                        &number,
+                 double                                    time,
+                 MPI_Comm                                  comm,
+                 std::vector<dealii::XDMFEntry>           &entries) const;
+
       std::string                                 output_directory;
       std::string                                 format;
       bool                                        write_grid       = true;
