@@ -677,13 +677,17 @@ namespace Talus
               {
                 std::ostringstream msg;
                 msg << "The step from t = " << time_control.time
-                    << " s could not be solved after "
-                    << time_control.max_halvings
+                    << " s could not be solved after " << time_control.halvings
                     << " halvings of the time step (last dt = " << dt_try
-                    << " s): " << result.failure
-                    << ". Reduce 'time step' in subsection <Time>, raise "
-                       "'maximum step halvings' or 'maximum Newton "
-                       "iterations', or check the material parameters.";
+                    << " s";
+                if (time_control.halvings < time_control.max_halvings)
+                  msg << "; half of it is below the 'minimum time step' of "
+                      << time_control.min_dt << " s";
+                msg << "): " << result.failure
+                    << ". Raise 'maximum Newton iterations' in subsection "
+                       "<Solver>, reduce 'time step' or 'minimum time step' "
+                       "or raise 'maximum step halvings' in subsection "
+                       "<Time>, or check the material parameters.";
                 throw ExcSimulationFailed(msg.str());
               }
             pcout << "    retrying with dt = " << time_control.next_step()

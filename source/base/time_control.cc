@@ -78,6 +78,16 @@ namespace Talus
                         "How often a step whose Newton iteration failed is "
                         "retried with half the step before the run stops "
                         "with an error [-], 0 to 30.");
+      prm.declare_entry(
+        "minimum time step",
+        "0",
+        Double(0.),
+        "Smallest step a halved (or adaptive) step may take [s], >= 0 and "
+        "at most 'time step'; 0: 'time step' / 2^'maximum step halvings'. "
+        "A step that fails at this size stops the run with an error. "
+        "Without the bound, an adaptive step that is rejected more often "
+        "than it grows back (every 'steps before growth' steps) ratchets "
+        "down without limit and the run stalls.");
       prm.declare_entry("steps before growth",
                         "10",
                         Integer(1),
@@ -93,12 +103,20 @@ namespace Talus
   TimeControl::parse_parameters(dealii::ParameterHandler &prm)
   {
     prm.enter_subsection("Time");
-    end_time            = get_positive(prm, "Time", "end time");
-    initial_dt          = get_positive(prm, "Time", "time step");
-    dt                  = initial_dt;
-    adaptive            = prm.get_bool("adaptive time step");
-    max_halvings        = prm.get_integer("maximum step halvings");
-    steps_before_growth = prm.get_integer("steps before growth");
+    end_time             = get_positive(prm, "Time", "end time");
+    initial_dt           = get_positive(prm, "Time", "time step");
+    dt                   = initial_dt;
+    adaptive             = prm.get_bool("adaptive time step");
+    max_halvings         = prm.get_integer("maximum step halvings");
+    steps_before_growth  = prm.get_integer("steps before growth");
+    const double minimum = prm.get_double("minimum time step");
+    if (minimum > initial_dt)
+      InputFile::reject("Time",
+                        "minimum time step",
+                        prm.get("minimum time step"),
+                        "it must not exceed 'time step' (" +
+                          prm.get("time step") + " s)");
+    min_dt = minimum > 0. ? minimum : std::ldexp(initial_dt, -max_halvings);
     newmark.parse_parameters(prm);
     prm.leave_subsection();
   }
@@ -120,7 +138,7 @@ namespace Talus
   bool
   TimeControl::reject()
   {
-    if (halvings >= max_halvings)
+    if (halvings >= max_halvings || dt / 2. < min_dt * (1. - 1e-12))
       return false;
     ++halvings;
     dt /= 2.;

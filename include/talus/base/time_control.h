@@ -62,10 +62,14 @@ namespace Talus
    * Time stepping: end time, initial (or fixed) step, and the rejection of
    * failed steps. A step whose Newton iteration fails is retried with half
    * the step, at most 'maximum step halvings' times, each retry reported;
-   * after that the run stops with an error. A fixed step returns to its
-   * value after the halved step succeeded; with 'adaptive time step' the
-   * step grows back by a factor 2 (never above the initial step) after
-   * 'steps before growth' successful steps.
+   * after that, or when the halved step would fall below 'minimum time
+   * step' (default: the initial step / 2^'maximum step halvings'), the run
+   * stops with an error. A fixed step returns to its value after the
+   * halved step succeeded; with 'adaptive time step' the step grows back
+   * by a factor 2 (never above the initial step) after 'steps before
+   * growth' successful steps, and the minimum keeps a step that is
+   * rejected more often than it grows from ratcheting down until the run
+   * stalls.
    */
   class TimeControl
   {
@@ -82,7 +86,8 @@ namespace Talus
     next_step() const;
 
     /** The attempted step failed: halve it. Returns false if the number
-     * of halvings is exhausted. */
+     * of halvings is exhausted or the halved step would be smaller than
+     * min_dt. */
     bool
     reject();
 
@@ -98,6 +103,7 @@ namespace Talus
     double       end_time            = 1.;
     double       initial_dt          = 0.1;
     double       dt                  = 0.1;
+    double       min_dt              = 0.1 / 32.;
     unsigned int step                = 0;
     unsigned int halvings            = 0;
     unsigned int max_halvings        = 5;
