@@ -83,11 +83,12 @@ namespace Talus
         "0",
         Double(0.),
         "Smallest step a halved (or adaptive) step may take [s], >= 0 and "
-        "at most 'time step'; 0: 'time step' / 2^'maximum step halvings'. "
-        "A step that fails at this size stops the run with an error. "
-        "Without the bound, an adaptive step that is rejected more often "
-        "than it grows back (every 'steps before growth' steps) ratchets "
-        "down without limit and the run stalls.");
+        "at most 'time step'; 0: 'time step' x min(1e-3, "
+        "2^-'maximum step halvings'). A step that fails at this size stops "
+        "the run with an error. Without the bound, an adaptive step that "
+        "is rejected more often than it grows back (every 'steps before "
+        "growth' steps) can ratchet down without limit and the run "
+        "stalls.");
       prm.declare_entry("steps before growth",
                         "10",
                         Integer(1),
@@ -116,7 +117,9 @@ namespace Talus
                         prm.get("minimum time step"),
                         "it must not exceed 'time step' (" +
                           prm.get("time step") + " s)");
-    min_dt = minimum > 0. ? minimum : std::ldexp(initial_dt, -max_halvings);
+    min_dt = minimum > 0. ?
+               minimum :
+               initial_dt * std::min(1e-3, std::ldexp(1., -max_halvings));
     newmark.parse_parameters(prm);
     prm.leave_subsection();
   }

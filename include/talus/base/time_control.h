@@ -63,7 +63,8 @@ namespace Talus
    * failed steps. A step whose Newton iteration fails is retried with half
    * the step, at most 'maximum step halvings' times, each retry reported;
    * after that, or when the halved step would fall below 'minimum time
-   * step' (default: the initial step / 2^'maximum step halvings'), the run
+   * step' (default: the initial step x min(1e-3, 2^-'maximum step
+   * halvings')), the run
    * stops with an error. A fixed step returns to its value after the
    * halved step succeeded; with 'adaptive time step' the step grows back
    * by a factor 2 (never above the initial step) after 'steps before
