@@ -64,10 +64,9 @@ namespace Talus
    * the step, at most 'maximum step halvings' times, each retry reported;
    * after that, or when the halved step would fall below 'minimum time
    * step' (default: the initial step x min(1e-3, 2^-'maximum step
-   * halvings')), the run
-   * stops with an error. A fixed step returns to its value after the
-   * halved step succeeded; with 'adaptive time step' the step grows back
-   * by a factor 2 (never above the initial step) after 'steps before
+   * halvings')), the run stops with an error. A fixed step returns to its
+   * value after the halved step succeeded; with 'adaptive time step' the step
+   * grows back by a factor 2 (never above the initial step) after 'steps before
    * growth' successful steps, and the minimum keeps a step that is
    * rejected more often than it grows from ratcheting down until the run
    * stalls.
@@ -104,7 +103,7 @@ namespace Talus
     double       end_time            = 1.;
     double       initial_dt          = 0.1;
     double       dt                  = 0.1;
-    double       min_dt              = 0.1 / 32.;
+    double       min_dt              = 0.1 * 1e-3;
     unsigned int step                = 0;
     unsigned int halvings            = 0;
     unsigned int max_halvings        = 5;
