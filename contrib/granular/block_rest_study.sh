@@ -32,12 +32,16 @@
 # (OUT=dir: elsewhere). Cells 0.1, 0.05 and 0.025 m by default (CELLS="0.1
 # 0.05 0.025 0.0125": also 12.5 mm, about 10 min per variant there). About
 # 15 min on one core for the default variants and cells.
-#   usage: [CELLS="..."] [RESIDUAL_TOLERANCE=1e-6] bash contrib/granular/block_rest_study.sh [VARIANT...]
+# PREDICTOR=zero starts Newton from du = 0 (the default before 2026-12-03;
+# every result of the csv before that date); default automatic (here: the
+# Newmark predictor, no boundary particles).
+#   usage: [CELLS="..."] [RESIDUAL_TOLERANCE=1e-6] [PREDICTOR=zero] bash contrib/granular/block_rest_study.sh [VARIANT...]
 set -euo pipefail
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 cd "$top"
 talus=${TALUS:-build/talus}
 tolerance=${RESIDUAL_TOLERANCE:-1e-6}
+predictor=${PREDICTOR:-automatic}
 out=${OUT:-output/block_rest_study}
 mkdir -p "$out"
 variants=("$@")
@@ -96,6 +100,7 @@ subsection Solver
   set line search = true
   set maximum Newton iterations = 40
   set residual tolerance = $tolerance
+  set predictor = $predictor
 $extra_solver
 end
 subsection Time

@@ -4,11 +4,15 @@
 #
 #   usage (repository top):
 #     bash contrib/granular/time_to_solution.sh [-n "1 2"] [-d DT] [-o DIR] \
-#       LABEL=BUILD_DIR [LABEL=BUILD_DIR ...] -- input.prm [input.prm ...]
+#       LABEL=BUILD_DIR[%Section/parameter=value] [LABEL=... ...] -- input.prm ...
 #   LABEL=BUILD_DIR  a name and a Release build directory holding talus and
 #                    libtalus-lib.so (e.g. base=/work/wt-base/build
 #                    new=build); each run loads the library of its own build
-#                    (LD_LIBRARY_PATH, which precedes talus' RUNPATH)
+#                    (LD_LIBRARY_PATH, which precedes talus' RUNPATH).
+#                    LABEL=BUILD_DIR%Section/parameter=value sets a
+#                    parameter of a top-level subsection for this label's
+#                    runs (A/B of a setting with one build, e.g.
+#                    zero=build%Solver/predictor=zero predicted=build)
 #   -n RANKS         MPI rank counts (default "1")
 #   -d DT            override the inputs' 'time step' (largest step) [s]
 #   -o DIR           output root (default output/time_to_solution)
@@ -29,16 +33,16 @@ while getopts "n:d:o:h" opt; do
     n) ranks=$OPTARG ;;
     d) dt=$OPTARG ;;
     o) out=$OPTARG ;;
-    *) sed -n '2,21p' "$0"; exit 2 ;;
+    *) sed -n '2,25p' "$0"; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
 builds=()
 while [[ $# -gt 0 && $1 != "--" ]]; do builds+=("$1"); shift; done
 [[ $# -gt 0 ]] && shift
-[[ ${#builds[@]} -gt 0 && $# -gt 0 ]] || { sed -n '2,21p' "$0"; exit 2; }
+[[ ${#builds[@]} -gt 0 && $# -gt 0 ]] || { sed -n '2,25p' "$0"; exit 2; }
 for b in "${builds[@]}"; do
-  dir=${b#*=}
+  dir=${b#*=}; dir=${dir%%%*}
   [[ -x $dir/talus && -e $dir/libtalus-lib.so ]] ||
     { echo "time_to_solution.sh: no talus / libtalus-lib.so in <$dir>" >&2; exit 1; }
 done
@@ -57,11 +61,20 @@ for input in "$@"; do
   name=$(basename "$input" .prm)
   for np in $ranks; do
     for b in "${builds[@]}"; do
-      label=${b%%=*}; dir=$(cd "${b#*=}" && pwd)
+      label=${b%%=*}; spec=${b#*=}; dir=$(cd "${spec%%%*}" && pwd)
       run=$out/${name}_${label}_np$np
       mkdir -p "$run"
       sed -e "s|^\( *set output directory = \).*|\1$run|" \
           -e "s|^\( *set format = \).*|\1none|" "$input" > "$run/input.prm"
+      if [[ $spec == *%* ]]; then
+        setting=${spec#*%}; section=${setting%%/*}; assignment=${setting#*/}
+        if grep -q "^subsection $section\$" "$run/input.prm"; then
+          sed -i "/^subsection $section\$/a\\  set ${assignment%%=*} = ${assignment#*=}" "$run/input.prm"
+        else
+          printf 'subsection %s\n  set %s = %s\nend\n' "$section" \
+            "${assignment%%=*}" "${assignment#*=}" >> "$run/input.prm"
+        fi
+      fi
       [[ -n $dt ]] && sed -i "s|^\( *set time step = \).*|\1$dt|" "$run/input.prm"
       step=$(sed -n 's|^ *set time step = *||p' "$run/input.prm")
       start=$(date +%s.%N)

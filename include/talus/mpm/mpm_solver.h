@@ -688,6 +688,12 @@ namespace Talus
 
       /** Backtracking line search in Newton's method. */
       bool   line_search   = false;
+      /**
+       * Newton's initial guess: "zero", "constant acceleration" (du = dt v_n
+       * + dt^2/2 a_n) or "automatic" (the latter without boundary
+       * particles, zero with them).
+       */
+      std::string predictor = "automatic";
       double flip_fraction = 1.;
       /** Affine particle-in-cell velocity update instead of FLIP. */
       bool apic = false;
