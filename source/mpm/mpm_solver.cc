@@ -518,7 +518,7 @@ namespace Talus
       abort_on_lost_points  = prm.get_bool("abort on lost material points");
       use_fbar      = prm.get("volumetric locking treatment") == "F-bar";
       line_search   = prm.get_bool("line search");
-      predictor = prm.get("predictor");
+      predictor     = prm.get("predictor");
       flip_fraction = prm.get_double("FLIP fraction");
       apic          = prm.get("velocity update") == "APIC";
       xpic_order    = prm.get("velocity update") == "XPIC" ?
@@ -2599,7 +2599,7 @@ namespace Talus
       displacement            = du;
       const double f_ext_norm = external_force.l2_norm();
       double       reference  = 0.;
-      const bool newmark_predictor =
+      const bool   newmark_predictor =
         predictor == "constant acceleration" ||
         (predictor == "automatic" && boundary_particles == nullptr);
       if (newmark_predictor && !quasi_static)

@@ -687,14 +687,14 @@ namespace Talus
       bool use_fbar = false;
 
       /** Backtracking line search in Newton's method. */
-      bool   line_search   = false;
+      bool line_search = false;
       /**
        * Newton's initial guess: "zero", "constant acceleration" (du = dt v_n
        * + dt^2/2 a_n) or "automatic" (the latter without boundary
        * particles, zero with them).
        */
-      std::string predictor = "automatic";
-      double flip_fraction = 1.;
+      std::string predictor     = "automatic";
+      double      flip_fraction = 1.;
       /** Affine particle-in-cell velocity update instead of FLIP. */
       bool apic = false;
       /** Order m of the XPIC velocity update; 0: not used. */
