@@ -68,6 +68,10 @@ for input in "$@"; do
           -e "s|^\( *set format = \).*|\1none|" "$input" > "$run/input.prm"
       if [[ $spec == *%* ]]; then
         setting=${spec#*%}; section=${setting%%/*}; assignment=${setting#*/}
+        if [[ $setting != */*=* ]]; then
+          echo "time_to_solution.sh: <$b>: the override must read Section/parameter=value" >&2
+          exit 2
+        fi
         if grep -q "^subsection $section\$" "$run/input.prm"; then
           sed -i "/^subsection $section\$/a\\  set ${assignment%%=*} = ${assignment#*=}" "$run/input.prm"
         else

@@ -403,7 +403,7 @@ namespace Talus
           "Measured (doc/performance.md, 'Newton predictor'): the Bui "
           "collapse at 5 mm needs 4.4 instead of 5.8 Newton iterations per "
           "step, the plane-strain granular block of "
-          "contrib/granular/block_rest_study.sh at 25 mm 686 instead of 1329 "
+          "contrib/granular/block_rest_study.sh at 25 mm 670 instead of 1329 "
           "steps; the 3D block on the plane of boundary particles "
           "(benchmarks/granular_3d/block_on_rotated_plane.prm) is slower "
           "with it (more rejected steps), hence 'zero' there. Quasi-static "
