@@ -50,6 +50,14 @@ namespace Talus
 
 
 
+    unsigned int
+    ConstitutiveModel::return_branch(
+      const dealii::ArrayView<const double> & /*history*/) const
+    {
+      return 0;
+    }
+
+
     std::vector<std::string>
     ConstitutiveModel::history_names() const
     {

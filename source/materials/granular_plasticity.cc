@@ -255,6 +255,16 @@ namespace Talus
 
 
 
+    unsigned int
+    GranularPlasticity::return_branch(
+      const dealii::ArrayView<const double> &history) const
+    {
+      AssertDimension(history.size(), n_history_variables());
+      return static_cast<unsigned int>(history[return_type_index] + 0.5);
+    }
+
+
+
     double
     GranularPlasticity::p_wave_modulus() const
     {

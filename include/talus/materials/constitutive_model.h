@@ -113,6 +113,18 @@ namespace Talus
                      dealii::Tensor<4, 3>                  *A) const = 0;
 
       /**
+       * Branch of the return mapping taken by the stress update that wrote
+       * @p history (0: elastic; plastic models number their branches, e.g.
+       * plane, edge, apex). The Newton iteration counts the material points
+       * whose branch changes from one iterate to the next: iterations with
+       * such changes do not count toward the ordinary iteration limit
+       * (MPMSolver, 'maximum Newton iterations with state changes'). The
+       * default returns 0 (one branch).
+       */
+      virtual unsigned int
+      return_branch(const dealii::ArrayView<const double> &history) const;
+
+      /**
        * Stored (elastic) energy per unit reference volume [J/m^3] at the
        * accepted state (F, history).
        */

@@ -275,6 +275,14 @@ namespace Talus
       std::vector<std::string>
       history_names() const override;
 
+      /**
+       * The return type stored in the history: 0 elastic, then plane,
+       * edges and apex of the yield surface (see principal_return()).
+       */
+      unsigned int
+      return_branch(
+        const dealii::ArrayView<const double> &history) const override;
+
       /** Return mapping, P and (if A is not nullptr) the consistent dP/dF. */
       void
       compute_stress(const dealii::Tensor<2, 3>            &F_old,

@@ -530,6 +530,21 @@ namespace Talus
       external_acceleration(const dealii::Point<dim> &X, const double t) const;
 
       /**
+       * Record the return branch of material point @p k (index into
+       * particles) from its trial @p history in a Newton assembly, and
+       * count a change against the previous assembly.
+       */
+      void
+      record_branch(const unsigned int                     k,
+                    const dealii::ArrayView<const double> &history) const;
+
+      /** Return branch of every point at the last Newton assembly (-1:
+       * none yet in this solve), and the number of changes counted by the
+       * current assembly. */
+      mutable std::vector<int> point_branches;
+      mutable unsigned int     branch_changes = 0;
+
+      /**
        * Internal force and (if @p k_local is not nullptr) its derivative
        * for the points of cell @p c with the F-bar treatment: the
        * incremental deformation gradient f_p = I + grad(du) of every point
@@ -614,6 +629,7 @@ namespace Talus
       std::unique_ptr<dealii::Functions::ParsedFunction<dim>> body_force;
       double                                                  load_ramp_time;
       unsigned int max_newton_iterations;
+      unsigned int max_state_change_newton_iterations;
       double       residual_tolerance;
       double       absolute_residual_tolerance;
       double       increment_tolerance;
