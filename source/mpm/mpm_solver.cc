@@ -968,6 +968,22 @@ namespace Talus
                 if (!constraints.is_constrained(t))
                   constraints.add_line(t);
           }
+      if (contact_jump_active)
+        for (const auto &fn : friction_nodes)
+          if (fn.state != ContactState::free)
+            {
+              const auto set = [&](const dealii::types::global_dof_index i) {
+                const double g = contact_jump(i);
+                if (g != 0. && constraints.is_constrained(i) &&
+                    constraints.get_constraint_entries(i) != nullptr &&
+                    constraints.get_constraint_entries(i)->empty())
+                  constraints.set_inhomogeneity(i, g);
+              };
+              set(fn.normal_dof);
+              if (fn.state == ContactState::stick)
+                for (const auto t : fn.tangential_dofs)
+                  set(t);
+            }
       for (const auto i : grid.locally_owned_dofs)
         if (!constraints.is_constrained(i))
           ++n_active;
@@ -2122,9 +2138,19 @@ namespace Talus
       if (changed == 0)
         return 0;
       {
-        Epetra_FEVector &e = du.trilinos_vector();
+        // The new states' values enter the next correction as
+        // inhomogeneous constraints (make_constraints()).
+        contact_targets = values;
+        dealii::TrilinosWrappers::MPI::Vector jump(grid.locally_owned_dofs,
+                                                   grid.mpi_communicator);
+        Epetra_FEVector                      &e = jump.trilinos_vector();
         for (const auto &[i, value] : values)
-          e[0][e.Map().LID(static_cast<int>(i))] = value;
+          e[0][e.Map().LID(static_cast<int>(i))] = value - du(i);
+        contact_jump.reinit(grid.locally_owned_dofs,
+                            grid.locally_relevant_dofs,
+                            grid.mpi_communicator);
+        contact_jump        = jump;
+        contact_jump_active = true;
       }
       if (dealii::Utilities::MPI::sum(released.size(), grid.mpi_communicator) >
           0)
@@ -2729,6 +2755,8 @@ namespace Talus
           if (bp.monolithic)
             bp.frozen = -1;
         }
+      contact_targets.clear();
+      contact_jump_active   = false;
       displacement          = du;
       double last_increment = 0.;
       // contact states are updated only from a solution of the current
@@ -2797,8 +2825,20 @@ namespace Talus
           result.residual = reference > 0. ? r / reference : r;
           if (std::getenv("TALUS_DEBUG_NEWTON"))
             std::cerr << "  Newton " << it << ": " << result.residual << " ("
-                      << changed_branches << " points changed return branch)"
-                      << std::endl;
+                      << changed_branches << " points changed return branch)";
+          if (std::getenv("TALUS_DEBUG_NEWTON"))
+            {
+              // points per branch on this rank: elastic, plane, edge, apex,
+              // tension cut-off
+              unsigned int n_branch[5] = {0, 0, 0, 0, 0};
+              for (const int b : point_branches)
+                if (b >= 0 && b < 5)
+                  ++n_branch[b];
+              std::cerr << " [elastic/plane/edge/apex/cut-off " << n_branch[0]
+                        << '/' << n_branch[1] << '/' << n_branch[2] << '/'
+                        << n_branch[3] << '/' << n_branch[4] << ']'
+                        << std::endl;
+            }
           result.iterations        = it;
           const double du_norm     = du.l2_norm();
           const bool   residual_ok = r <= residual_tolerance * reference ||
@@ -2971,6 +3011,21 @@ namespace Talus
                     if (bp.monolithic)
                       bp.lambda -= step_length * bp.dlambda;
                 }
+            }
+          if (contact_jump_active)
+            {
+              // the constrained dofs reached their targets with the full
+              // correction; after a shortened one they are set to them
+              if (step_length < 1.)
+                {
+                  Epetra_FEVector &e = du.trilinos_vector();
+                  for (const auto &[i, value] : contact_targets)
+                    e[0][e.Map().LID(static_cast<int>(i))] = value;
+                  displacement = du;
+                }
+              contact_targets.clear();
+              contact_jump_active = false;
+              make_constraints();
             }
           last_increment      = step_length * increment.l2_norm();
           solved_since_update = true;

@@ -597,8 +597,11 @@ namespace Talus
       /**
        * Update the contact states from the unconstrained residual and the
        * displacement increment; returns the number of changed nodes (all
-       * ranks) and, if any, updates the constraints and projects the
-       * displacement increment onto them.
+       * ranks) and, if any, updates the constraints. The increments the
+       * new states prescribe are not written into @p du: they become
+       * inhomogeneities of the constraints (target - du), which the next
+       * Newton correction satisfies together with the free nodes
+       * (#contact_targets).
        */
       unsigned int
       update_friction_states(dealii::TrilinosWrappers::MPI::Vector &du);
@@ -709,8 +712,24 @@ namespace Talus
        * + dt^2/2 a_n) or "automatic" (the latter without boundary
        * particles, zero with them).
        */
-      std::string predictor     = "automatic";
-      double      flip_fraction = 1.;
+      std::string predictor = "automatic";
+      /**
+       * Grid dofs whose friction contact state changed in the current Newton
+       * iteration, with the value their increment must take in the new state
+       * (normal 0; tangential: the resting increment of a stuck node).
+       * make_constraints() imposes target - du as the inhomogeneity of their
+       * constraints, so that the next correction moves the free nodes with
+       * them (instead of writing the target into the iterate, which shears
+       * the cells at the node and sends stiff plastic points far past the
+       * yield surface).
+       */
+      std::vector<std::pair<dealii::types::global_dof_index, double>>
+        contact_targets;
+      /** target - du at the dofs of #contact_targets (ghosted). */
+      dealii::TrilinosWrappers::MPI::Vector contact_jump;
+      /** Whether #contact_jump holds jumps to impose. */
+      bool   contact_jump_active = false;
+      double flip_fraction       = 1.;
       /** Affine particle-in-cell velocity update instead of FLIP. */
       bool apic = false;
       /** Order m of the XPIC velocity update; 0: not used. */
