@@ -684,7 +684,10 @@ namespace Talus
                   msg << "; half of it is below the 'minimum time step' of "
                       << time_control.min_dt << " s";
                 msg << "): " << result.failure
-                    << ". Raise 'maximum Newton iterations' in subsection "
+                    << ". Raise 'maximum Newton iterations' (or 'maximum "
+                       "Newton iterations with state changes', the cap "
+                       "including the iterations that change the return "
+                       "branch of material points) in subsection "
                        "<Solver>, reduce 'time step' or 'minimum time step' "
                        "or raise 'maximum step halvings' in subsection "
                        "<Time>, or check the material parameters.";
