@@ -306,7 +306,10 @@ namespace Talus
           "1000. Such iterations do not count toward 'maximum Newton "
           "iterations' (like the severe discontinuity iterations of "
           "Abaqus); a value not above 'maximum Newton iterations' makes "
-          "them count. Plastic granular material near rest converges "
+          "them count, and so do state changes once the residual has not "
+          "reached a new minimum (below 0.9 of the best) for 10 "
+          "iterations (a cycle). Plastic granular material near rest "
+          "converges "
           "erratically but surely while its points settle between the "
           "plane and the apex of the yield surface (20 to 46 iterations at "
           "a 5 ms step in contrib/granular/thin_layer_stop.prm); counted "
@@ -2775,6 +2778,11 @@ namespace Talus
       // material point (not counted toward max_newton_iterations, up to
       // max_state_change_newton_iterations in all).
       unsigned int state_change_iterations = 0;
+      // iterations without a new minimum of the residual after which state
+      // changes no longer extend the iteration
+      constexpr unsigned int stall_iterations = 10;
+      double                 best_residual = std::numeric_limits<double>::max();
+      unsigned int           best_iteration = 0;
       point_branches.assign(particles.size(), -1);
       // changes since the last correction (re-assemblies after contact
       // state updates included)
@@ -2818,7 +2826,17 @@ namespace Talus
             reference = std::max(r, f_ext_norm);
           const unsigned int changed_branches =
             dealii::Utilities::MPI::sum(branch_changes, grid.mpi_communicator);
+          // ... but only while the iteration makes progress: a residual
+          // without a new minimum (below 0.9 of the best so far) for 10
+          // iterations is a cycle (e.g. alternating between two iterates),
+          // which more iterations do not break.
+          if (r < 0.9 * best_residual)
+            {
+              best_residual  = r;
+              best_iteration = it;
+            }
           if (it > 0 && changed_branches > 0 &&
+              it < best_iteration + stall_iterations &&
               max_newton_iterations + state_change_iterations <
                 max_state_change_newton_iterations)
             ++state_change_iterations;
