@@ -2842,10 +2842,9 @@ namespace Talus
             ++state_change_iterations;
           result.residual = reference > 0. ? r / reference : r;
           if (std::getenv("TALUS_DEBUG_NEWTON"))
-            std::cerr << "  Newton " << it << ": " << result.residual << " ("
-                      << changed_branches << " points changed return branch)";
-          if (std::getenv("TALUS_DEBUG_NEWTON"))
             {
+              std::cerr << "  Newton " << it << ": " << result.residual << " ("
+                        << changed_branches << " points changed return branch)";
               // points per branch on this rank: elastic, plane, edge, apex,
               // tension cut-off
               unsigned int n_branch[5] = {0, 0, 0, 0, 0};
