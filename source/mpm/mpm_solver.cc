@@ -2787,6 +2787,16 @@ namespace Talus
       // changes since the last correction (re-assemblies after contact
       // state updates included)
       branch_changes = 0;
+      // The line search's first trial (the full correction) is assembled
+      // with the matrix when that matrix is the one the next iteration
+      // needs: same iterate, same constraints, no boundary particles (whose
+      // states a matrix assembly updates). Accepted, it saves the next
+      // iteration's assembly; rejected, it costs the tangent once, so it is
+      // tried only while full corrections are accepted (the thin granular
+      // layer of contrib/granular/thin_layer_stop.prm rejects every second
+      // one; the collapse almost none).
+      bool assembled_at_iterate = false;
+      bool full_step_accepted   = true;
       for (unsigned int it = 0;
            it <=
            max_newton_iterations + granted_iterations + state_change_iterations;
@@ -2794,10 +2804,16 @@ namespace Talus
         {
           std::string failure;
           bool        ok;
-          {
-            dealii::TimerOutput::Scope s(timer, "assembly");
-            ok = assemble(displacement, true, !quasi_static, failure);
-          }
+          if (assembled_at_iterate)
+            {
+              assembled_at_iterate = false;
+              ok                   = true;
+            }
+          else
+            {
+              dealii::TimerOutput::Scope s(timer, "assembly");
+              ok = assemble(displacement, true, !quasi_static, failure);
+            }
           if (!ok)
             {
               result.failure = failure;
@@ -3007,6 +3023,15 @@ namespace Talus
           for (auto &bp : boundary_points)
             if (bp.monolithic)
               bp.lambda += bp.dlambda;
+          // The contact dofs' targets are reached by the full correction:
+          // the constraints are homogeneous again from here on (a residual
+          // assembly ignores inhomogeneities anyway).
+          const bool contact_jump_was_active = contact_jump_active;
+          if (contact_jump_active)
+            {
+              contact_jump_active = false;
+              make_constraints();
+            }
           double step_length = 1.;
           if (line_search)
             {
@@ -3015,12 +3040,32 @@ namespace Talus
               dealii::TimerOutput::Scope s(timer, "line search");
               for (unsigned int k = 0; k < max_line_search; ++k)
                 {
-                  std::string trial_failure;
-                  const bool  trial_ok =
-                    assemble(displacement, false, !quasi_static, trial_failure);
-                  const double r_trial = residual.l2_norm();
-                  if (trial_ok && std::isfinite(r_trial) && r_trial < r)
-                    break;
+                  const bool with_matrix = k == 0 && full_step_accepted &&
+                                           boundary_particles == nullptr;
+                  // a rejected trial must not count its return branches
+                  const std::vector<int> branches_before =
+                    with_matrix ? point_branches : std::vector<int>();
+                  const unsigned int changes_before = branch_changes;
+                  std::string        trial_failure;
+                  const bool         trial_ok = assemble(displacement,
+                                                 with_matrix,
+                                                 !quasi_static,
+                                                 trial_failure);
+                  const double       r_trial  = residual.l2_norm();
+                  const bool         accepted =
+                    trial_ok && std::isfinite(r_trial) && r_trial < r;
+                  if (k == 0)
+                    full_step_accepted = accepted;
+                  if (accepted)
+                    {
+                      assembled_at_iterate = with_matrix;
+                      break;
+                    }
+                  if (with_matrix)
+                    {
+                      point_branches = branches_before;
+                      branch_changes = changes_before;
+                    }
                   step_length *= 0.5;
                   du.add(-step_length, increment);
                   displacement = du;
@@ -3029,10 +3074,10 @@ namespace Talus
                       bp.lambda -= step_length * bp.dlambda;
                 }
             }
-          if (contact_jump_active)
+          if (contact_jump_was_active)
             {
-              // the constrained dofs reached their targets with the full
-              // correction; after a shortened one they are set to them
+              // after a shortened correction the constrained dofs are set
+              // to their targets
               if (step_length < 1.)
                 {
                   Epetra_FEVector &e = du.trilinos_vector();
@@ -3041,8 +3086,6 @@ namespace Talus
                   displacement = du;
                 }
               contact_targets.clear();
-              contact_jump_active = false;
-              make_constraints();
             }
           last_increment      = step_length * increment.l2_norm();
           solved_since_update = true;
