@@ -154,7 +154,15 @@ namespace Talus
         constexpr bool with_derivatives = !std::is_same<Number, double>::value;
         for (unsigned int q = 0; q < n_points; ++q)
           {
-            alpha[q] = std::pow(J_bar / J[q], 1. / dim);
+            {
+              // (J_bar/J_p)^(1/dim) without pow (a tenth of the F-bar cost)
+              using std::cbrt;
+              using std::sqrt;
+              if constexpr (dim == 2)
+                alpha[q] = sqrt(J_bar / J[q]);
+              else
+                alpha[q] = cbrt(J_bar / J[q]);
+            }
             // (explicit loops: deal.II's scalar-tensor operators do not
             // accept Sacado's expression types)
             dealii::Tensor<2, dim, Number> F_bar;
