@@ -26,6 +26,8 @@
 
 #include <deal.II/differentiation/ad/sacado_product_types.h>
 
+#include <Amesos.h>
+#include <Epetra_CrsMatrix.h>
 #include <Epetra_MultiVector.h>
 #include <Sacado.hpp>
 #include <Teuchos_ParameterList.hpp>
@@ -619,6 +621,8 @@ namespace Talus
         grid.mpi_communicator,
         grid.locally_relevant_dofs);
       amg.reset();
+      direct_solver.reset();
+      direct_problem.reset();
       matrix.reinit(grid.locally_owned_dofs,
                     grid.locally_owned_dofs,
                     dsp,
@@ -1897,6 +1901,8 @@ namespace Talus
       // the preconditioners reference the matrix: release them first (ML's
       // Gauss-Seidel smoothers access it on destruction)
       factorisation.reset();
+      direct_solver.reset();
+      direct_problem.reset();
       amg.reset();
       amg_current = false;
       matrix.reinit(grid.locally_owned_dofs,
@@ -2268,9 +2274,42 @@ namespace Talus
             factorisation->solve(x, b);
           else
             {
-              dealii::SolverControl                  control(1, 0.);
-              dealii::TrilinosWrappers::SolverDirect solver(control);
-              solver.solve(matrix, x, b);
+              if (!direct_solver)
+                {
+                  direct_problem = std::make_unique<Epetra_LinearProblem>();
+                  direct_problem->SetOperator(
+                    const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
+                  Amesos factory;
+                  direct_solver.reset(
+                    factory.Create("Amesos_Klu", *direct_problem));
+                  AssertThrow(direct_solver != nullptr,
+                              dealii::ExcMessage(
+                                "Amesos KLU is not available"));
+                  // Later factorisations of the step reuse the pivot
+                  // sequence of the first (klu_refactor); Amesos falls back
+                  // to a factorisation with pivoting if that fails or if
+                  // its estimate of the reciprocal condition number (the
+                  // ratio of the smallest to the largest pivot) is below
+                  // 1e-6 (Amesos' default: 1e-12).
+                  Teuchos::ParameterList parameters;
+                  parameters.set("Refactorize", true);
+                  parameters.set("RcondThreshold", 1e-6);
+                  direct_solver->SetParameters(parameters);
+                  AssertThrow(direct_solver->SymbolicFactorization() == 0,
+                              dealii::ExcMessage(
+                                "the symbolic factorisation of the tangent "
+                                "(Amesos KLU) failed"));
+                }
+              direct_problem->SetLHS(&x.trilinos_vector());
+              direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
+                static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
+              AssertThrow(direct_solver->NumericFactorization() == 0,
+                          dealii::ExcMessage(
+                            "the factorisation of the tangent (Amesos KLU) "
+                            "failed: the tangent is singular"));
+              AssertThrow(direct_solver->Solve() == 0,
+                          dealii::ExcMessage(
+                            "the direct solve with the tangent failed"));
             }
           constraints.distribute(x);
           return 1;

@@ -20,6 +20,8 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <Amesos_BaseSolver.h>
+#include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 
 #include <map>
@@ -525,6 +527,16 @@ namespace Talus
       double multiplier_residual = 0.;
       /** Factorisation of the tangent for the saddle-point solve. */
       std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> factorisation;
+      /**
+       * Direct solver of the tangent (Amesos KLU) for the sparsity pattern
+       * of the current step: the symbolic analysis (block triangular form,
+       * AMD ordering) is done once per pattern, the numeric factorisation
+       * in every Newton iteration, reusing the pivot sequence of the first
+       * one where it stays accurate (Amesos' "Refactorize"). Released with
+       * the pattern.
+       */
+      std::unique_ptr<Epetra_LinearProblem> direct_problem;
+      std::unique_ptr<Amesos_BaseSolver>    direct_solver;
 
       dealii::Tensor<1, dim>
       external_acceleration(const dealii::Point<dim> &X, const double t) const;
