@@ -2303,13 +2303,19 @@ namespace Talus
               direct_problem->SetLHS(&x.trilinos_vector());
               direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
                 static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
-              AssertThrow(direct_solver->NumericFactorization() == 0,
+              const int factorised = direct_solver->NumericFactorization();
+              AssertThrow(factorised == 0,
                           dealii::ExcMessage(
                             "the factorisation of the tangent (Amesos KLU) "
-                            "failed: the tangent is singular"));
-              AssertThrow(direct_solver->Solve() == 0,
+                            "failed with error code " +
+                            std::to_string(factorised) +
+                            " (a singular tangent?)"));
+              const int solve_status = direct_solver->Solve();
+              AssertThrow(solve_status == 0,
                           dealii::ExcMessage(
-                            "the direct solve with the tangent failed"));
+                            "the direct solve with the tangent (Amesos KLU) "
+                            "failed with error code " +
+                            std::to_string(solve_status)));
             }
           constraints.distribute(x);
           return 1;
