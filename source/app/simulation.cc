@@ -321,6 +321,8 @@ namespace Talus
       }
 
     const auto model = Materials::create_model(prm);
+    // the solver reads only the dim x dim x dim x dim block of dP/dF
+    model->set_tangent_dimension(dim);
     prm.enter_subsection("Material");
     const double density = get_positive(prm, "Material", "density");
     prm.leave_subsection();

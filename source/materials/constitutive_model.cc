@@ -360,6 +360,25 @@ namespace Talus
 
 
 
+    void
+    ConstitutiveModel::set_tangent_dimension(const unsigned int dimension)
+    {
+      AssertThrow(dimension >= 1 && dimension <= 3,
+                  dealii::ExcMessage("The tangent dimension must be 1, 2 "
+                                     "or 3."));
+      tangent_block_dimension = dimension;
+    }
+
+
+
+    unsigned int
+    ConstitutiveModel::tangent_dimension() const
+    {
+      return tangent_block_dimension;
+    }
+
+
+
     std::unique_ptr<ConstitutiveModel>
     create_model(dealii::ParameterHandler &prm)
     {

@@ -30,6 +30,15 @@ namespace Talus
         const double e = std::exp(-eps_p / eta);
         return {residual + (peak - residual) * e, -(peak - residual) / eta * e};
       }
+
+      /** A copy of @p s with the table of sin_cos() and tan() filled. */
+      GranularStrength
+      with_trigonometry_table(const GranularStrength &s)
+      {
+        GranularStrength copy = s;
+        copy.tabulate_trigonometry();
+        return copy;
+      }
     } // namespace
 
 
@@ -71,7 +80,10 @@ namespace Talus
     {
       const Value static_phi = phi(eps_p);
       if (!rate_dependent() || !(time_step > 0.))
-        return {static_phi.value, static_phi.derivative, 0.};
+        {
+          const SinCos t = sin_cos(static_phi.value);
+          return {static_phi.value, t.sin, t.cos, static_phi.derivative, 0.};
+        }
       // I/(I0 + I) = X/(X + Y) with X = gamma_dot d sqrt(rho_s) and
       // Y = I0 sqrt(P): finite for P -> 0
       const double dX_deps =
@@ -79,7 +91,7 @@ namespace Talus
       const double X     = std::max(0., plastic_strain_increment) * dX_deps;
       const double sqrtP = std::sqrt(std::max(0., pressure));
       const double Y     = reference_inertial_number * sqrtP;
-      const double tan_s = std::tan(static_phi.value);
+      const double tan_s = tan(static_phi.value);
       double       ratio = 0., dratio_deps = 0., dratio_dP = 0.;
       if (X + Y > 0.)
         {
@@ -93,7 +105,11 @@ namespace Talus
       const double mu    = tan_s + friction_coefficient_increment * ratio;
       const double dphi  = 1. / (1. + mu * mu); // d phi/d mu
       const double dmu_s = (1. + tan_s * tan_s) * static_phi.derivative;
+      // sin and cos from tan(phi) = mu, phi in (0, pi/2)
+      const double cos_phi = std::sqrt(dphi);
       return {std::atan(mu),
+              mu * cos_phi,
+              cos_phi,
               dphi * (dmu_s + friction_coefficient_increment * dratio_deps),
               dphi * friction_coefficient_increment * dratio_dP};
     }
@@ -113,12 +129,50 @@ namespace Talus
     {
       const Value  f   = phi(eps_p);
       const Value  k   = c(eps_p);
-      const double cot = std::cos(f.value) / std::sin(f.value);
+      const SinCos t   = sin_cos(f.value);
+      const double cot = t.cos / t.sin;
       if (k.value * cot >= tension_cutoff)
         return {tension_cutoff, 0.};
       return {k.value * cot,
-              k.derivative * cot -
-                k.value * f.derivative / std::pow(std::sin(f.value), 2)};
+              k.derivative * cot - k.value * f.derivative / (t.sin * t.sin)};
+    }
+
+
+
+    GranularStrength::SinCos
+    GranularStrength::sin_cos(const double angle) const
+    {
+      for (const auto &row : trigonometry_table)
+        if (row[0] == angle)
+          return {row[1], row[2]};
+      return {std::sin(angle), std::cos(angle)};
+    }
+
+
+
+    double
+    GranularStrength::tan(const double angle) const
+    {
+      for (const auto &row : trigonometry_table)
+        if (row[0] == angle)
+          return row[3];
+      return std::tan(angle);
+    }
+
+
+
+    void
+    GranularStrength::tabulate_trigonometry()
+    {
+      const std::array<double, 4> angles = {{friction_angle,
+                                             residual_friction_angle,
+                                             dilatancy_angle,
+                                             residual_dilatancy_angle}};
+      for (unsigned int i = 0; i < angles.size(); ++i)
+        trigonometry_table[i] = {{angles[i],
+                                  std::sin(angles[i]),
+                                  std::cos(angles[i]),
+                                  std::tan(angles[i])}};
     }
 
 
@@ -167,7 +221,7 @@ namespace Talus
     GranularPlasticity::GranularPlasticity(const IsotropicElasticity &elastic,
                                            const GranularStrength    &strength)
       : elastic(elastic)
-      , strength_parameters(strength)
+      , strength_parameters(with_trigonometry_table(strength))
     {
       for (unsigned int a = 0; a < 3; ++a)
         for (unsigned int b = 0; b < 3; ++b)
@@ -349,7 +403,7 @@ namespace Talus
             dtau_deps[order[k]][order[l]] = r.dtau_deps[k][l];
         }
       LogarithmicStrain::principal_kirchhoff_to_piola(
-        F, s.b_e, s.spectral, tau, dtau_deps, P, A);
+        F, s.b_e, s.spectral, tau, dtau_deps, P, A, tangent_dimension());
 
       // history
       if (r.return_type == 0)

@@ -138,7 +138,8 @@ namespace Talus
                                    const std::array<double, 3> &tau,
                                    const dealii::Tensor<2, 3>  &dtau_deps,
                                    dealii::Tensor<2, 3>        &P,
-                                   dealii::Tensor<4, 3>        *A)
+                                   dealii::Tensor<4, 3>        *A,
+                                   const unsigned int           n_t)
       {
         const auto &b = spectral.eigenvalues;
         const auto &n = spectral.eigenvectors;
@@ -174,10 +175,12 @@ namespace Talus
         //   + sum_(a < c) theta_ac (n_a x g_c + n_c x g_a)
         //                          x (n_a x h_c + n_c x h_a),
         // 6 products of 81 entries instead of the 4th-order algebra.
+        // Only the indices below n_t (tangent_dimension) are needed: the
+        // first two and the last two indices of A run over n_t values.
         const dealii::Tensor<2, 3> H = b_e * dealii::transpose(F_inv);
         double                     g[3][3], h[3][3];
         for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int i = 0; i < n_t; ++i)
             {
               double gi = 0., hi = 0.;
               for (unsigned int p = 0; p < 3; ++p)
@@ -191,8 +194,8 @@ namespace Talus
 
         double left[6][3][3], right[6][3][3];
         for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int i = 0; i < 3; ++i)
-            for (unsigned int j = 0; j < 3; ++j)
+          for (unsigned int i = 0; i < n_t; ++i)
+            for (unsigned int j = 0; j < n_t; ++j)
               {
                 left[a][i][j] = 2. * n[a][i] * g[a][j];
                 double z      = 0.;
@@ -210,8 +213,8 @@ namespace Talus
             else
               theta = 0.5 * ((dtau_db[a][a] - dtau_db[a][c]) +
                              (dtau_db[c][c] - dtau_db[c][a]));
-            for (unsigned int i = 0; i < 3; ++i)
-              for (unsigned int j = 0; j < 3; ++j)
+            for (unsigned int i = 0; i < n_t; ++i)
+              for (unsigned int j = 0; j < n_t; ++j)
                 {
                   left[3 + q][i][j] =
                     theta * (n[a][i] * g[c][j] + n[c][i] * g[a][j]);
@@ -219,10 +222,12 @@ namespace Talus
                 }
           }
 
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int J = 0; J < 3; ++J)
-            for (unsigned int k = 0; k < 3; ++k)
-              for (unsigned int L = 0; L < 3; ++L)
+        if (n_t < 3)
+          *A = 0.;
+        for (unsigned int i = 0; i < n_t; ++i)
+          for (unsigned int J = 0; J < n_t; ++J)
+            for (unsigned int k = 0; k < n_t; ++k)
+              for (unsigned int L = 0; L < n_t; ++L)
                 {
                   double sum = -P[i][L] * F_inv[J][k];
                   for (unsigned int t = 0; t < 6; ++t)
@@ -304,7 +309,8 @@ namespace Talus
                                                       principal_stress(s.eps),
                                                       principal_moduli(),
                                                       P,
-                                                      A);
+                                                      A,
+                                                      tangent_dimension());
     }
 
 

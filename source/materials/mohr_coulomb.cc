@@ -66,8 +66,9 @@ namespace Talus
                                rate.time_step);
         const auto   c    = s.c(eps_p);
         const auto   psi  = s.psi(eps_p);
-        const double sphi = std::sin(phi.value), cphi = std::cos(phi.value);
-        const double spsi = std::sin(psi.value), cpsi = std::cos(psi.value);
+        const double sphi = phi.sin, cphi = phi.cos;
+        const auto   psi_trig = s.sin_cos(psi.value);
+        const double spsi = psi_trig.sin, cpsi = psi_trig.cos;
         d.a[i]  = 1. + sphi;
         d.a[j]  = -(1. - sphi);
         d.da[i] = d.da[j] = cphi * phi.d_plastic_strain;
@@ -134,11 +135,12 @@ namespace Talus
     MohrCoulomb::yield_function(const dealii::Tensor<1, 3> &tau,
                                 const double                eps_p) const
     {
-      const double t1  = std::max({tau[0], tau[1], tau[2]});
-      const double t3  = std::min({tau[0], tau[1], tau[2]});
-      const double phi = strength_parameters.phi(eps_p).value;
-      const double c   = strength_parameters.c(eps_p).value;
-      return (t1 - t3) + (t1 + t3) * std::sin(phi) - 2. * c * std::cos(phi);
+      const double t1 = std::max({tau[0], tau[1], tau[2]});
+      const double t3 = std::min({tau[0], tau[1], tau[2]});
+      const auto   phi =
+        strength_parameters.sin_cos(strength_parameters.phi(eps_p).value);
+      const double c = strength_parameters.c(eps_p).value;
+      return (t1 - t3) + (t1 + t3) * phi.sin - 2. * c * phi.cos;
     }
 
 
@@ -445,7 +447,7 @@ namespace Talus
       if (mc_violated)
         {
           add({Plane::main}, 1);
-          const double spsi        = std::sin(s.psi(plastic_strain_old).value);
+          const double spsi = s.sin_cos(s.psi(plastic_strain_old).value).sin;
           const bool   right_first = (1. - spsi) * tau_trial[0] -
                                      2. * tau_trial[1] +
                                      (1. + spsi) * tau_trial[2] >
@@ -485,8 +487,8 @@ namespace Talus
             }
           all_converged = all_converged && converged;
         }
-      const double apex_stress = s.c(plastic_strain_old).value /
-                                 std::tan(s.phi(plastic_strain_old).value);
+      const double apex_stress =
+        s.c(plastic_strain_old).value / s.tan(s.phi(plastic_strain_old).value);
       // The apex is the return only for a trial mean stress beyond it (the
       // plane and edge returns keep or lower the mean stress, psi >= 0): a
       // state below it whose plane returns did not converge has no return.

@@ -57,6 +57,21 @@ namespace Talus
       virtual std::string
       description() const;
 
+      /**
+       * Restrict the consistent tangent of compute_stress() to the entries
+       * A_iJkL with all indices below @p dimension (1 to 3; default 3):
+       * a plane-strain analysis (dimension 2) uses only the in-plane
+       * block, and the finite-strain models then skip the other 65 of
+       * the 81 entries. Entries outside the block are zero or exact,
+       * depending on the model. The stress is always complete.
+       */
+      void
+      set_tangent_dimension(const unsigned int dimension);
+
+      /** The dimension set by set_tangent_dimension(). */
+      unsigned int
+      tangent_dimension() const;
+
       /** Number of history variables per material point (may be 0). */
       virtual unsigned int
       n_history_variables() const;
@@ -138,6 +153,10 @@ namespace Talus
        */
       virtual double
       p_wave_modulus() const = 0;
+
+    private:
+      /** See set_tangent_dimension(). */
+      unsigned int tangent_block_dimension = 3;
     };
 
     /**

@@ -8,7 +8,9 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <array>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -115,6 +117,10 @@ namespace Talus
       {
         /** phi [rad] */
         double value;
+        /** sin(phi) [-] */
+        double sin;
+        /** cos(phi) [-] */
+        double cos;
         /** d phi/d eps_p [rad] (softening and rate) */
         double d_plastic_strain;
         /** d phi/d P [rad/Pa] */
@@ -154,6 +160,47 @@ namespace Talus
       /** One line with all values (angles in degrees). */
       std::string
       to_string() const;
+
+      /** Sine and cosine of an angle. */
+      struct SinCos
+      {
+        double sin;
+        double cos;
+      };
+
+      /**
+       * sin and cos of @p angle [rad]. The peak and residual friction and
+       * dilatancy angles are looked up in the table that
+       * tabulate_trigonometry() fills (the return mappings need them at
+       * every point in every Newton iteration); any other angle, or all of
+       * them before the table is filled, is computed. The table is keyed
+       * by the exact angle, so a changed parameter is never served a stale
+       * value.
+       */
+      SinCos
+      sin_cos(const double angle) const;
+
+      /** tan(@p angle), from the same table as sin_cos(). */
+      double
+      tan(const double angle) const;
+
+      /**
+       * Fill the table of sin_cos() and tan() for the current peak and
+       * residual angles (the models call it once at construction).
+       */
+      void
+      tabulate_trigonometry();
+
+      /**
+       * The table of sin_cos() and tan(), filled by tabulate_trigonometry()
+       * (public so that the struct stays an aggregate). Rows: angle [rad],
+       * sin, cos, tan; the angle NaN while unfilled.
+       */
+      std::array<std::array<double, 4>, 4> trigonometry_table{
+        {{{std::numeric_limits<double>::quiet_NaN(), 0., 1., 0.}},
+         {{std::numeric_limits<double>::quiet_NaN(), 0., 1., 0.}},
+         {{std::numeric_limits<double>::quiet_NaN(), 0., 1., 0.}},
+         {{std::numeric_limits<double>::quiet_NaN(), 0., 1., 0.}}}};
     };
 
 

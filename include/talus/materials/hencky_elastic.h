@@ -47,6 +47,30 @@ namespace Talus
       spectral_decomposition(const dealii::Tensor<2, 3> &b);
 
       /**
+       * The elastic left Cauchy-Green tensor b_e = F G F^T (exactly
+       * symmetric), its spectral decomposition and the principal elastic
+       * logarithmic strains eps_a = 1/2 ln b_a.
+       */
+      struct ElasticState
+      {
+        dealii::Tensor<2, 3>  b_e;
+        SpectralDecomposition spectral;
+        std::array<double, 3> eps;
+      };
+
+      /**
+       * ElasticState for the deformation gradient @p F and the inverse
+       * plastic right Cauchy-Green tensor @p G (identity for pure
+       * elasticity). Throws ExcInvertedMaterialPoint (naming @p model) if
+       * det F <= 0 or b_e is numerically not positive definite.
+       */
+      ElasticState
+      elastic_state(const std::string          &model,
+                    const dealii::Tensor<2, 3> &F,
+                    const dealii::Tensor<2, 3> &G);
+
+
+      /**
        * Given an isotropic Kirchhoff stress
        * @f$\boldsymbol\tau = \sum_a \tau_a\,\mathbf n_a\otimes\mathbf n_a@f$
        * that is a function of the (trial) elastic left Cauchy-Green tensor
@@ -91,30 +115,10 @@ namespace Talus
        *   (the elastic or consistent elastoplastic principal moduli)
        * @param P  first Piola-Kirchhoff stress [Pa] (output)
        * @param A  if not nullptr: dP/dF [Pa] (output)
+       * @param tangent_dimension  only the entries A_iJkL with all indices
+       *   below it are computed, the others are set to zero (2 for plane
+       *   strain, where the in-plane block is all the solver uses)
        */
-      /**
-       * The elastic left Cauchy-Green tensor b_e = F G F^T (exactly
-       * symmetric), its spectral decomposition and the principal elastic
-       * logarithmic strains eps_a = 1/2 ln b_a.
-       */
-      struct ElasticState
-      {
-        dealii::Tensor<2, 3>  b_e;
-        SpectralDecomposition spectral;
-        std::array<double, 3> eps;
-      };
-
-      /**
-       * ElasticState for the deformation gradient @p F and the inverse
-       * plastic right Cauchy-Green tensor @p G (identity for pure
-       * elasticity). Throws ExcInvertedMaterialPoint (naming @p model) if
-       * det F <= 0 or b_e is numerically not positive definite.
-       */
-      ElasticState
-      elastic_state(const std::string          &model,
-                    const dealii::Tensor<2, 3> &F,
-                    const dealii::Tensor<2, 3> &G);
-
       void
       principal_kirchhoff_to_piola(const dealii::Tensor<2, 3>  &F,
                                    const dealii::Tensor<2, 3>  &b_e,
@@ -122,7 +126,8 @@ namespace Talus
                                    const std::array<double, 3> &tau,
                                    const dealii::Tensor<2, 3>  &dtau_deps,
                                    dealii::Tensor<2, 3>        &P,
-                                   dealii::Tensor<4, 3>        *A);
+                                   dealii::Tensor<4, 3>        *A,
+                                   const unsigned int tangent_dimension = 3);
     } // namespace LogarithmicStrain
 
 
