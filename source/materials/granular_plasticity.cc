@@ -76,7 +76,8 @@ namespace Talus
     GranularStrength::phi(const double eps_p,
                           const double plastic_strain_increment,
                           const double pressure,
-                          const double time_step) const
+                          const double time_step,
+                          const bool   compute_angle) const
     {
       const Value static_phi = phi(eps_p);
       if (!rate_dependent() || !(time_step > 0.))
@@ -107,7 +108,8 @@ namespace Talus
       const double dmu_s = (1. + tan_s * tan_s) * static_phi.derivative;
       // sin and cos from tan(phi) = mu, phi in (0, pi/2)
       const double cos_phi = std::sqrt(dphi);
-      return {std::atan(mu),
+      return {compute_angle ? std::atan(mu) :
+                              std::numeric_limits<double>::quiet_NaN(),
               mu * cos_phi,
               cos_phi,
               dphi * (dmu_s + friction_coefficient_increment * dratio_deps),

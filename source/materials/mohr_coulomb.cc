@@ -34,11 +34,43 @@ namespace Talus
       };
 
 
+      /** Friction, cohesion and dilatancy of one state of the return. */
+      struct PlaneStrength
+      {
+        GranularStrength::RateValue phi;
+        GranularStrength::Value     c;
+        GranularStrength::Value     psi;
+        GranularStrength::SinCos    psi_trig;
+      };
+
+
+      /**
+       * The strength at the plastic strain @p eps_p and the @p rate state,
+       * computed once for all planes of a return (the friction angle's
+       * arctangent is not needed: only its sine and cosine).
+       */
+      PlaneStrength
+      plane_strength(const GranularStrength &s,
+                     const double            eps_p,
+                     const RateState        &rate)
+      {
+        PlaneStrength p{s.phi(eps_p,
+                              rate.plastic_strain_increment,
+                              rate.pressure,
+                              rate.time_step,
+                              false),
+                        s.c(eps_p),
+                        s.psi(eps_p),
+                        {0., 1.}};
+        p.psi_trig = s.sin_cos(p.psi.value);
+        return p;
+      }
+
+
       PlaneData
       plane_data(const MohrCoulomb::Plane plane,
                  const GranularStrength  &s,
-                 const double             eps_p,
-                 const RateState         &rate)
+                 const PlaneStrength     &strength)
       {
         PlaneData d;
         if (plane == MohrCoulomb::Plane::cutoff_1 ||
@@ -60,15 +92,11 @@ namespace Talus
           j = 1;
         else if (plane == MohrCoulomb::Plane::left_edge)
           i = 1;
-        const auto   phi  = s.phi(eps_p,
-                               rate.plastic_strain_increment,
-                               rate.pressure,
-                               rate.time_step);
-        const auto   c    = s.c(eps_p);
-        const auto   psi  = s.psi(eps_p);
+        const auto  &phi  = strength.phi;
+        const auto  &c    = strength.c;
+        const auto  &psi  = strength.psi;
         const double sphi = phi.sin, cphi = phi.cos;
-        const auto   psi_trig = s.sin_cos(psi.value);
-        const double spsi = psi_trig.sin, cpsi = psi_trig.cos;
+        const double spsi = strength.psi_trig.sin, cpsi = strength.psi_trig.cos;
         d.a[i]  = 1. + sphi;
         d.a[j]  = -(1. - sphi);
         d.da[i] = d.da[j] = cphi * phi.d_plastic_strain;
@@ -222,8 +250,10 @@ namespace Talus
       double     deps          = 0.;
       const auto update_planes = [&]() {
         rate.plastic_strain_increment = deps;
+        const PlaneStrength strength =
+          plane_strength(strength_parameters, eps_p, rate);
         for (unsigned int i = 0; i < m; ++i)
-          p[i] = plane_data(planes[i], strength_parameters, eps_p, rate);
+          p[i] = plane_data(planes[i], strength_parameters, strength);
       };
 
       // Initial guess: perfectly plastic return at the old plastic strain
@@ -365,7 +395,9 @@ namespace Talus
         {
           // the Mohr-Coulomb function with the friction of this step
           const PlaneData main =
-            plane_data(Plane::main, strength_parameters, eps_p, rate);
+            plane_data(Plane::main,
+                       strength_parameters,
+                       plane_strength(strength_parameters, eps_p, rate));
           const double         t1 = std::max({tau[0], tau[1], tau[2]});
           const double         t3 = std::min({tau[0], tau[1], tau[2]});
           dealii::Tensor<1, 3> sorted;

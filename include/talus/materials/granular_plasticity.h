@@ -133,6 +133,9 @@ namespace Talus
        * @p plastic_strain_increment over @p time_step [s] under the
        * pressure @p pressure [Pa] (compression positive). Equals
        * phi(eps_p) if rate_dependent() is false or @p time_step <= 0.
+       * With @p compute_angle false, the rate-dependent angle itself
+       * (value, an arctangent) is left NaN; its sine, cosine and
+       * derivatives are always set.
        * d_plastic_strain is the derivative along eps_p =
        * eps_p_old + increment.
        */
@@ -140,7 +143,8 @@ namespace Talus
       phi(const double eps_p,
           const double plastic_strain_increment,
           const double pressure,
-          const double time_step) const;
+          const double time_step,
+          const bool   compute_angle = true) const;
 
       /** c(eps_p) [Pa] and dc/d eps_p. */
       Value
