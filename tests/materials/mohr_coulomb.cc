@@ -8,7 +8,9 @@
 //        compression, triaxial extension, uniaxial compression, simple shear
 //  - (b) after every return the stress is on the yield surface (random
 //        states, with and without tension cut-off and softening)
-//  - (c) consistent tangent vs central differences of P per return type
+//  - (c) consistent tangent vs central differences of P per return type;
+//        in plane strain, the in-plane block (set_tangent_dimension(2))
+//        equals that block of the checked tangent and the rest is zero
 //  - (d) cohesionless material: F = I and tensile states
 //  - (e) softening to the residual strength
 //  - (f) isochoric plastic flow for psi = 0, dilatancy for psi > 0
@@ -394,6 +396,34 @@ namespace
           }
         out << std::endl;
         report(out, "  tangent", tangent_error(model, p, c.F), 1e-6);
+
+        // Plane strain (F_33 = 1, no out-of-plane shear): the tangent
+        // restricted to the in-plane block (set_tangent_dimension(2), what
+        // the 2D solver uses) equals that block of the full tangent checked
+        // above, and is zero elsewhere; the stress is unchanged.
+        if (c.name.find("plane strain") != std::string::npos)
+          {
+            MohrCoulomb restricted(IsotropicElasticity(E, nu), c.strength);
+            restricted.set_tangent_dimension(2);
+            MaterialPoint p2(restricted);
+            if (c.F_previous != I)
+              advance(restricted, p2, c.F_previous);
+            const Step st2 = evaluate(restricted, p2, c.F);
+            double error = max_abs(Tensor<2, 3>(st2.P - st.P)) / max_abs(st.P);
+            const double scale = max_abs(st.A);
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int J = 0; J < 3; ++J)
+                for (unsigned int k = 0; k < 3; ++k)
+                  for (unsigned int L = 0; L < 3; ++L)
+                    {
+                      const bool   in_plane = i < 2 && J < 2 && k < 2 && L < 2;
+                      const double expected = in_plane ? st.A[i][J][k][L] : 0.;
+                      error                 = std::max(error,
+                                       std::abs(st2.A[i][J][k][L] - expected) /
+                                         scale);
+                    }
+            report(out, "  in-plane tangent block (dimension 2)", error, 1e-12);
+          }
       }
   }
 
