@@ -1048,8 +1048,9 @@ namespace Talus
         }
       step_reset_dissipation =
         dealii::Utilities::MPI::sum(removed, grid.mpi_communicator);
-      prepared = true;
-      solved   = false;
+      cell_contributions_current = false;
+      prepared                   = true;
+      solved                     = false;
     }
 
 
@@ -1058,7 +1059,8 @@ namespace Talus
     MPMSolver<dim>::assemble(const dealii::TrilinosWrappers::MPI::Vector &du,
                              const bool   with_matrix,
                              const bool   with_inertia,
-                             std::string &failure)
+                             std::string &failure,
+                             const bool   same_iterate)
     {
       using Properties                 = MaterialPointProperties<dim>;
       const auto        &fe            = grid.fe;
@@ -1093,145 +1095,192 @@ namespace Talus
       dealii::Tensor<4, 3>                A;
       bool                                ok = true;
 
-      for (const auto &c : cells)
+      // The cells' contributions before friction and constraints, kept for
+      // a re-assembly at the same iterate after a contact state update.
+      const unsigned int block = dofs_per_cell * dofs_per_cell + dofs_per_cell;
+      const bool         keep_contributions =
+        with_matrix && !grid.friction_boundaries.empty();
+      const bool reuse_contributions =
+        same_iterate && with_matrix && cell_contributions_current;
+      if (keep_contributions && !reuse_contributions)
+        cell_contributions.resize(cells.size() * block);
+      cell_contributions_current = false;
+
+      for (unsigned int cell_index = 0; cell_index < cells.size(); ++cell_index)
         {
+          const CellCache &c = cells[cell_index];
           if (!ok)
             break;
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          double *const stored     = keep_contributions ?
+                                       &cell_contributions[cell_index * block] :
+                                       nullptr;
+          bool          from_store = reuse_contributions;
+          if (from_store && !inertia_changed_dofs.empty())
+            for (const auto i : c.dofs)
+              if (std::binary_search(inertia_changed_dofs.begin(),
+                                     inertia_changed_dofs.end(),
+                                     i))
+                from_store = false;
+          if (from_store)
             {
-              du_local[i] = du(c.dofs[i]);
-              a_local[i]  = with_inertia ?
-                              newmark.acceleration(du_local[i],
-                                                  velocity_n(c.dofs[i]),
-                                                  acceleration_n(c.dofs[i]),
-                                                  dt) :
-                              0.;
+              std::copy(stored,
+                        stored + dofs_per_cell * dofs_per_cell,
+                        &k_local(0, 0));
+              std::copy(stored + dofs_per_cell * dofs_per_cell,
+                        stored + block,
+                        r_local.begin());
             }
-          k_local = 0.;
-          r_local = 0.;
-          for (unsigned int q = 0; q < c.n; ++q)
+          else
             {
-              const unsigned int k     = c.first + q;
-              const auto         props = particles[k]->get_properties();
-              const double      *N     = &shape_values[k * n_nodes];
-              const auto        *dN    = &shape_gradients[k * n_nodes];
-
-              const dealii::Tensor<2, dim> F_n =
-                read_tensor<dim>(props, Properties::deformation);
-              const double V0 = props[Properties::initial_volume];
-              const double m  = props[Properties::mass];
-
-              // Particle acceleration for the (consistent) inertia term.
-              dealii::Tensor<1, dim> a_p;
-              if (with_inertia && consistent_mass)
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  a_p[comp[i]] += N[node[i]] * a_local[i];
-
-              // External and inertia forces.
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
-                  const unsigned int ci = comp[i];
-                  r_local[i] += N[node[i]] * particle_forces[k][ci];
-                  if (!with_inertia)
-                    continue;
-                  if (consistent_mass)
-                    {
-                      r_local[i] -= m * N[node[i]] * a_p[ci];
-                      if (with_matrix)
-                        for (unsigned int j = 0; j < dofs_per_cell; ++j)
-                          if (comp[j] == ci)
-                            k_local(i, j) +=
-                              c_mass * m * N[node[i]] * N[node[j]];
-                    }
-                  else
-                    {
-                      r_local[i] -= m * N[node[i]] * a_local[i];
-                      if (with_matrix)
-                        k_local(i, i) += c_mass * m * N[node[i]];
-                    }
+                  du_local[i] = du(c.dofs[i]);
+                  a_local[i]  = with_inertia ?
+                                  newmark.acceleration(du_local[i],
+                                                      velocity_n(c.dofs[i]),
+                                                      acceleration_n(c.dofs[i]),
+                                                      dt) :
+                                  0.;
                 }
-              if (use_fbar)
-                continue; // internal forces of the cell below
-
-              // Increment gradient, total deformation gradient.
-              dealii::Tensor<2, dim> H;
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                H[comp[i]] += du_local[i] * dN[node[i]];
-              dealii::Tensor<2, dim> F_new = F_n + H * F_n;
-
-              try
+              k_local = 0.;
+              r_local = 0.;
+              for (unsigned int q = 0; q < c.n; ++q)
                 {
-                  model.compute_stress(
-                    embed<dim>(F_n),
-                    embed<dim>(F_new),
-                    dealii::ArrayView<const double>(props.data() +
-                                                      Properties::history,
-                                                    n_history),
-                    dealii::ArrayView<double>(history_new.data(), n_history),
-                    dt,
-                    P,
-                    with_matrix ? &A : nullptr);
-                }
-              catch (const std::exception &e)
-                {
-                  ok = false;
-                  std::ostringstream msg;
-                  msg << "constitutive update failed at the material point "
-                         "near "
-                      << particles[k]->get_location() << ": " << e.what();
-                  failure = msg.str();
-                  break;
-                }
-              if (with_matrix)
-                record_branch(k,
-                              dealii::ArrayView<const double>(
-                                history_new.data(), n_history));
-              for (unsigned int d = 0; d < 3; ++d)
-                for (unsigned int e = 0; e < 3; ++e)
-                  if (!std::isfinite(P[d][e]))
+                  const unsigned int k     = c.first + q;
+                  const auto         props = particles[k]->get_properties();
+                  const double      *N     = &shape_values[k * n_nodes];
+                  const auto        *dN    = &shape_gradients[k * n_nodes];
+
+                  const dealii::Tensor<2, dim> F_n =
+                    read_tensor<dim>(props, Properties::deformation);
+                  const double V0 = props[Properties::initial_volume];
+                  const double m  = props[Properties::mass];
+
+                  // Particle acceleration for the (consistent) inertia term.
+                  dealii::Tensor<1, dim> a_p;
+                  if (with_inertia && consistent_mass)
+                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                      a_p[comp[i]] += N[node[i]] * a_local[i];
+
+                  // External and inertia forces.
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
                     {
-                      ok      = false;
-                      failure = "non-finite stress at a material point";
+                      const unsigned int ci = comp[i];
+                      r_local[i] += N[node[i]] * particle_forces[k][ci];
+                      if (!with_inertia)
+                        continue;
+                      if (consistent_mass)
+                        {
+                          r_local[i] -= m * N[node[i]] * a_p[ci];
+                          if (with_matrix)
+                            for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                              if (comp[j] == ci)
+                                k_local(i, j) +=
+                                  c_mass * m * N[node[i]] * N[node[j]];
+                        }
+                      else
+                        {
+                          r_local[i] -= m * N[node[i]] * a_local[i];
+                          if (with_matrix)
+                            k_local(i, i) += c_mass * m * N[node[i]];
+                        }
                     }
+                  if (use_fbar)
+                    continue; // internal forces of the cell below
+
+                  // Increment gradient, total deformation gradient.
+                  dealii::Tensor<2, dim> H;
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    H[comp[i]] += du_local[i] * dN[node[i]];
+                  dealii::Tensor<2, dim> F_new = F_n + H * F_n;
+
+                  try
+                    {
+                      model.compute_stress(
+                        embed<dim>(F_n),
+                        embed<dim>(F_new),
+                        dealii::ArrayView<const double>(props.data() +
+                                                          Properties::history,
+                                                        n_history),
+                        dealii::ArrayView<double>(history_new.data(),
+                                                  n_history),
+                        dt,
+                        P,
+                        with_matrix ? &A : nullptr);
+                    }
+                  catch (const std::exception &e)
+                    {
+                      ok = false;
+                      std::ostringstream msg;
+                      msg << "constitutive update failed at the material point "
+                             "near "
+                          << particles[k]->get_location() << ": " << e.what();
+                      failure = msg.str();
+                      break;
+                    }
+                  if (with_matrix)
+                    record_branch(k,
+                                  dealii::ArrayView<const double>(
+                                    history_new.data(), n_history));
+                  for (unsigned int d = 0; d < 3; ++d)
+                    for (unsigned int e = 0; e < 3; ++e)
+                      if (!std::isfinite(P[d][e]))
+                        {
+                          ok      = false;
+                          failure = "non-finite stress at a material point";
+                        }
+                  if (!ok)
+                    break;
+
+                  // Gradients with respect to the initial configuration.
+                  for (unsigned int a = 0; a < n_nodes; ++a)
+                    {
+                      G[a] = 0.;
+                      for (unsigned int J = 0; J < dim; ++J)
+                        for (unsigned int i = 0; i < dim; ++i)
+                          G[a][J] += F_n[i][J] * dN[a][i];
+                    }
+
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    {
+                      const unsigned int ci = comp[i];
+                      const auto        &Gi = G[node[i]];
+                      double             f  = 0.;
+                      for (unsigned int J = 0; J < dim; ++J)
+                        f += P[ci][J] * Gi[J];
+                      r_local[i] -= V0 * f;
+                      if (!with_matrix)
+                        continue;
+                      for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                        {
+                          const unsigned int cj  = comp[j];
+                          const auto        &Gj  = G[node[j]];
+                          double             kij = 0.;
+                          for (unsigned int J = 0; J < dim; ++J)
+                            for (unsigned int L = 0; L < dim; ++L)
+                              kij += Gi[J] * A[ci][J][cj][L] * Gj[L];
+                          k_local(i, j) += V0 * kij;
+                        }
+                    }
+                }
+              if (ok && use_fbar)
+                ok = fbar_cell(c,
+                               du_local,
+                               r_local,
+                               with_matrix ? &k_local : nullptr,
+                               failure);
               if (!ok)
                 break;
-
-              // Gradients with respect to the initial configuration.
-              for (unsigned int a = 0; a < n_nodes; ++a)
+              if (keep_contributions)
                 {
-                  G[a] = 0.;
-                  for (unsigned int J = 0; J < dim; ++J)
-                    for (unsigned int i = 0; i < dim; ++i)
-                      G[a][J] += F_n[i][J] * dN[a][i];
-                }
-
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                {
-                  const unsigned int ci = comp[i];
-                  const auto        &Gi = G[node[i]];
-                  double             f  = 0.;
-                  for (unsigned int J = 0; J < dim; ++J)
-                    f += P[ci][J] * Gi[J];
-                  r_local[i] -= V0 * f;
-                  if (!with_matrix)
-                    continue;
-                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
-                    {
-                      const unsigned int cj  = comp[j];
-                      const auto        &Gj  = G[node[j]];
-                      double             kij = 0.;
-                      for (unsigned int J = 0; J < dim; ++J)
-                        for (unsigned int L = 0; L < dim; ++L)
-                          kij += Gi[J] * A[ci][J][cj][L] * Gj[L];
-                      k_local(i, j) += V0 * kij;
-                    }
+                  std::copy(&k_local(0, 0),
+                            &k_local(0, 0) + dofs_per_cell * dofs_per_cell,
+                            stored);
+                  std::copy(r_local.begin(),
+                            r_local.end(),
+                            stored + dofs_per_cell * dofs_per_cell);
                 }
             }
-          if (ok && use_fbar)
-            ok = fbar_cell(
-              c, du_local, r_local, with_matrix ? &k_local : nullptr, failure);
-          if (!ok)
-            break;
 
           if (!grid.friction_boundaries.empty() &&
               cell_touches_friction[c.cell->active_cell_index()])
@@ -1270,6 +1319,9 @@ namespace Talus
           else
             constraints.distribute_local_to_global(r_local, c.dofs, residual);
         }
+
+      cell_contributions_current = keep_contributions && ok;
+      inertia_changed_dofs.clear();
 
       // Boundary particles in cells with at least one node that carries
       // mass: penalty forces on the material.
@@ -2172,6 +2224,16 @@ namespace Talus
       if (dealii::Utilities::MPI::sum(released.size(), grid.mpi_communicator) >
           0)
         {
+          // their cells' inertia changes: a re-assembly at this iterate
+          // evaluates them again
+          inertia_changed_dofs.clear();
+          for (const auto &r :
+               dealii::Utilities::MPI::all_gather(grid.mpi_communicator,
+                                                  released))
+            inertia_changed_dofs.insert(inertia_changed_dofs.end(),
+                                        r.begin(),
+                                        r.end());
+          std::sort(inertia_changed_dofs.begin(), inertia_changed_dofs.end());
           dealii::TrilinosWrappers::MPI::Vector owned(grid.locally_owned_dofs,
                                                       grid.mpi_communicator);
           owned                     = velocity_n;
@@ -2850,6 +2912,9 @@ namespace Talus
       // one; the collapse almost none).
       bool assembled_at_iterate = false;
       bool full_step_accepted   = true;
+      // the next assembly is at the iterate of the last one, after a
+      // contact state update
+      bool contact_reassembly = false;
       for (unsigned int it = 0;
            it <=
            max_newton_iterations + granted_iterations + state_change_iterations;
@@ -2865,8 +2930,10 @@ namespace Talus
           else
             {
               dealii::TimerOutput::Scope s(timer, "assembly");
-              ok = assemble(displacement, true, !quasi_static, failure);
+              ok = assemble(
+                displacement, true, !quasi_static, failure, contact_reassembly);
             }
+          contact_reassembly = false;
           if (!ok)
             {
               result.failure = failure;
@@ -2885,6 +2952,9 @@ namespace Talus
             {
               displacement        = du;
               solved_since_update = false;
+              // the same iterate with new constraints: the material cells'
+              // contributions are reused (assemble())
+              contact_reassembly = true;
               // re-assembly rounds do not count as Newton iterations (at
               // most 2 * maximum Newton iterations of them)
               if (++contact_rounds <= 2 * max_newton_iterations)

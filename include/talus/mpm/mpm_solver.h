@@ -470,12 +470,24 @@ namespace Talus
        * Assemble the residual (and the tangent if @p with_matrix) at the
        * increment @p du (ghosted). Returns false if a constitutive update
        * failed on any rank (message in @p failure).
+       *
+       * With @p same_iterate the caller asserts that @p du, the step and
+       * the material state are those of the previous assembly, which was
+       * with the matrix, and that only the constraints or the contact
+       * states of the friction nodes changed (a contact state update in
+       * the Newton loop). The material cells' contributions, stored by that
+       * assembly before the friction rows and the constraints act on them,
+       * are then distributed again without evaluating the material points
+       * (the results are bitwise those of a full assembly). Cells whose
+       * inertia changed (a node released from contact gets a new velocity)
+       * are evaluated again.
        */
       bool
       assemble(const dealii::TrilinosWrappers::MPI::Vector &du,
                const bool                                   with_matrix,
                const bool                                   with_inertia,
-               std::string                                 &failure);
+               std::string                                 &failure,
+               const bool same_iterate = false);
 
       /**
        * Newton correction: solve the tangent system for @p increment (and,
@@ -785,6 +797,22 @@ namespace Talus
       dealii::IndexSet friction_corner_dofs;
       /** Residual without constraints at the friction nodes (owned). */
       dealii::TrilinosWrappers::MPI::Vector raw_residual;
+      /**
+       * The material cells' local tangents and residuals of the last
+       * assembly with the matrix, before friction rows and constraints
+       * (cells.size() blocks of dofs_per_cell^2 + dofs_per_cell values; kept
+       * only with friction boundaries, whose contact state updates
+       * re-assemble at the same iterate): see assemble().
+       */
+      std::vector<double> cell_contributions;
+      /** Whether cell_contributions holds the last assembly's values. */
+      bool cell_contributions_current = false;
+      /**
+       * Dofs whose inertia changed since cell_contributions was stored
+       * (nodes released from contact; sorted): their cells are evaluated
+       * again by a same-iterate assembly.
+       */
+      std::vector<dealii::types::global_dof_index> inertia_changed_dofs;
       /** Accumulated friction dissipation [J] (all ranks). */
       double friction_dissipation = 0.;
       /** Accumulated reset dissipation [J] (all ranks); see Diagnostics. */
