@@ -343,7 +343,25 @@ namespace Talus
                           "for the last correction [-] (h: smallest cell "
                           "diameter, for bodies at rest), unless the "
                           "residual is already below 1e-2 times its "
-                          "tolerance.");
+                          "tolerance. See 'increment test' for what is "
+                          "compared.");
+        prm.declare_entry(
+          "increment test",
+          "last correction",
+          Patterns::Selection("last correction|estimated error"),
+          "What 'increment tolerance' bounds [-]. 'last correction': the "
+          "norm of the last Newton correction |d(du)_k|, which measures the "
+          "error of the iterate before it (one iteration behind: with "
+          "quadratic convergence the accepted iterate is far more accurate). "
+          "'estimated error': the error of the current iterate estimated as "
+          "|d(du)_k| min(1, |R_k| / |R_{k-1}|), the next correction "
+          "predicted from the contraction of the residual over the last "
+          "correction (Deuflhard 2004, Newton Methods for Nonlinear Problems, "
+          "section 2.1); it saves the last iteration when the residual test "
+          "already holds. Used with an increment tolerance matched to the "
+          "residual tolerance (e.g. 1e-6 both) by the granular collapse "
+          "benchmarks (doc/performance.md, 'Newton: the friction state "
+          "guess and an estimated error').");
         prm.declare_entry("linear solver",
                           "CG",
                           Patterns::Selection("CG|GMRES|direct"),
@@ -538,7 +556,9 @@ namespace Talus
       residual_tolerance = get_positive(prm, sub, "residual tolerance");
       absolute_residual_tolerance =
         prm.get_double("absolute residual tolerance");
-      increment_tolerance  = get_positive(prm, sub, "increment tolerance");
+      increment_tolerance = get_positive(prm, sub, "increment tolerance");
+      estimated_increment_error =
+        prm.get("increment test") == "estimated error";
       linear_solver_type   = prm.get("linear solver");
       reuse_preconditioner = prm.get_bool("reuse preconditioner");
       amg_smoother         = prm.get("AMG smoother");
@@ -1028,7 +1048,19 @@ namespace Talus
       amg_current = false;
       // Grid velocity and acceleration obey the essential conditions: a
       // fixed node neither moves nor carries the particles' velocity. The
-      // kinetic energy this removes is booked (reset_dissipation).
+      // kinetic energy this removes is booked (reset_dissipation). Not so
+      // the tangential dofs of friction nodes that start the step stuck
+      // ('friction state guess = previous step'): their constraint, the
+      // resting increment, brings the velocity to zero within the step
+      // through the friction force, and a node that slips after all keeps
+      // the velocity and acceleration the points gave it.
+      std::vector<dealii::types::global_dof_index> stuck_tangential;
+      for (const auto &fn : friction_nodes)
+        if (fn.owned && fn.state == ContactState::stick)
+          stuck_tangential.insert(stuck_tangential.end(),
+                                  fn.tangential_dofs.begin(),
+                                  fn.tangential_dofs.end());
+      std::sort(stuck_tangential.begin(), stuck_tangential.end());
       double removed = 0.;
       for (auto *v : {&velocity_n, &acceleration_n})
         {
@@ -1037,7 +1069,10 @@ namespace Talus
           owned              = *v;
           Epetra_FEVector &e = owned.trilinos_vector();
           for (const auto i : grid.locally_owned_dofs)
-            if (constraints.is_constrained(i))
+            if (constraints.is_constrained(i) &&
+                !std::binary_search(stuck_tangential.begin(),
+                                    stuck_tangential.end(),
+                                    i))
               {
                 const int l = e.Map().LID(static_cast<int>(i));
                 if (v == &velocity_n && !quasi_static)
@@ -2010,9 +2045,11 @@ namespace Talus
       for (auto &fn : friction_nodes)
         if (fn.owned)
           {
-            fn.switches       = 0;
-            fn.held           = false;
-            fn.slip_direction = 0.;
+            // the state the previous step ended in (free before the first)
+            const bool was_stuck = fn.state == ContactState::stick;
+            fn.switches          = 0;
+            fn.held              = false;
+            fn.slip_direction    = 0.;
             if (nodal_mass(fn.normal_dof) <= 0.)
               {
                 fn.state = ContactState::free;
@@ -2061,6 +2098,16 @@ namespace Talus
               v_t.norm() > 0. ? v_t : a_t;
             if (fn.mu == 0. || fn.tangential_dofs.empty())
               fn.state = ContactState::slip;
+            else if (was_stuck && grid.friction_guess_from_previous_step &&
+                     v_t.norm() <=
+                       fn.mu *
+                         std::max(0.,
+                                  -fn.inward *
+                                    gravity_vector[fn.normal_component]) *
+                         dt)
+              // stuck before, and friction under the node's weight can stop
+              // its projected tangential velocity within the step
+              fn.state = ContactState::stick;
             else
               fn.state = direction.norm() > 0. ? ContactState::slip :
                                                  ContactState::stick;
@@ -2877,6 +2924,8 @@ namespace Talus
       contact_jump_active   = false;
       displacement          = du;
       double last_increment = 0.;
+      // the residual norm at which the last correction was computed
+      double residual_at_correction = 0.;
       // contact states are updated only from a solution of the current
       // linear system
       bool         solved_since_update = false;
@@ -2979,11 +3028,20 @@ namespace Talus
               max_newton_iterations + state_change_iterations <
                 max_state_change_newton_iterations)
             ++state_change_iterations;
-          result.residual = reference > 0. ? r / reference : r;
+          result.residual      = reference > 0. ? r / reference : r;
+          const double du_norm = du.l2_norm();
           if (std::getenv("TALUS_DEBUG_NEWTON"))
             {
-              std::cerr << "  Newton " << it << ": " << result.residual << " ("
-                        << changed_branches << " points changed return branch)";
+              std::cerr << "  Newton " << it << ": " << result.residual
+                        << " last correction "
+                        << last_increment /
+                             std::max(du_norm, grid.minimal_cell_diameter)
+                        << " contraction "
+                        << (residual_at_correction > 0. ?
+                              r / residual_at_correction :
+                              0.)
+                        << " (" << changed_branches
+                        << " points changed return branch)";
               // points per branch on this rank: elastic, plane, edge, apex,
               // tension cut-off
               unsigned int n_branch[5] = {0, 0, 0, 0, 0};
@@ -2995,16 +3053,21 @@ namespace Talus
                         << n_branch[3] << '/' << n_branch[4] << ']'
                         << std::endl;
             }
-          result.iterations        = it;
-          const double du_norm     = du.l2_norm();
-          const bool   residual_ok = r <= residual_tolerance * reference ||
+          result.iterations      = it;
+          const bool residual_ok = r <= residual_tolerance * reference ||
                                    r <= absolute_residual_tolerance;
           // The increment criterion (relative to |du|, or to the cell size
           // for bodies at rest) may be waived when the residual is far
           // below its tolerance (quadratic convergence: the last correction
           // is then still large relative to the current error).
+          // 'increment test = estimated error': the next correction
+          // predicted from the residual's contraction over the last one.
+          const double increment_measure =
+            estimated_increment_error && residual_at_correction > 0. ?
+              last_increment * std::min(1., r / residual_at_correction) :
+              last_increment;
           const bool increment_ok =
-            it > 0 && (last_increment <=
+            it > 0 && (increment_measure <=
                          increment_tolerance *
                            std::max(du_norm, grid.minimal_cell_diameter) ||
                        r <= 1e-2 * residual_tolerance * reference);
@@ -3128,7 +3191,8 @@ namespace Talus
                       state_change_iterations)
             break;
 
-          unsigned int n_linear = 0;
+          unsigned int n_linear  = 0;
+          residual_at_correction = r;
           try
             {
               n_linear = solve_linear(increment);

@@ -94,6 +94,15 @@ namespace Talus
       bool friction_separation_by_velocity = true;
 
       /**
+       * First guess of the friction nodes' states ('friction state guess'):
+       * true ('previous step'), a node that ended the previous step stuck
+       * starts stuck if friction can stop its projected tangential velocity
+       * within the step; false ('velocity'), a node with a tangential
+       * projected velocity starts slipping.
+       */
+      bool friction_guess_from_previous_step = false;
+
+      /**
        * Smallest ballistic lift-off height v_n^2 / (2 g_n), as a fraction
        * of the cell size, for which a separating node starts free (with
        * friction_separation_by_velocity) [-].

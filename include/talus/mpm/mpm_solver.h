@@ -660,6 +660,8 @@ namespace Talus
       double       residual_tolerance;
       double       absolute_residual_tolerance;
       double       increment_tolerance;
+      /** 'increment test = estimated error' (else 'last correction'). */
+      bool         estimated_increment_error = false;
       std::string  linear_solver_type;
       double       linear_tolerance;
       unsigned int max_linear_iterations;
