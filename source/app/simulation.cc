@@ -211,7 +211,11 @@ namespace Talus
                           "once more (cells halved in every direction), and "
                           "print a convergence table of the errors with "
                           "their measured rates [-], 1 to 8. Needs 'compare "
-                          "with exact solution'.");
+                          "with exact solution' (errors against the exact "
+                          "solution) or 'measure deposit' (the deposit "
+                          "against its references, subsection <Deposit "
+                          "profile>). Each level writes its files into "
+                          "<output directory>/level-N.");
         prm.declare_entry("first level",
                           "0",
                           Patterns::Integer(0, 8),
@@ -226,6 +230,29 @@ namespace Talus
                           "true",
                           Patterns::Bool(),
                           "Halve the time step with every refinement.");
+        prm.declare_entry(
+          "refine bin width",
+          "true",
+          Patterns::Bool(),
+          "Halve the deposit's 'bin width' (subsection <Deposit profile>) "
+          "with every refinement, so that it stays the same multiple of the "
+          "point spacing (false: the same bins on every grid) [-].");
+        prm.declare_entry(
+          "require shrinking deposit error",
+          "false",
+          Patterns::Bool(),
+          "With 'measure deposit' (subsection <Deposit profile>) and a "
+          "'reference runout': the study fails (exit code 3) unless the "
+          "runout error |L - L_ref|/L_ref decreases at every refinement "
+          "[-].");
+        prm.declare_entry(
+          "exempt coarse levels",
+          "0",
+          Patterns::Integer(0, 7),
+          "Number of the study's coarsest levels whose deposit may miss the "
+          "references of subsection <Deposit profile> (reported in the "
+          "table, not a failure); every finer level must meet them [-]. "
+          "Smaller than 'number of levels'.");
       }
       prm.leave_subsection();
     }
@@ -1058,6 +1085,19 @@ namespace Talus
       }
     const bool deposit_passed =
       deposit.finalize(points, pcout.get_stream(), test_mode);
+    if (deposit.enabled())
+      {
+        const auto &c                   = deposit.comparison();
+        deposit_result                  = DepositErrors();
+        deposit_result.cell_size        = grid.cell_extent[0];
+        deposit_result.runout           = c.runout;
+        deposit_result.runout_error     = c.runout_error;
+        deposit_result.max_height_error = c.max_height_error;
+        deposit_result.rms_height_error = c.rms_height_error;
+        deposit_result.passed           = c.passed;
+      }
+    if (!deposit_passed && !deposit_misses_fatal && passed)
+      return errors;
     if (!deposit_passed)
       throw ExcVerificationFailed(
         passed ? "the deposit misses the reference values given in "
@@ -1073,6 +1113,103 @@ namespace Talus
 
   namespace
   {
+    /**
+     * The deposit of a refinement study, level by level: print a
+     * convergence table (runout, its error against the reference, the
+     * change per refinement with its rate, the surface errors) and check
+     * the study's requirements. Returns false if one is missed.
+     */
+    bool
+    check_deposit_study(const std::vector<DepositErrors> &deposits,
+                        const unsigned int                first_level,
+                        const unsigned int                exempt_levels,
+                        const bool                        require_shrinking,
+                        const MPI_Comm                    communicator)
+    {
+      dealii::ConvergenceTable table;
+      bool                     passed = true;
+      std::ostringstream       checks;
+      for (unsigned int k = 0; k < deposits.size(); ++k)
+        {
+          const DepositErrors &d = deposits[k];
+          table.add_value("level", first_level + k);
+          table.add_value("cell [m]", d.cell_size);
+          table.add_value("runout L [m]", d.runout);
+          table.add_value("(L-Lref)/Lref", d.runout_error);
+          table.add_value("|L-Lref|/Lref", std::abs(d.runout_error));
+          // the change from the coarser level estimates the discretisation
+          // error; its rate from the third level on
+          if (k == 0)
+            table.add_value("|L-L_coarser| [m]", std::string("-"));
+          else
+            table.add_value("|L-L_coarser| [m]",
+                            std::abs(d.runout - deposits[k - 1].runout));
+          if (k < 2)
+            table.add_value("rate", std::string("-"));
+          else
+            table.add_value("rate",
+                            std::log2(
+                              std::abs(deposits[k - 1].runout -
+                                       deposits[k - 2].runout) /
+                              std::abs(d.runout - deposits[k - 1].runout)));
+          // '-' where there is no reference profile
+          for (const auto &[column, value] :
+               {std::make_pair("max |h-href| [m]", d.max_height_error),
+                std::make_pair("RMS h-href [m]", d.rms_height_error)})
+            if (std::isnan(value))
+              table.add_value(column, std::string("-"));
+            else
+              table.add_value(column, value);
+          table.add_value("references", d.passed ? "met" : "missed");
+          const bool exempt = k < exempt_levels;
+          if (!d.passed && !exempt)
+            {
+              passed = false;
+              checks << "  check level " << first_level + k
+                     << ": the deposit misses its references  FAILED\n";
+            }
+          if (require_shrinking && k > 0)
+            {
+              // by more than round-off (1e-9 of the reference runout)
+              const bool shrinks =
+                std::abs(d.runout_error) <
+                std::abs(deposits[k - 1].runout_error) - 1e-9;
+              passed = passed && shrinks;
+              checks << "  check runout error shrinks, level "
+                     << first_level + k - 1 << " -> " << first_level + k << ": "
+                     << std::setprecision(4)
+                     << 100. * std::abs(deposits[k - 1].runout_error)
+                     << " % -> " << 100. * std::abs(d.runout_error) << " %"
+                     << (shrinks ? "  ok" : "  FAILED") << '\n';
+            }
+        }
+      for (const std::string column : {"cell [m]",
+                                       "runout L [m]",
+                                       "(L-Lref)/Lref",
+                                       "|L-Lref|/Lref",
+                                       "|L-L_coarser| [m]",
+                                       "max |h-href| [m]",
+                                       "RMS h-href [m]"})
+        {
+          table.set_precision(column, 4);
+          table.set_scientific(column, column != "runout L [m]");
+        }
+      table.evaluate_convergence_rates(
+        "|L-Lref|/Lref", dealii::ConvergenceTable::reduction_rate_log2);
+      table.set_precision("rate", 2);
+      if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+        {
+          std::cout << "Deposit under refinement (rate: log2 of the "
+                       "reduction per refinement):\n";
+          table.write_text(
+            std::cout,
+            dealii::TableHandler::table_with_separate_column_description);
+          std::cout << checks.str() << std::flush;
+        }
+      return passed;
+    }
+
+
     template <int dim>
     int
     run_dimension(dealii::ParameterHandler &prm, const MPI_Comm communicator)
@@ -1081,28 +1218,75 @@ namespace Talus
       const unsigned int n_levels     = prm.get_integer("number of levels");
       const unsigned int first_level  = prm.get_integer("first level");
       const double       minimum_rate = prm.get_double("minimum rate");
+      const bool         require_shrinking =
+        prm.get_bool("require shrinking deposit error");
+      const unsigned int exempt_levels =
+        prm.get_integer("exempt coarse levels");
+      const bool refine_bins = prm.get_bool("refine bin width");
       prm.leave_subsection();
       std::vector<std::vector<double>> level_errors;
       prm.enter_subsection("Verification");
       const bool compare = prm.get_bool("compare with exact solution");
       prm.leave_subsection();
-      if (n_levels > 1 && !compare)
+      prm.enter_subsection("Deposit profile");
+      const bool   deposit_study    = prm.get_bool("measure deposit");
+      const double reference_runout = prm.get_double("reference runout");
+      const double bin_width        = prm.get_double("bin width");
+      prm.leave_subsection();
+      if (n_levels > 1 && !compare && !deposit_study)
         InputFile::reject("Convergence study",
                           "number of levels",
                           std::to_string(n_levels),
                           "a convergence study needs 'compare with exact "
-                          "solution = true' in subsection <Verification>");
+                          "solution = true' in subsection <Verification> or "
+                          "'measure deposit = true' in subsection <Deposit "
+                          "profile>");
+      if (require_shrinking && (!deposit_study || reference_runout <= 0.))
+        InputFile::reject("Convergence study",
+                          "require shrinking deposit error",
+                          "true",
+                          "it needs 'measure deposit = true' and a 'reference "
+                          "runout' in subsection <Deposit profile>");
+      if (exempt_levels > 0 && (!deposit_study || exempt_levels >= n_levels))
+        InputFile::reject("Convergence study",
+                          "exempt coarse levels",
+                          std::to_string(exempt_levels),
+                          "it needs 'measure deposit = true' in subsection "
+                          "<Deposit profile> and must be smaller than "
+                          "'number of levels' (" +
+                            std::to_string(n_levels) + ")");
+      // A study writes each level's files into <output directory>/level-N.
+      prm.enter_subsection("Output");
+      const std::string output_directory = prm.get("output directory");
+      prm.leave_subsection();
 
-      dealii::ConvergenceTable table;
+      dealii::ConvergenceTable   table;
+      std::vector<DepositErrors> deposits;
       for (unsigned int level = first_level; level < first_level + n_levels;
            ++level)
         {
+          if (n_levels > 1)
+            {
+              prm.enter_subsection("Output");
+              prm.set("output directory",
+                      output_directory + "/level-" + std::to_string(level));
+              prm.leave_subsection();
+              if (deposit_study && refine_bins)
+                {
+                  prm.enter_subsection("Deposit profile");
+                  prm.set("bin width", bin_width / std::pow(2., level));
+                  prm.leave_subsection();
+                }
+            }
           Simulation<dim> simulation(communicator);
-          const auto      errors = simulation.run(prm, level);
+          // the deposit of a level is judged with the others (below)
+          simulation.set_deposit_misses_fatal(n_levels == 1);
+          const auto errors = simulation.run(prm, level);
+          deposits.push_back(simulation.deposit_errors());
           level_errors.emplace_back();
           for (const auto &e : errors)
             level_errors.back().push_back(e.displacement_error);
-          if (n_levels > 1)
+          if (n_levels > 1 && compare)
             {
               table.add_value("level", level);
               for (const auto &e : errors)
@@ -1117,7 +1301,13 @@ namespace Talus
                 }
             }
         }
-      if (n_levels > 1 &&
+      const bool deposit_study_passed = n_levels == 1 || !deposit_study ||
+                                        check_deposit_study(deposits,
+                                                            first_level,
+                                                            exempt_levels,
+                                                            require_shrinking,
+                                                            communicator);
+      if (n_levels > 1 && compare &&
           dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
         {
           std::cout << "Convergence table (rate: log2 of the error "
@@ -1148,6 +1338,10 @@ namespace Talus
             throw ExcVerificationFailed("the measured convergence rate is "
                                         "below 'minimum rate'.");
         }
+      if (!deposit_study_passed)
+        throw ExcVerificationFailed(
+          "the deposit refinement study misses its requirements (table "
+          "above).");
       return 0;
     }
   } // namespace

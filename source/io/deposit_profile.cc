@@ -780,6 +780,26 @@ namespace Talus
           }
         o << '\n';
       };
+      last_comparison            = Comparison();
+      last_comparison.runout     = m.runout;
+      last_comparison.max_height = m.max_height;
+      if (reference_runout > 0.)
+        last_comparison.runout_error =
+          (m.runout - reference_runout) / reference_runout;
+      if (!reference_profile.empty())
+        {
+          double largest = 0., sum = 0.;
+          for (unsigned int i = 0; i < reference_profile.size(); ++i)
+            {
+              const double e =
+                m.station_heights[i] - reference_profile[i].second;
+              largest = std::max(largest, std::abs(e));
+              sum += e * e;
+            }
+          last_comparison.max_height_error = largest;
+          last_comparison.rms_height_error =
+            std::sqrt(sum / reference_profile.size());
+        }
       if (reference_runout > 0.)
         row("runout L [m]",
             m.runout,
@@ -850,6 +870,7 @@ namespace Talus
         }
       if (is_root)
         out << o.str() << std::flush;
+      last_comparison.passed = passed;
       return passed;
     }
 

@@ -7,6 +7,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <fstream>
+#include <limits>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -70,6 +71,25 @@ namespace Talus
         std::vector<std::pair<double, double>> failure_line;
       };
 
+      /**
+       * The final deposit against its references (finalize()), for a
+       * refinement study (subsection "Convergence study"). Errors without a
+       * reference are NaN.
+       */
+      struct Comparison
+      {
+        double runout     = 0.; ///< L [m]
+        double max_height = 0.; ///< H [m]
+        /// (L - L_ref)/L_ref with the 'reference runout' [-]
+        double runout_error = std::numeric_limits<double>::quiet_NaN();
+        /// largest |h - h_ref| over the reference profile's stations [m]
+        double max_height_error = std::numeric_limits<double>::quiet_NaN();
+        /// root mean square of h - h_ref over those stations [m]
+        double rms_height_error = std::numeric_limits<double>::quiet_NaN();
+        /// every comparison of the table within its tolerance
+        bool passed = true;
+      };
+
       explicit DepositProfile(const MPI_Comm communicator);
 
       static void
@@ -112,6 +132,13 @@ namespace Talus
       finalize(const MPM::MaterialPoints<dim> &points,
                std::ostream                   &out,
                const bool                      test_mode);
+
+      /** The result of the last finalize() (on every rank). */
+      const Comparison &
+      comparison() const
+      {
+        return last_comparison;
+      }
 
       /**
        * Measure the current state (collective); the failure line only with
@@ -183,6 +210,7 @@ namespace Talus
       double        L0 = 0.;
       std::string   directory;
       std::ofstream series;
+      Comparison    last_comparison;
     };
   } // namespace IO
 } // namespace Talus
