@@ -32,6 +32,11 @@ previous step (Background grid/"friction state guess = previous step").
 The benchmarks' mu(I) + recoverable inputs are written with
   make_bui_inputs.py --floor friction --rate-dependent --recoverable \
     --estimated-error --previous-step-guess
+  make_bui_inputs.py --floor no-slip --rate-dependent --recoverable \
+    --estimated-error
+(the second: bui2008_*_noslip_muI_recoverable.prm, doc/verification.md,
+"Update 2026-12-04: the no-slip floor with mu(I)"). --cells 0.0025 writes
+the 2.5 mm inputs of the refinement studies (not kept in benchmarks/).
 """
 
 import argparse
@@ -176,10 +181,11 @@ def main():
         # 1e-3 s at 10 mm), i.e. a front at 1 m/s crosses a tenth of a cell
         # per step; the adaptive step halves where Newton needs it. The
         # earlier dt = cell size was not converged (doc/verification.md,
-        # granular column collapse, "Update 2026-11-30 (2)"). On the no-slip
-        # floor halving this step changes the runout by < 1 %; on the
-        # mu = 0.36 floor the runout still grows when the step is halved
-        # (+8 % at 10 mm) and is a lower bound.
+        # granular column collapse, "Update 2026-11-30 (2)"). Halving this
+        # step changes the runout by < 1 % on the no-slip floor, and on the
+        # mu = 0.36 floor since the impact friction at the grid reset
+        # ("Update 2026-11-30 (3)"; before it the runout grew when the step
+        # was halved).
         dt = float("%.3g" % (0.1 * cell))
         text = TEMPLATE.format(
             floor=("  # Coulomb friction on the floor, mu = tan(phi) (basal friction "
