@@ -715,6 +715,8 @@ namespace Talus
     unsigned long       total_multiplier_updates      = 0;
     double              max_constraint_gap            = 0.;
     unsigned int        total_rejected                = 0;
+    // steps accepted on the residual alone (MPM::NewtonResult)
+    unsigned int total_without_descent = 0;
     while (!time_control.finished())
       {
         const double      step  = time_control.next_step();
@@ -761,6 +763,7 @@ namespace Talus
         solver.commit_step();
         time_control.accept(dt_taken);
         total_newton += result.iterations;
+        total_without_descent += result.accepted_without_descent ? 1 : 0;
         total_multiplier_updates += result.multiplier_updates;
         max_constraint_gap =
           std::max(max_constraint_gap, result.constraint_gap);
@@ -947,6 +950,10 @@ namespace Talus
           }
         pcout << "\n  max speed: " << round(v_max)
               << "\n  lost mass: " << round(total_lost_mass) << " kg\n";
+        if (total_without_descent > 0)
+          pcout << "  steps accepted on the residual alone (no descent "
+                   "along the last correction): "
+                << total_without_descent << '\n';
         if (boundaries.any_augmented())
           pcout << "  multiplier updates: " << total_multiplier_updates
                 << " in " << time_control.step << " steps, largest gap left "
@@ -972,6 +979,10 @@ namespace Talus
             << static_cast<double>(total_newton) /
                  std::max(1u, time_control.step)
             << " Newton iterations per step, "
+            << (total_without_descent > 0 ?
+                  std::to_string(total_without_descent) +
+                    " accepted on the residual alone, " :
+                  std::string())
             << (boundaries.any_augmented() ?
                   std::to_string(total_multiplier_updates) +
                     " multiplier updates in " +

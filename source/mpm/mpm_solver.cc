@@ -2964,6 +2964,11 @@ namespace Talus
       // the next assembly is at the iterate of the last one, after a
       // contact state update
       bool contact_reassembly = false;
+      // The line search found no step along the last correction that
+      // lowers the residual of an iterate which already meets the residual
+      // tolerance: the iteration stays at that iterate and accepts it
+      // (below).
+      bool no_descent_at_converged_residual = false;
       for (unsigned int it = 0;
            it <=
            max_newton_iterations + granted_iterations + state_change_iterations;
@@ -3104,7 +3109,7 @@ namespace Talus
             }
           if (residual_ok && states_ok && multipliers_ok &&
               (it == 0 ? r <= absolute_residual_tolerance || reference == 0. :
-                         increment_ok))
+                         increment_ok || no_descent_at_converged_residual))
             {
               // a point held in a state (cycling) must satisfy it at the
               // solution, otherwise the step is not accepted
@@ -3184,9 +3189,12 @@ namespace Talus
                     }
                 }
               result.converged = true;
-              solved           = true;
+              result.accepted_without_descent =
+                no_descent_at_converged_residual;
+              solved = true;
               return;
             }
+          no_descent_at_converged_residual = false;
           if (it == max_newton_iterations + granted_iterations +
                       state_change_iterations)
             break;
@@ -3225,6 +3233,7 @@ namespace Talus
               // Backtracking on the residual norm: halve the correction
               // while the residual grows (at most max_line_search times).
               dealii::TimerOutput::Scope s(timer, "line search");
+              bool                       any_accepted = false;
               for (unsigned int k = 0; k < max_line_search; ++k)
                 {
                   const bool with_matrix = k == 0 && full_step_accepted &&
@@ -3246,6 +3255,7 @@ namespace Talus
                   if (accepted)
                     {
                       assembled_at_iterate = with_matrix;
+                      any_accepted         = true;
                       break;
                     }
                   if (with_matrix)
@@ -3259,6 +3269,28 @@ namespace Talus
                   for (auto &bp : boundary_points)
                     if (bp.monolithic)
                       bp.lambda -= step_length * bp.dlambda;
+                }
+              // Every trial raised the residual of an iterate that already
+              // meets the residual tolerance (semi-smooth Newton at a kink
+              // of the return map: a point toggling between two return
+              // branches, whose tangents send the correction the wrong way,
+              // so that the iteration cycles between that iterate and a
+              // worse one). Go back to the iterate and accept it: no step
+              // along the correction improves it, and the increment test
+              // cannot be met by steps the residual rejects.
+              if (!any_accepted && !contact_jump_was_active &&
+                  !with_lagrange_multipliers &&
+                  (r <= residual_tolerance * reference ||
+                   r <= absolute_residual_tolerance))
+                {
+                  du.add(-step_length, increment);
+                  displacement = du;
+                  for (auto &bp : boundary_points)
+                    if (bp.monolithic)
+                      bp.lambda -= step_length * bp.dlambda;
+                  no_descent_at_converged_residual = true;
+                  solved_since_update              = false;
+                  continue;
                 }
             }
           if (contact_jump_was_active)

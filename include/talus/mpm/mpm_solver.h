@@ -43,7 +43,13 @@ namespace Talus
       /** Multiplier (Uzawa) updates of augmented Lagrangian boundaries. */
       unsigned int multiplier_updates = 0;
       /** Largest gap left on augmented Lagrangian boundaries [m]. */
-      double      constraint_gap = 0.;
+      double constraint_gap = 0.;
+      /**
+       * Converged on the residual alone: from an iterate that met the
+       * residual tolerance, no step of the line search along the next
+       * correction lowered the residual (see MPMSolver::solve_step()).
+       */
+      bool        accepted_without_descent = false;
       std::string failure; ///< why it did not converge
     };
 
