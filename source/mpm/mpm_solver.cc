@@ -3212,6 +3212,48 @@ namespace Talus
               return;
             }
           result.linear_iterations += n_linear;
+          // Debugging aid (doc/performance.md, "The stall just above the
+          // tolerance"): at a lingering iteration (the fifth on) near
+          // convergence, compare the residual's change along the
+          // correction d, (R(u + eps d) - R(u)) / eps, with the tangent's
+          // prediction J d (J d = -R here), for eps = 1 ... 1e-6. The
+          // residual, the iterate and the recorded branches are restored.
+          if (std::getenv("TALUS_DEBUG_FD") && reference > 0. &&
+              r < 1e-5 * reference && it >= 5)
+            {
+              const dealii::TrilinosWrappers::MPI::Vector R0 = residual;
+              dealii::TrilinosWrappers::MPI::Vector Jd(R0), dR(R0), diff(R0);
+              matrix.vmult(Jd, increment);
+              const std::vector<int> branches_saved = point_branches;
+              const unsigned int     changes_saved  = branch_changes;
+              std::cerr << "    FD check |R| " << r / reference << " |Jd| "
+                        << Jd.l2_norm() << " |R0| " << R0.l2_norm();
+              for (const double eps : {1., 1e-1, 1e-2, 1e-3, 1e-4, 1e-6})
+                {
+                  displacement = du;
+                  displacement.add(eps, increment);
+                  std::string f;
+                  assemble(displacement, false, !quasi_static, f);
+                  dR = residual;
+                  dR -= R0;
+                  dR /= eps;
+                  diff = dR;
+                  diff -= Jd;
+                  const double e_minus = diff.l2_norm();
+                  diff                 = dR;
+                  diff += Jd;
+                  const double e_plus = diff.l2_norm();
+                  std::cerr << " | eps " << eps << ": |dR-Jd|/|Jd| "
+                            << e_minus / Jd.l2_norm() << " |dR+Jd|/|Jd| "
+                            << e_plus / Jd.l2_norm() << " |R(u+eps d)| "
+                            << residual.l2_norm() / reference;
+                }
+              std::cerr << std::endl;
+              point_branches = branches_saved;
+              branch_changes = changes_saved;
+              displacement   = du;
+              residual       = R0;
+            }
           branch_changes = 0;
           du += increment;
           displacement = du;
