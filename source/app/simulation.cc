@@ -11,7 +11,7 @@
 #include <talus/mpm/background_grid.h>
 #include <talus/mpm/initial_stress.h>
 #include <talus/mpm/material_points.h>
-#include <talus/mpm/mpm_solver.h>
+#include <talus/mpm/mpm_problem.h>
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/convergence_table.h>
@@ -290,7 +290,8 @@ namespace Talus
 
   template <int dim>
   void
-  Simulation<dim>::declare_parameters(dealii::ParameterHandler &prm)
+  Simulation<dim>::declare_parameters(dealii::ParameterHandler &prm,
+                                      const unsigned int        n_boundaries)
   {
     prm.declare_entry("problem",
                       "mpm",
@@ -303,12 +304,7 @@ namespace Talus
                       dealii::Patterns::Integer(2, 3),
                       "Space dimension of the problem [-]: 2 (plane strain) "
                       "or 3.");
-    MPM::BackgroundGrid<dim>::declare_parameters(prm);
-    MPM::MaterialPoints<dim>::declare_parameters(prm);
-    MPM::InitialStress<dim>::declare_parameters(prm);
-    Materials::declare_parameters(prm);
-    MPM::MPMSolver<dim>::declare_parameters(prm);
-    Boundaries::BoundaryParticles<dim>::declare_parameters(prm);
+    MPM::MPMProblem<dim>::declare_parameters(prm, n_boundaries);
     TimeControl::declare_parameters(prm);
     IO::VisualizationOutput<dim>::declare_parameters(prm);
     prm.enter_subsection("Output");
@@ -345,23 +341,6 @@ namespace Talus
                               dealii::TimerOutput::wall_times);
 
     // Build everything from the file.
-    MPM::BackgroundGrid<dim> grid(communicator);
-    grid.parse_parameters_and_create(prm);
-    if (refinement > 0)
-      {
-        grid.triangulation.refine_global(refinement);
-        grid.cell_extent /= std::pow(2., refinement);
-        grid.minimal_cell_diameter /= std::pow(2., refinement);
-        grid.setup_dofs();
-      }
-
-    const auto model = Materials::create_model(prm);
-    // the solver reads only the dim x dim x dim x dim block of dP/dF
-    model->set_tangent_dimension(dim);
-    prm.enter_subsection("Material");
-    const double density = get_positive(prm, "Material", "density");
-    prm.leave_subsection();
-
     TimeControl time_control;
     time_control.parse_parameters(prm);
     prm.enter_subsection("Convergence study");
@@ -372,17 +351,12 @@ namespace Talus
       }
     prm.leave_subsection();
 
-    MPM::MaterialPoints<dim> points(grid);
-    points.parse_parameters(prm);
-    MPM::InitialStress<dim> initial_stress;
-    initial_stress.parse_parameters(prm);
-
-    MPM::MPMSolver<dim> solver(
-      grid, points, *model, time_control.newmark, timer);
-    solver.parse_parameters(prm);
-
-    Boundaries::BoundaryParticles<dim> boundaries(grid);
-    boundaries.parse_parameters(prm);
+    MPM::MPMProblem<dim> problem(communicator, time_control.newmark, timer);
+    problem.parse_parameters(prm, refinement);
+    auto &grid       = problem.grid();
+    auto &points     = problem.points();
+    auto &solver     = problem.solver();
+    auto &boundaries = problem.boundaries();
 
     IO::VisualizationOutput<dim> output;
     output.parse_parameters(prm);
@@ -470,16 +444,7 @@ namespace Talus
     report_times.push_back(time_control.end_time);
 
     // Generate the body and set up the solver.
-    points.generate(density,
-                    model->n_history_variables(),
-                    [&](const dealii::ArrayView<double> &h) {
-                      model->initialize_history(h);
-                    });
-    initial_stress.apply(
-      points, *model, solver.gravity(), communicator, solver.load_ramp());
-    solver.setup();
-    boundaries.generate(model->p_wave_modulus());
-    solver.attach_boundary_particles(boundaries);
+    problem.setup();
     output.initialize(communicator);
 
     IO::TimeSeries<dim> series;
@@ -492,69 +457,14 @@ namespace Talus
 
     pcout << "Talus: " << dim << "D implicit MPM, "
           << dealii::Utilities::MPI::n_mpi_processes(communicator)
-          << " MPI rank(s)\n"
-          << "  background grid: " << grid.triangulation.n_global_active_cells()
-          << " cells, " << grid.dof_handler.n_dofs() << " DoFs\n"
-          << "  material points: " << points.n_global_points() << '\n'
-          << "  material: " << model->name() << ", density " << density
-          << " kg/m^3\n";
-    if (initial_stress.enabled())
-      pcout << "  initial stress: " << initial_stress.description() << '\n';
-    if (solver.ghost_penalty() > 0.)
-      pcout << "  ghost penalty: factor " << solver.ghost_penalty()
-            << " (gamma = factor * P-wave modulus), on the faces of cut "
-               "cells\n";
-    if (!boundaries.empty())
-      {
-        std::vector<unsigned int> count(boundaries.n_boundaries(), 0);
-        for (const auto &p : boundaries.particle_handler())
-          ++count[static_cast<unsigned int>(
-            p.get_properties()
-              [Boundaries::BoundaryParticleProperties<dim>::boundary])];
-        MPI_Allreduce(MPI_IN_PLACE,
-                      count.data(),
-                      count.size(),
-                      MPI_UNSIGNED,
-                      MPI_SUM,
-                      communicator);
-        for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
-          {
-            const auto &desc = boundaries.boundary(b);
-            pcout << "  boundary " << desc.name << ": " << desc.geometry << ", "
-                  << count[b] << " boundary particles, "
-                  << (desc.condition == Boundaries::Condition::fixed ?
-                        "fixed" :
-                      desc.condition == Boundaries::Condition::slip ?
-                        "slip" :
-                      desc.condition == Boundaries::Condition::contact ?
-                        "contact" :
-                        "friction mu = " +
-                          [](const double mu) {
-                            std::ostringstream o;
-                            o << mu;
-                            return o.str();
-                          }(desc.friction_coefficient))
-                  << (desc.augmented ? ", augmented Lagrangian, penalty" :
-                      desc.lagrange_multiplier ?
-                                       ", Lagrange multipliers, trial-force" :
-                      desc.nitsche ? ", Nitsche (theta = " +
-                                       [](const double theta) {
-                                         std::ostringstream o;
-                                         o << theta;
-                                         return o.str();
-                                       }(desc.nitsche_theta) +
-                                       "), stabilisation" :
-                                     ", penalty")
-                  << " beta = " << std::setprecision(4) << desc.beta << " Pa/m"
-                  << std::defaultfloat << '\n';
-          }
-      }
+          << " MPI rank(s)\n";
+    problem.print_summary(pcout);
     if (!test_mode)
       pcout << "  time: end " << time_control.end_time << " s, step "
             << time_control.initial_dt << " s\n";
 
-    solver.initialize_acceleration(0.);
-    const auto        initial = solver.compute_diagnostics();
+    problem.initialize(0.);
+    const auto        initial = problem.diagnostics();
     MPM::NewtonResult none;
     series.write(0, 0., 0., none, initial, 0.);
     output.write(0., grid, points);
@@ -725,8 +635,8 @@ namespace Talus
         while (true)
           {
             const double dt_try = time_control.next_step();
-            solver.prepare_step(time_control.time + dt_try, dt_try);
-            result = solver.solve_step();
+            problem.prepare_step(time_control.time + dt_try, dt_try);
+            result = problem.solve_step();
             if (result.converged)
               break;
             ++total_rejected;
@@ -760,7 +670,7 @@ namespace Talus
         (void)t_new;
         (void)step;
         const double dt_taken = time_control.next_step();
-        solver.commit_step();
+        problem.commit_step();
         time_control.accept(dt_taken);
         total_newton += result.iterations;
         total_without_descent += result.accepted_without_descent ? 1 : 0;
@@ -1425,15 +1335,18 @@ namespace Talus
       dimension = pre.get_integer("dimension");
     }
     dealii::ParameterHandler prm;
+    // as many boundary subsections as the file has (no fixed limit)
+    const unsigned int n_boundaries =
+      Boundaries::BoundaryParticles<2>::n_boundaries_in_file(filename);
     if (dimension == 2)
       {
-        Simulation<2>::declare_parameters(prm);
+        Simulation<2>::declare_parameters(prm, n_boundaries);
         prm.parse_input(filename);
         return run_dimension<2>(prm, communicator);
       }
     else
       {
-        Simulation<3>::declare_parameters(prm);
+        Simulation<3>::declare_parameters(prm, n_boundaries);
         prm.parse_input(filename);
         return run_dimension<3>(prm, communicator);
       }

@@ -38,6 +38,17 @@ namespace Talus
         return "Boundary " + std::to_string(k + 1);
       }
 
+      /**
+       * Whether subsection `Boundary k+1` of the current subsection was
+       * declared (declare_parameters() declared as many as the file
+       * needs).
+       */
+      bool
+      declared_slot(const dealii::ParameterHandler &prm, const unsigned int k)
+      {
+        return prm.subsection_path_exists({slot_name(k)});
+      }
+
       bool
       has_stl_extension(const std::string &file_name)
       {
@@ -204,8 +215,29 @@ namespace Talus
 
 
     template <int dim>
+    unsigned int
+    BoundaryParticles<dim>::n_boundaries_in_file(const std::string &filename)
+    {
+      unsigned int  n = default_boundary_slots;
+      std::ifstream in(filename);
+      std::string   line;
+      while (std::getline(in, line))
+        {
+          std::istringstream words(line);
+          std::string        keyword, name;
+          unsigned int       number = 0;
+          if (words >> keyword >> name >> number && keyword == "subsection" &&
+              name == "Boundary")
+            n = std::max(n, number);
+        }
+      return n;
+    }
+
+
+    template <int dim>
     void
-    BoundaryParticles<dim>::declare_parameters(dealii::ParameterHandler &prm)
+    BoundaryParticles<dim>::declare_parameters(dealii::ParameterHandler &prm,
+                                               const unsigned int n_slots)
     {
       using dealii::Patterns::Anything;
       using dealii::Patterns::Bool;
@@ -231,7 +263,7 @@ namespace Talus
         "Augmented Lagrangian boundaries: the most multiplier updates in "
         "one step; a step that needs more fails like a non-converged Newton "
         "solve (and is retried with a smaller step if allowed) [-].");
-      for (unsigned int k = 0; k < max_boundaries; ++k)
+      for (unsigned int k = 0; k < n_slots; ++k)
         {
           prm.enter_subsection(slot_name(k));
           prm.declare_entry(
@@ -467,7 +499,7 @@ namespace Talus
                           prm.get("multiplier tolerance"),
                           "a positive number");
       max_updates = prm.get_integer("maximum multiplier updates");
-      for (unsigned int k = 0; k < max_boundaries; ++k)
+      for (unsigned int k = 0; declared_slot(prm, k); ++k)
         {
           const std::string sub = "Boundary particles/" + slot_name(k);
           prm.enter_subsection(slot_name(k));
@@ -1197,6 +1229,30 @@ namespace Talus
       point_contact[b].penetration =
         std::max(point_contact[b].penetration, penetration);
       ++point_contact[b].active;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::save_state()
+    {
+      backup.copy_from(handler);
+      backup_lost              = lost;
+      backup_lost_per_boundary = lost_per_boundary;
+      saved                    = true;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::restore_state()
+    {
+      AssertThrow(saved,
+                  dealii::ExcMessage("BoundaryParticles::restore_state() "
+                                     "without a preceding save_state()"));
+      handler.copy_from(backup);
+      lost              = backup_lost;
+      lost_per_boundary = backup_lost_per_boundary;
     }
 
 

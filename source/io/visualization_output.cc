@@ -114,9 +114,11 @@ namespace Talus
 
       dealii::Particles::DataOut<dim> particle_out;
       particle_out.build_patches(handler,
-                                 Properties::names(points.n_history()),
+                                 Properties::names(points.n_history(),
+                                                   points.n_contact_slots()),
                                  Properties::interpretation(
-                                   points.n_history()));
+                                   points.n_history(),
+                                   points.n_contact_slots()));
 
       dealii::DataOut<dim>  grid_out;
       dealii::Vector<float> n_points(grid.triangulation.n_active_cells());

@@ -27,7 +27,8 @@ namespace Talus
   {
     template <int dim>
     std::vector<std::string>
-    MaterialPointProperties<dim>::names(const unsigned int n_history)
+    MaterialPointProperties<dim>::names(const unsigned int n_history,
+                                        const unsigned int n_slots)
     {
       std::vector<std::string> n;
       n.emplace_back("mass");
@@ -46,13 +47,13 @@ namespace Talus
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
           n.emplace_back("C_" + std::to_string(i) + std::to_string(j));
-      for (unsigned int b = 0; b < n_contact_slots; ++b)
-        for (unsigned int d = 0; d < dim; ++d)
-          n.emplace_back("contact_gap_" + std::to_string(b + 1));
-      for (unsigned int b = 0; b < n_contact_slots; ++b)
-        n.emplace_back("contact_offset_" + std::to_string(b + 1));
       for (unsigned int i = 0; i < n_history; ++i)
         n.emplace_back("history_" + std::to_string(i));
+      for (unsigned int b = 0; b < n_slots; ++b)
+        for (unsigned int d = 0; d < dim; ++d)
+          n.emplace_back("contact_gap_" + std::to_string(b + 1));
+      for (unsigned int b = 0; b < n_slots; ++b)
+        n.emplace_back("contact_offset_" + std::to_string(b + 1));
       return n;
     }
 
@@ -60,18 +61,20 @@ namespace Talus
     template <int dim>
     std::vector<
       dealii::DataComponentInterpretation::DataComponentInterpretation>
-    MaterialPointProperties<dim>::interpretation(const unsigned int n_history)
+    MaterialPointProperties<dim>::interpretation(const unsigned int n_history,
+                                                 const unsigned int n_slots)
     {
       using namespace dealii::DataComponentInterpretation;
-      std::vector<DataComponentInterpretation> r(n_properties(n_history),
+      std::vector<DataComponentInterpretation> r(n_properties(n_history,
+                                                              n_slots),
                                                  component_is_scalar);
       for (unsigned int d = 0; d < dim; ++d)
         {
           r[velocity + d]         = component_is_part_of_vector;
           r[acceleration + d]     = component_is_part_of_vector;
           r[initial_position + d] = component_is_part_of_vector;
-          for (unsigned int b = 0; b < n_contact_slots; ++b)
-            r[contact_gap + dim * b + d] = component_is_part_of_vector;
+          for (unsigned int b = 0; b < n_slots; ++b)
+            r[contact_gap(n_history, b) + d] = component_is_part_of_vector;
         }
       return r;
     }
@@ -485,7 +488,7 @@ namespace Talus
       history_size = n_history;
       handler.initialize(grid.triangulation,
                          grid.mapping,
-                         Properties::n_properties(n_history));
+                         Properties::n_properties(n_history, contact_slots));
       handler.signals.particle_lost.connect(
         [this](
           const typename dealii::Particles::ParticleIterator<dim> &p,
@@ -544,7 +547,8 @@ namespace Talus
           "direction).");
 
       std::vector<std::vector<double>> properties(points.size());
-      const unsigned int     n_properties = Properties::n_properties(n_history);
+      const unsigned int     n_properties =
+        Properties::n_properties(n_history, contact_slots);
       dealii::Vector<double> v0(dim);
       for (unsigned int i = 0; i < points.size(); ++i)
         {

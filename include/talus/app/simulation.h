@@ -1,6 +1,8 @@
 #ifndef talus_app_simulation_h
 #define talus_app_simulation_h
 
+#include <talus/boundaries/boundary_particles.h>
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
@@ -74,7 +76,10 @@ namespace Talus
 
     /** Declare every parameter of a run in @p prm. */
     static void
-    declare_parameters(dealii::ParameterHandler &prm);
+    declare_parameters(
+      dealii::ParameterHandler &prm,
+      const unsigned int        n_boundaries =
+        Boundaries::BoundaryParticles<dim>::default_boundary_slots);
 
     /**
      * Run with the parameters in @p prm, on the background grid refined

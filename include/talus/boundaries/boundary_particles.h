@@ -201,13 +201,28 @@ namespace Talus
     class BoundaryParticles
     {
     public:
-      /** Number of boundary slots in the parameter file. */
-      static constexpr unsigned int max_boundaries = 4;
+      /**
+       * Number of boundary subsections (`Boundary 1`, `Boundary 2`, ...)
+       * declared when the parameter file does not ask for more (and
+       * documented by --print-parameters). There is no upper limit: see
+       * n_boundaries_in_file().
+       */
+      static constexpr unsigned int default_boundary_slots = 4;
+
+      /**
+       * The largest N of a line `subsection Boundary N` in the parameter
+       * file @p filename, and at least default_boundary_slots: the number
+       * of boundary subsections to declare for it.
+       */
+      static unsigned int
+      n_boundaries_in_file(const std::string &filename);
 
       explicit BoundaryParticles(const MPM::BackgroundGrid<dim> &grid);
 
       static void
-      declare_parameters(dealii::ParameterHandler &prm);
+      declare_parameters(
+        dealii::ParameterHandler &prm,
+        const unsigned int        n_slots = default_boundary_slots);
 
       /** Parse subsection "Boundary particles". */
       void
@@ -386,6 +401,18 @@ namespace Talus
         return boundaries[b].name;
       }
 
+      /**
+       * Keep a copy of the particles (positions, gaps, reactions, states,
+       * multipliers) and of the loss counters: the state of the last
+       * committed step.
+       */
+      void
+      save_state();
+
+      /** Go back to the copy of the last save_state(). */
+      void
+      restore_state();
+
     private:
       /** The codimension-one mesh of boundary @p b (refined). */
       void
@@ -406,6 +433,11 @@ namespace Talus
 
       const MPM::BackgroundGrid<dim>         &grid;
       dealii::Particles::ParticleHandler<dim> handler;
+      /** The copy of save_state(). */
+      dealii::Particles::ParticleHandler<dim> backup;
+      unsigned int                            backup_lost = 0;
+      std::vector<unsigned int>               backup_lost_per_boundary;
+      bool                                    saved = false;
       std::vector<BoundaryDescription<dim>>   boundaries;
       unsigned int                            lost                   = 0;
       double                                  relative_gap_tolerance = 1e-5;

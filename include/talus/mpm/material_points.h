@@ -36,9 +36,9 @@ namespace Talus
      * | Cauchy stress        | 6 (xx yy zz xy yz xz) | Pa |
      * | initial position X   | dim     | m      |
      * | affine velocity C    | dim*dim | 1/s    |
-     * | contact gap          | dim * n_contact_slots | m |
-     * | contact offset       | n_contact_slots | m |
      * | history              | n       | model dependent |
+     * | contact gap          | dim * n_slots | m |
+     * | contact offset       | n_slots | m |
      *
      * In 2D (plane strain) the out-of-plane stress zz is kept because it
      * enters plasticity; the in-plane deformation gradient has F_zz = 1.
@@ -48,7 +48,8 @@ namespace Talus
      * update uses it (Jiang et al. 2015: the point's velocity field is
      * v_p + C (x - x_p)). With FLIP it stays zero.
      *
-     * The contact gap holds, per boundary slot b, the elastic tangential
+     * The contact gap holds, per boundary b (n_slots = the number of
+     * boundaries, MaterialPoints::set_contact_slots()), the elastic tangential
      * relative displacement of the point's contact point against boundary
      * b (the stick spring of a boundary with 'contact side = material
      * points', see MPMSolver); zero while the point does not touch it.
@@ -69,18 +70,32 @@ namespace Talus
       static constexpr unsigned int stress           = deformation + dim * dim;
       static constexpr unsigned int initial_position = stress + 6;
       static constexpr unsigned int affine_velocity  = initial_position + dim;
-      /** Boundary slots with a contact gap (= BoundaryParticles' slots). */
-      static constexpr unsigned int n_contact_slots = 4;
-      static constexpr unsigned int contact_gap = affine_velocity + dim * dim;
-      static constexpr unsigned int contact_offset =
-        contact_gap + dim * n_contact_slots;
-      static constexpr unsigned int history = contact_offset + n_contact_slots;
+      static constexpr unsigned int history = affine_velocity + dim * dim;
 
-      /** Number of properties for a model with @p n_history variables. */
+      /**
+       * Number of properties for a model with @p n_history variables and
+       * contact data for @p n_slots boundaries.
+       */
       static constexpr unsigned int
-      n_properties(const unsigned int n_history)
+      n_properties(const unsigned int n_history, const unsigned int n_slots)
       {
-        return history + n_history;
+        return history + n_history + (dim + 1) * n_slots;
+      }
+
+      /** First component of the contact gap against boundary @p b. */
+      static constexpr unsigned int
+      contact_gap(const unsigned int n_history, const unsigned int b)
+      {
+        return history + n_history + dim * b;
+      }
+
+      /** Contact offset against boundary @p b of @p n_slots. */
+      static constexpr unsigned int
+      contact_offset(const unsigned int n_history,
+                     const unsigned int n_slots,
+                     const unsigned int b)
+      {
+        return history + n_history + dim * n_slots + b;
       }
 
       /**
@@ -101,12 +116,12 @@ namespace Talus
 
       /** Names for output, one per property (history as history_i). */
       static std::vector<std::string>
-      names(const unsigned int n_history);
+      names(const unsigned int n_history, const unsigned int n_slots);
 
       /** Output interpretation (vectors for velocity, ...). */
       static std::vector<
         dealii::DataComponentInterpretation::DataComponentInterpretation>
-      interpretation(const unsigned int n_history);
+      interpretation(const unsigned int n_history, const unsigned int n_slots);
     };
 
 
@@ -193,6 +208,40 @@ namespace Talus
       unsigned int
       n_history() const;
 
+      /**
+       * Reserve contact data (gap and offset, MaterialPointProperties) for
+       * @p n boundaries (one slot per boundary of BoundaryParticles; there
+       * is no fixed limit). Call before generate().
+       */
+      void
+      set_contact_slots(const unsigned int n)
+      {
+        contact_slots = n;
+      }
+
+      /** Number of boundaries with contact data per point. */
+      unsigned int
+      n_contact_slots() const
+      {
+        return contact_slots;
+      }
+
+      /** Index of the first component of the contact gap of boundary b. */
+      unsigned int
+      contact_gap_index(const unsigned int b) const
+      {
+        return MaterialPointProperties<dim>::contact_gap(history_size, b);
+      }
+
+      /** Index of the contact offset of boundary b. */
+      unsigned int
+      contact_offset_index(const unsigned int b) const
+      {
+        return MaterialPointProperties<dim>::contact_offset(history_size,
+                                                            contact_slots,
+                                                            b);
+      }
+
     private:
       void
       generate_from_background_cells(
@@ -222,6 +271,7 @@ namespace Talus
       bool clip_to_body = false;
       std::unique_ptr<dealii::Functions::ParsedFunction<dim>> initial_velocity;
       unsigned int                                            history_size;
+      unsigned int contact_slots = 0;
 
       double       lost_mass;
       unsigned int lost_count;

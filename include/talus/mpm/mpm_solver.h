@@ -232,6 +232,34 @@ namespace Talus
         return n_ghost_faces;
       }
 
+      /**
+       * The reactions of the boundary particles at the converged iterate
+       * of the last solve_step() [N], the force each exerts on the
+       * boundary (minus the force on the material), for the locally
+       * owned boundary particles in cells with material, by particle
+       * index; particles not listed carry none. Trial state: available
+       * after solve_step() and equal to the `reaction` property that
+       * commit_step() then writes (the coupling sends them to the
+       * structure before the step is committed).
+       */
+      std::vector<
+        std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>
+      boundary_reactions() const;
+
+      /**
+       * Keep a copy of what commit_step() changes in the solver: the
+       * energy accounts (friction, reset and transfer dissipation), the
+       * committed grid velocity and its kinetic energy, the grid friction
+       * states the next step starts from. The points and boundary
+       * particles are saved by their owners (MPMProblem::save_state()).
+       */
+      void
+      save_state();
+
+      /** Go back to the copy of the last save_state(). */
+      void
+      restore_state();
+
       /** Throw an error instead of a warning when points leave the grid. */
       bool abort_on_lost_points = false;
 
@@ -410,6 +438,48 @@ namespace Talus
                         const std::vector<double>           &du_local,
                         dealii::Tensor<1, dim>              &T,
                         std::vector<dealii::Tensor<1, dim>> &dT) const;
+
+      /**
+       * The trial state of the boundary particles at a converged iterate
+       * (solve_step()): new gap, multiplier, reaction and state per
+       * particle; for material-point contact the point's tangential stick
+       * gap and its contribution to the boundary's resultant; the
+       * dissipated work. commit_step() writes it (commit_boundary_trial()).
+       */
+      struct BoundaryParticleTrial
+      {
+        typename dealii::Particles::ParticleIterator<dim> particle;
+        dealii::Tensor<1, dim>                            gap;
+        dealii::Tensor<1, dim>                            multiplier;
+        dealii::Tensor<1, dim>                            reaction;
+        int                                               state = 0;
+      };
+      struct PointContactTrial
+      {
+        typename dealii::Particles::ParticleIterator<dim> point;
+        unsigned int                                      boundary = 0;
+        dealii::Tensor<1, dim>                            tangential_gap;
+        bool                                              active = false;
+        dealii::Tensor<1, dim>                            reaction;
+        dealii::Tensor<1, dim>                            normal;
+        double                                            penetration = 0.;
+      };
+      std::vector<BoundaryParticleTrial> boundary_trial;
+      std::vector<PointContactTrial>     point_contact_trial;
+      /** Work dissipated by the boundaries in the step (all ranks) [J]. */
+      double boundary_trial_work = 0.;
+
+      /** Evaluate the boundary trial state at the converged increment. */
+      void
+      evaluate_boundary_trial();
+
+      /** Write the boundary trial state into the particles (commit). */
+      void
+      commit_boundary_trial();
+
+      /** Newton (with Uzawa updates) of solve_step(). */
+      NewtonResult
+      solve_increment();
 
       /** Project the points' Cauchy stresses to the nodes (Nitsche). */
       void
@@ -821,6 +891,34 @@ namespace Talus
        * again by a same-iterate assembly.
        */
       std::vector<dealii::types::global_dof_index> inertia_changed_dofs;
+      /**
+       * Committed grid friction state: for every entry of friction_nodes,
+       * whether the node ended the last committed step (or the initial
+       * acceleration) stuck. initialize_friction_states() reads it for
+       * 'friction state guess = previous step', never the trial states
+       * of a rejected attempt or of an earlier coupling iteration.
+       */
+      std::vector<bool> committed_stuck;
+
+      /** What commit_step() changes in the solver (save_state()). */
+      struct CommittedState
+      {
+        double                                friction_dissipation = 0.;
+        double                                reset_dissipation    = 0.;
+        double                                transfer_dissipation = 0.;
+        double                                grid_kinetic_energy  = -1.;
+        double                                max_grid_speed       = -1.;
+        dealii::Tensor<1, dim>                contact_force;
+        dealii::TrilinosWrappers::MPI::Vector grid_velocity;
+        std::vector<bool>                     stuck;
+        bool                                  saved = false;
+      };
+      CommittedState saved_state;
+
+      /** Record the friction nodes' states as the committed ones. */
+      void
+      commit_friction_states();
+
       /** Accumulated friction dissipation [J] (all ranks). */
       double friction_dissipation = 0.;
       /** Accumulated reset dissipation [J] (all ranks); see Diagnostics. */

@@ -1,0 +1,242 @@
+#ifndef talus_mpm_mpm_problem_h
+#define talus_mpm_mpm_problem_h
+
+#include <talus/base/time_control.h>
+#include <talus/boundaries/boundary_particles.h>
+#include <talus/materials/constitutive_model.h>
+#include <talus/mpm/background_grid.h>
+#include <talus/mpm/initial_stress.h>
+#include <talus/mpm/material_points.h>
+#include <talus/mpm/mpm_solver.h>
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <memory>
+#include <ostream>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    /**
+     * What a committed step lost: material points that left the
+     * background grid (removed) and boundary particles that did so, per
+     * boundary. Reported by the caller (MPMProblem::take_losses()).
+     */
+    template <int dim>
+    struct StepLosses
+    {
+      unsigned int n_points = 0;
+      double       mass     = 0.; ///< [kg]
+      /** Bounding box of the lost points' last positions [m]. */
+      std::pair<dealii::Point<dim>, dealii::Point<dim>> region;
+      std::vector<unsigned int> boundary_particles; ///< per boundary
+    };
+
+    /**
+     * The soil problem of Talus: the implicit material point method
+     * (founding paper, section 2) on one parameter file, as an object that
+     * a time loop or a coupling scheme drives from outside.
+     *
+     * It owns every object of the MPM side (background grid, constitutive
+     * model, material points, initial stress, boundary particles and the
+     * MPMSolver) and builds them from their subsections (`Background
+     * grid`, `Material`, `Body`, `Initial stress`, `Solver`, `Boundary
+     * particles`). A time step is
+     *
+     *   prepare_step(t_{n+1}, dt)  P2G, constraints, active set start
+     *   solve_step()               Newton on the grid increment; repeatable,
+     *                              no side effect on the committed state
+     *                              (points, boundary particles, friction
+     *                              states, energy accounts)
+     *   commit_step()              G2P, the points move, the step's
+     *                              reactions and energies are booked
+     *
+     * so that a rejected step or a coupling iteration just calls
+     * prepare_step() and solve_step() again. save_state() and
+     * restore_state() copy everything a committed step changes (the
+     * points with their history, the boundary particles with gaps,
+     * reactions, states and multipliers, the grid friction states, the
+     * energy accounts) so that a committed step can be undone as well
+     * (the coupled problem rejects both fields when the interface does not
+     * converge after the MPM committed).
+     *
+     * The time integrator (Newmark-beta) belongs to the caller, who owns
+     * the time control shared by all fields of a coupled problem.
+     */
+    template <int dim>
+    class MPMProblem
+    {
+    public:
+      MPMProblem(const MPI_Comm       communicator,
+                 const NewmarkBeta   &newmark,
+                 dealii::TimerOutput &timer);
+
+      /**
+       * Declare the subsections of every object the problem owns, with
+       * @p n_boundaries subsections `Boundary N` of `Boundary particles`
+       * (Boundaries::BoundaryParticles::n_boundaries_in_file()).
+       */
+      static void
+      declare_parameters(
+        dealii::ParameterHandler &prm,
+        const unsigned int        n_boundaries =
+          Boundaries::BoundaryParticles<dim>::default_boundary_slots);
+
+      /**
+       * Build the grid (refined @p refinement times, for convergence
+       * studies), the model, the points, the solver and the boundaries
+       * from @p prm. Nothing is generated yet: see setup().
+       */
+      void
+      parse_parameters(dealii::ParameterHandler &prm,
+                       const unsigned int        refinement = 0);
+
+      /**
+       * Generate the material points and the boundary particles, apply the
+       * initial stress and set up the solver.
+       */
+      void
+      setup();
+
+      /**
+       * Initial accelerations at @p time (M a = f_ext - f_int with the
+       * boundary conditions): the state a first step starts from.
+       */
+      void
+      initialize(const double time);
+
+      /** Initialization phase of the step to @p new_time (P2G). */
+      void
+      prepare_step(const double new_time, const double dt);
+
+      /** Newton on the grid increment; no side effect on committed state. */
+      NewtonResult
+      solve_step();
+
+      /** Convective phase: G2P, move and sort the points. */
+      void
+      commit_step();
+
+      /**
+       * The losses of the last commit_step() (and any before that were
+       * not taken yet); resets the counters.
+       */
+      StepLosses<dim>
+      take_losses();
+
+      /** Copy the committed state (see the class documentation). */
+      void
+      save_state();
+
+      /** Go back to the state of the last save_state(). */
+      void
+      restore_state();
+
+      /** Integrals over all points (all ranks). */
+      Diagnostics<dim>
+      diagnostics() const
+      {
+        return mpm_solver->compute_diagnostics();
+      }
+
+      /**
+       * Print the description of the problem (grid, points, boundaries) on
+       * @p out. Collective: call it on every rank.
+       */
+      void
+      print_summary(const dealii::ConditionalOStream &out) const;
+
+      BackgroundGrid<dim> &
+      grid()
+      {
+        return *background_grid;
+      }
+
+      const BackgroundGrid<dim> &
+      grid() const
+      {
+        return *background_grid;
+      }
+
+      MaterialPoints<dim> &
+      points()
+      {
+        return *material_points;
+      }
+
+      const MaterialPoints<dim> &
+      points() const
+      {
+        return *material_points;
+      }
+
+      Boundaries::BoundaryParticles<dim> &
+      boundaries()
+      {
+        return *boundary_particles;
+      }
+
+      const Boundaries::BoundaryParticles<dim> &
+      boundaries() const
+      {
+        return *boundary_particles;
+      }
+
+      MPMSolver<dim> &
+      solver()
+      {
+        return *mpm_solver;
+      }
+
+      const MPMSolver<dim> &
+      solver() const
+      {
+        return *mpm_solver;
+      }
+
+      const Materials::ConstitutiveModel &
+      model() const
+      {
+        return *constitutive_model;
+      }
+
+      /** Density of the material [kg/m^3]. */
+      double
+      density() const
+      {
+        return material_density;
+      }
+
+      const InitialStress<dim> &
+      initial_stress() const
+      {
+        return initial_stress_field;
+      }
+
+      MPI_Comm
+      get_communicator() const
+      {
+        return communicator;
+      }
+
+    private:
+      MPI_Comm             communicator;
+      const NewmarkBeta   &newmark;
+      dealii::TimerOutput &timer;
+
+      std::unique_ptr<BackgroundGrid<dim>>                background_grid;
+      std::unique_ptr<Materials::ConstitutiveModel>       constitutive_model;
+      double                                              material_density = 0.;
+      std::unique_ptr<MaterialPoints<dim>>                material_points;
+      InitialStress<dim>                                  initial_stress_field;
+      std::unique_ptr<MPMSolver<dim>>                     mpm_solver;
+      std::unique_ptr<Boundaries::BoundaryParticles<dim>> boundary_particles;
+    };
+  } // namespace MPM
+} // namespace Talus
+
+#endif

@@ -1,0 +1,609 @@
+#include <talus/base/input.h>
+#include <talus/base/parsed_functions.h>
+#include <talus/mpm/mpm_solver.h>
+#include <talus/mpm/point_tensors.h>
+
+#include <deal.II/base/quadrature.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/vector.h>
+
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_interface_values.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/numerics/rtree.h>
+
+#include <deal.II/differentiation/ad/sacado_product_types.h>
+
+#include <Amesos.h>
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_MultiVector.h>
+#include <Sacado.hpp>
+#include <Teuchos_ParameterList.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <tuple>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    using internal::embed;
+    using internal::read_tensor;
+
+    template <int dim>
+    void
+    MPMSolver<dim>::cache_particles()
+    {
+      using Properties           = MaterialPointProperties<dim>;
+      auto              &handler = points.particle_handler();
+      const auto        &fe      = grid.fe;
+      const auto        &base    = fe.base_element(0);
+      const unsigned int n_nodes = base.dofs_per_cell;
+
+      cells.clear();
+      particles.clear();
+      shape_values.clear();
+      shape_gradients.clear();
+      particles.reserve(handler.n_locally_owned_particles());
+      shape_values.reserve(handler.n_locally_owned_particles() * n_nodes);
+      shape_gradients.reserve(handler.n_locally_owned_particles() * n_nodes);
+
+      std::vector<dealii::Point<dim>> reference_points;
+      for (const auto &cell : grid.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const typename dealii::Triangulation<dim>::active_cell_iterator
+                               tria_cell(cell);
+            const unsigned int n = handler.n_particles_in_cell(tria_cell);
+            if (n == 0)
+              continue;
+            CellCache c;
+            c.cell  = cell;
+            c.first = particles.size();
+            c.n     = n;
+            c.dofs.resize(fe.dofs_per_cell);
+            cell->get_dof_indices(c.dofs);
+            reference_points.clear();
+            for (auto p = handler.particles_in_cell(tria_cell).begin();
+                 p != handler.particles_in_cell(tria_cell).end();
+                 ++p)
+              {
+                particles.push_back(p);
+                reference_points.push_back(p->get_reference_location());
+              }
+            if (grid.is_cartesian)
+              {
+                for (const auto &xi : reference_points)
+                  for (unsigned int k = 0; k < n_nodes; ++k)
+                    {
+                      shape_values.push_back(base.shape_value(k, xi));
+                      dealii::Tensor<1, dim> g = base.shape_grad(k, xi);
+                      for (unsigned int d = 0; d < dim; ++d)
+                        g[d] /= grid.cell_extent[d];
+                      shape_gradients.push_back(g);
+                    }
+              }
+            else
+              {
+                const dealii::Quadrature<dim> quadrature(reference_points);
+                dealii::FEValues<dim>         fe_values(grid.mapping,
+                                                base,
+                                                quadrature,
+                                                dealii::update_values |
+                                                  dealii::update_gradients);
+                fe_values.reinit(tria_cell);
+                for (unsigned int q = 0; q < n; ++q)
+                  for (unsigned int k = 0; k < n_nodes; ++k)
+                    {
+                      shape_values.push_back(fe_values.shape_value(k, q));
+                      shape_gradients.push_back(fe_values.shape_grad(k, q));
+                    }
+              }
+            cells.push_back(std::move(c));
+          }
+      (void)Properties::mass;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::project_to_grid()
+    {
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+
+      dealii::TrilinosWrappers::MPI::Vector mass(grid.locally_owned_dofs,
+                                                 grid.mpi_communicator);
+      dealii::TrilinosWrappers::MPI::Vector momentum(mass), mass_acc(mass);
+      external_force = 0.;
+      particle_forces.resize(particles.size());
+
+      dealii::Vector<double> m_local(dofs_per_cell), p_local(dofs_per_cell),
+        a_local(dofs_per_cell), f_local(dofs_per_cell);
+      for (const auto &c : cells)
+        {
+          m_local = 0.;
+          p_local = 0.;
+          a_local = 0.;
+          f_local = 0.;
+          for (unsigned int q = 0; q < c.n; ++q)
+            {
+              const unsigned int k     = c.first + q;
+              const auto         props = particles[k]->get_properties();
+              const double       m     = props[Properties::mass];
+              dealii::Point<dim> X;
+              for (unsigned int d = 0; d < dim; ++d)
+                X[d] = props[Properties::initial_position + d];
+              const auto b                 = external_acceleration(X, time);
+              particle_forces[k]           = m * b;
+              const dealii::Point<dim> x_p = particles[k]->get_location();
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const auto         ci = fe.system_to_component_index(i);
+                  const double       N  = shape_values[k * n_nodes + ci.second];
+                  const unsigned int comp = ci.first;
+                  // APIC: the point's affine velocity at the node,
+                  // v_p + C_p (x_I - x_p) (FE_Q(1): node k = vertex k)
+                  double v = props[Properties::velocity + comp];
+                  if (apic)
+                    {
+                      const dealii::Tensor<1, dim> dx =
+                        c.cell->vertex(ci.second) - x_p;
+                      for (unsigned int j = 0; j < dim; ++j)
+                        v +=
+                          props[Properties::affine_velocity + comp * dim + j] *
+                          dx[j];
+                    }
+                  m_local[i] += N * m;
+                  p_local[i] += N * m * v;
+                  a_local[i] += N * m * props[Properties::acceleration + comp];
+                  f_local[i] += N * m * b[comp];
+                }
+            }
+          mass.add(c.dofs, m_local);
+          momentum.add(c.dofs, p_local);
+          mass_acc.add(c.dofs, a_local);
+          external_force.add(c.dofs, f_local);
+        }
+      mass.compress(dealii::VectorOperation::add);
+      momentum.compress(dealii::VectorOperation::add);
+      mass_acc.compress(dealii::VectorOperation::add);
+      external_force.compress(dealii::VectorOperation::add);
+
+      for (const auto i : grid.locally_owned_dofs)
+        if (mass(i) > 0.)
+          {
+            momentum(i) /= mass(i);
+            mass_acc(i) /= mass(i);
+          }
+      momentum.compress(dealii::VectorOperation::insert);
+      mass_acc.compress(dealii::VectorOperation::insert);
+      nodal_mass     = mass;
+      velocity_n     = momentum;
+      velocity_p2g   = momentum;
+      acceleration_n = mass_acc;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::compute_xpic_correction(
+      std::vector<dealii::Tensor<1, dim>> &w) const
+    {
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      w.assign(particles.size(), dealii::Tensor<1, dim>());
+      for (const auto &c : cells)
+        for (unsigned int q = 0; q < c.n; ++q)
+          {
+            const auto props = particles[c.first + q]->get_properties();
+            for (unsigned int d = 0; d < dim; ++d)
+              w[c.first + q][d] = props[Properties::velocity + d];
+          }
+      dealii::TrilinosWrappers::MPI::Vector grid_velocity(
+        grid.locally_owned_dofs, grid.mpi_communicator);
+      dealii::TrilinosWrappers::MPI::Vector ghosted(grid.locally_owned_dofs,
+                                                    grid.locally_relevant_dofs,
+                                                    grid.mpi_communicator);
+      dealii::Vector<double>                p_local(dofs_per_cell);
+      for (unsigned int r = 0; r < xpic_order; ++r)
+        {
+          // P w: mass-weighted projection to the nodes and back
+          grid_velocity = 0.;
+          for (const auto &c : cells)
+            {
+              p_local = 0.;
+              for (unsigned int q = 0; q < c.n; ++q)
+                {
+                  const unsigned int k = c.first + q;
+                  const double       m =
+                    particles[k]->get_properties()[Properties::mass];
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    {
+                      const auto ci = fe.system_to_component_index(i);
+                      p_local[i] += shape_values[k * n_nodes + ci.second] * m *
+                                    w[k][ci.first];
+                    }
+                }
+              grid_velocity.add(c.dofs, p_local);
+            }
+          grid_velocity.compress(dealii::VectorOperation::add);
+          for (const auto i : grid.locally_owned_dofs)
+            if (nodal_mass(i) > 0.)
+              grid_velocity(i) /= nodal_mass(i);
+          grid_velocity.compress(dealii::VectorOperation::insert);
+          ghosted = grid_velocity;
+          for (const auto &c : cells)
+            for (unsigned int q = 0; q < c.n; ++q)
+              {
+                const unsigned int k = c.first + q;
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  {
+                    const auto ci = fe.system_to_component_index(i);
+                    w[k][ci.first] -= shape_values[k * n_nodes + ci.second] *
+                                      ghosted(c.dofs[i]);
+                  }
+              }
+        }
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::commit_step()
+    {
+      dealii::TimerOutput::Scope scope(timer, "commit (G2P, move, sort)");
+      Assert(solved, dealii::ExcMessage("solve_step() first"));
+      commit_friction_states();
+      friction_dissipation += step_impact_dissipation;
+      reset_dissipation += step_reset_dissipation;
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      const unsigned int n_history     = points.n_history();
+
+      // Nodal accelerations and velocity increments at t_{n+1}.
+      dealii::TrilinosWrappers::MPI::Vector a_new(grid.locally_owned_dofs,
+                                                  grid.mpi_communicator);
+      dealii::TrilinosWrappers::MPI::Vector dv(a_new);
+      if (!quasi_static)
+        {
+          for (const auto i : grid.locally_owned_dofs)
+            if (nodal_mass(i) > 0.)
+              {
+                const double du = displacement(i);
+                const double an = acceleration_n(i);
+                const double a =
+                  newmark.acceleration(du, velocity_n(i), an, dt);
+                a_new(i) = a;
+                dv(i)    = newmark.velocity(0., an, a, dt);
+              }
+          a_new.compress(dealii::VectorOperation::insert);
+          dv.compress(dealii::VectorOperation::insert);
+        }
+      acceleration_new = a_new;
+      dealii::TrilinosWrappers::MPI::Vector dv_ghosted(
+        grid.locally_owned_dofs,
+        grid.locally_relevant_dofs,
+        grid.mpi_communicator);
+      dv_ghosted = dv;
+      // FLIP increment v_I^{n+1} - v_I^{P2G}: where the constraints set the
+      // start velocity of a node with mass to zero (fixed, slip, stick),
+      // the increment includes that change, so that the points lose the
+      // velocity the boundary removes (with dv alone they kept it and
+      // handed it back to the free nodes of their cell at every P2G).
+      // Elsewhere v_P2G = v_n exactly and the increment is dv.
+      {
+        // end-of-step grid velocity v_n + dv (zero without mass)
+        dealii::TrilinosWrappers::MPI::Vector v(grid.locally_owned_dofs,
+                                                grid.mpi_communicator);
+        if (!quasi_static)
+          for (const auto i : grid.locally_owned_dofs)
+            if (nodal_mass(i) > 0.)
+              v(i) = velocity_n(i) + dv(i);
+        v.compress(dealii::VectorOperation::insert);
+        committed_grid_velocity.reinit(grid.locally_owned_dofs,
+                                       grid.locally_relevant_dofs,
+                                       grid.mpi_communicator);
+        committed_grid_velocity = v;
+      }
+      dealii::TrilinosWrappers::MPI::Vector dv_flip(dv_ghosted);
+      if (!quasi_static)
+        {
+          for (const auto i : grid.locally_owned_dofs)
+            if (nodal_mass(i) > 0.)
+              dv(i) -= velocity_p2g(i) - velocity_n(i);
+          dv.compress(dealii::VectorOperation::insert);
+          dv_flip = dv;
+        }
+
+      // Contact forces and friction work of the friction boundaries (from
+      // the unconstrained residual of the converged iterate).
+      {
+        dealii::Tensor<1, dim> force;
+        double                 work = 0.;
+        for (const auto &fn : friction_nodes)
+          if (fn.owned && fn.state != ContactState::free &&
+              nodal_mass(fn.normal_dof) > 0.)
+            {
+              force[fn.normal_component] -= raw_residual(fn.normal_dof);
+              for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
+                {
+                  const auto   t = fn.tangential_dofs[k];
+                  const double R = -raw_residual(t);
+                  force[fn.tangential_components[k]] += R;
+                  work += R * displacement(t);
+                }
+            }
+        contact_force =
+          dealii::Utilities::MPI::sum(force, grid.mpi_communicator);
+        friction_dissipation -=
+          dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
+        // How far the nodes held in a state (cycling) violate Coulomb's
+        // law at the converged iterate: a stuck node by its tangential
+        // reaction beyond mu p, a slipping node by the speed against its
+        // slip direction, a contact node by a pull (p < 0).
+        double excess_force = 0., reversed_speed = 0., pull = 0.;
+        for (const auto &fn : friction_nodes)
+          if (fn.owned && fn.held && nodal_mass(fn.normal_dof) > 0.)
+            {
+              const double p = -fn.inward * raw_residual(fn.normal_dof);
+              if (fn.state != ContactState::free)
+                pull = std::max(pull, -p);
+              dealii::Tensor<1, dim> R_t, v_t;
+              for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
+                {
+                  const auto t                     = fn.tangential_dofs[k];
+                  R_t[fn.tangential_components[k]] = -raw_residual(t);
+                  v_t[fn.tangential_components[k]] =
+                    new_velocity(t, displacement(t));
+                }
+              if (fn.state == ContactState::stick)
+                excess_force =
+                  std::max(excess_force, R_t.norm() - fn.mu * std::max(p, 0.));
+              else if (fn.state == ContactState::slip)
+                reversed_speed =
+                  std::max(reversed_speed, -(v_t * fn.slip_direction));
+            }
+        const MPI_Comm     comm = grid.mpi_communicator;
+        const unsigned int frozen =
+          dealii::Utilities::MPI::sum(frozen_nodes, comm);
+        excess_force   = dealii::Utilities::MPI::max(excess_force, comm);
+        reversed_speed = dealii::Utilities::MPI::max(reversed_speed, comm);
+        pull           = dealii::Utilities::MPI::max(pull, comm);
+        if (frozen > 0 && dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+          std::cerr << "Warning: " << frozen
+                    << " grid node(s) on friction boundaries kept their "
+                       "contact state after 4 changes in one step; Coulomb's "
+                       "law is violated there by at most "
+                    << std::max(excess_force, 0.)
+                    << " N of tangential force beyond mu p (stuck nodes), "
+                    << std::max(reversed_speed, 0.)
+                    << " m/s against the slip direction (slipping nodes) and "
+                    << pull << " N of pull (nodes in contact)." << std::endl;
+      }
+
+      // XPIC(m): the part (I - P)^m v^n of the points' old velocities that
+      // the FLIP update keeps and PIC would remove, with P the projection
+      // to the grid and back (mass-weighted, at the old positions); m
+      // applications of P.
+      std::vector<dealii::Tensor<1, dim>> xpic_correction;
+      if (xpic_order > 0 && !quasi_static)
+        compute_xpic_correction(xpic_correction);
+
+      std::vector<double> history_new(n_history);
+      std::vector<double> du_local(dofs_per_cell), a_local(dofs_per_cell),
+        dv_local(dofs_per_cell), v_local(dofs_per_cell);
+      double grid_energy = 0., grid_speed = 0., transfer_energy = 0.;
+      std::vector<dealii::Tensor<2, dim>> F_cell;
+      dealii::Tensor<2, 3>                P;
+      for (const auto &c : cells)
+        {
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              du_local[i] = displacement(c.dofs[i]);
+              a_local[i]  = acceleration_new(c.dofs[i]);
+              dv_local[i] = dv_flip(c.dofs[i]);
+              v_local[i]  = velocity_n(c.dofs[i]) + dv_ghosted(c.dofs[i]);
+            }
+          cell_deformation_gradients(c, du_local, F_cell);
+          for (unsigned int q = 0; q < c.n; ++q)
+            {
+              const unsigned int k     = c.first + q;
+              auto               props = particles[k]->get_properties();
+              const double      *N     = &shape_values[k * n_nodes];
+              const auto        *dN    = &shape_gradients[k * n_nodes];
+
+              dealii::Tensor<1, dim> du_p, a_p, dv_p, v_pic;
+              dealii::Tensor<2, dim> H, grad_v;
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const auto ci = fe.system_to_component_index(i);
+                  v_pic[ci.first] += N[ci.second] * v_local[i];
+                  grad_v[ci.first] += v_local[i] * dN[ci.second];
+                  du_p[ci.first] += N[ci.second] * du_local[i];
+                  a_p[ci.first] += N[ci.second] * a_local[i];
+                  dv_p[ci.first] += N[ci.second] * dv_local[i];
+                  H[ci.first] += du_local[i] * dN[ci.second];
+                }
+              const dealii::Tensor<2, dim> F_n =
+                read_tensor<dim>(props, Properties::deformation);
+              const dealii::Tensor<2, dim> &F_new = F_cell[q];
+              const dealii::Tensor<2, 3>    F3    = embed<dim>(F_new);
+              model.compute_stress(
+                embed<dim>(F_n),
+                F3,
+                dealii::ArrayView<const double>(props.data() +
+                                                  Properties::history,
+                                                n_history),
+                dealii::ArrayView<double>(history_new.data(), n_history),
+                dt,
+                P,
+                nullptr);
+              // Cauchy stress sigma = P F^T / J.
+              const dealii::Tensor<2, 3> sigma =
+                P * dealii::transpose(F3) / dealii::determinant(F3);
+              Properties::store_stress(props, sigma);
+              for (unsigned int h = 0; h < n_history; ++h)
+                props[Properties::history + h] = history_new[h];
+              for (unsigned int i = 0; i < dim; ++i)
+                {
+                  for (unsigned int j = 0; j < dim; ++j)
+                    props[Properties::deformation + i * dim + j] = F_new[i][j];
+                  // FLIP (increment) blended with PIC (grid velocity), or
+                  // APIC (grid velocity and its gradient)
+                  // or XPIC (FLIP minus (I - P)^m v^n)
+                  const double v_flip =
+                    props[Properties::velocity + i] + dv_p[i];
+                  props[Properties::velocity + i] =
+                    quasi_static   ? 0. :
+                    apic           ? v_pic[i] :
+                    xpic_order > 0 ? v_flip - xpic_correction[k][i] :
+                                     flip_fraction * v_flip +
+                                       (1. - flip_fraction) * v_pic[i];
+                  for (unsigned int j = 0; j < dim; ++j)
+                    props[Properties::affine_velocity + i * dim + j] =
+                      (apic && !quasi_static) ? grad_v[i][j] : 0.;
+                  props[Properties::acceleration + i] =
+                    quasi_static ? 0. : a_p[i];
+                  if (!quasi_static)
+                    transfer_energy +=
+                      0.5 * props[Properties::mass] *
+                      (v_flip * v_flip - props[Properties::velocity + i] *
+                                           props[Properties::velocity + i]);
+                }
+              particles[k]->set_location(particles[k]->get_location() + du_p);
+              if (!quasi_static)
+                {
+                  grid_energy +=
+                    0.5 * props[Properties::mass] * v_pic.norm_square();
+                  grid_speed = std::max(grid_speed, v_pic.norm());
+                }
+            }
+        }
+      grid_kinetic_energy =
+        dealii::Utilities::MPI::sum(grid_energy, grid.mpi_communicator);
+      transfer_dissipation +=
+        dealii::Utilities::MPI::sum(transfer_energy, grid.mpi_communicator);
+      max_grid_speed =
+        dealii::Utilities::MPI::max(grid_speed, grid.mpi_communicator);
+      // Boundary particles: the new gaps, reactions and states of the
+      // converged iterate (computed by solve_step(), trial state) become
+      // the committed ones; the friction work is booked.
+      if (boundary_particles != nullptr)
+        commit_boundary_trial();
+
+      cells.clear();
+      particles.clear();
+      {
+        dealii::TimerOutput::Scope s(timer, "sort particles");
+        points.particle_handler().sort_particles_into_subdomains_and_cells();
+        if (boundary_particles != nullptr)
+          boundary_particles->move_to(time);
+      }
+      prepared = false;
+      solved   = false;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::project_stress_to_grid()
+    {
+      using Properties                 = MaterialPointProperties<dim>;
+      const auto        &fe            = grid.fe;
+      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      std::vector<dealii::TrilinosWrappers::MPI::Vector> sum(
+        dim,
+        dealii::TrilinosWrappers::MPI::Vector(grid.locally_owned_dofs,
+                                              grid.mpi_communicator));
+      std::vector<dealii::Vector<double>> local(
+        dim, dealii::Vector<double>(dofs_per_cell));
+      // Voigt order of the stored stress: xx yy zz xy yz xz
+      const unsigned int voigt[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
+      for (const auto &c : cells)
+        {
+          for (auto &l : local)
+            l = 0.;
+          for (unsigned int q = 0; q < c.n; ++q)
+            {
+              const unsigned int k     = c.first + q;
+              const auto         props = particles[k]->get_properties();
+              const double       m     = props[Properties::mass];
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const auto   ci = fe.system_to_component_index(i);
+                  const double N  = shape_values[k * n_nodes + ci.second];
+                  for (unsigned int j = 0; j < dim; ++j)
+                    local[j][i] +=
+                      N * m * props[Properties::stress + voigt[ci.first][j]];
+                }
+            }
+          for (unsigned int j = 0; j < dim; ++j)
+            sum[j].add(c.dofs, local[j]);
+        }
+      nodal_stress.resize(dim);
+      for (unsigned int j = 0; j < dim; ++j)
+        {
+          sum[j].compress(dealii::VectorOperation::add);
+          for (const auto i : grid.locally_owned_dofs)
+            if (nodal_mass(i) > 0.)
+              sum[j](i) /= nodal_mass(i);
+          sum[j].compress(dealii::VectorOperation::insert);
+          nodal_stress[j].reinit(grid.locally_owned_dofs,
+                                 grid.locally_relevant_dofs,
+                                 grid.mpi_communicator);
+          nodal_stress[j] = sum[j];
+        }
+    }
+
+
+    // Explicit instantiation of the members defined in this file.
+    template void
+    MPMSolver<2>::cache_particles();
+    template void
+    MPMSolver<2>::project_to_grid();
+    template void
+    MPMSolver<2>::compute_xpic_correction(
+      std::vector<dealii::Tensor<1, 2>> &w) const;
+    template void
+    MPMSolver<2>::commit_step();
+    template void
+    MPMSolver<2>::project_stress_to_grid();
+    template void
+    MPMSolver<3>::cache_particles();
+    template void
+    MPMSolver<3>::project_to_grid();
+    template void
+    MPMSolver<3>::compute_xpic_correction(
+      std::vector<dealii::Tensor<1, 3>> &w) const;
+    template void
+    MPMSolver<3>::commit_step();
+    template void
+    MPMSolver<3>::project_stress_to_grid();
+  } // namespace MPM
+} // namespace Talus
