@@ -113,11 +113,10 @@ namespace Talus
       const auto &handler = points.particle_handler();
 
       dealii::Particles::DataOut<dim> particle_out;
-      particle_out.build_patches(handler,
-                                 Properties::names(points.n_history(),
-                                                   points.n_contact_slots()),
-                                 Properties::interpretation(
-                                   points.n_history(),
+      particle_out.build_patches(
+        handler,
+        Properties::names(points.n_history(), points.n_contact_slots()),
+        Properties::interpretation(points.n_history(),
                                    points.n_contact_slots()));
 
       dealii::DataOut<dim>  grid_out;

@@ -1013,51 +1013,29 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-    template bool
-    MPMSolver<2>::assemble(const dealii::TrilinosWrappers::MPI::Vector &du,
-                           const bool   with_matrix,
-                           const bool   with_inertia,
-                           std::string &failure,
-                           const bool   same_iterate);
-    template void
-    MPMSolver<2>::record_branch(
-      const unsigned int                     k,
-      const dealii::ArrayView<const double> &history) const;
-    template bool
-    MPMSolver<2>::fbar_cell(const CellCache            &c,
-                            const std::vector<double>  &du_local,
-                            dealii::Vector<double>     &r_local,
-                            dealii::FullMatrix<double> *k_local,
-                            std::string                &failure) const;
-    template void
-    MPMSolver<2>::cell_deformation_gradients(
-      const CellCache                   &c,
-      const std::vector<double>         &du_local,
-      std::vector<dealii::Tensor<2, 2>> &F_new) const;
-    template void
-    MPMSolver<2>::setup_ghost_penalty();
-    template bool
-    MPMSolver<3>::assemble(const dealii::TrilinosWrappers::MPI::Vector &du,
-                           const bool   with_matrix,
-                           const bool   with_inertia,
-                           std::string &failure,
-                           const bool   same_iterate);
-    template void
-    MPMSolver<3>::record_branch(
-      const unsigned int                     k,
-      const dealii::ArrayView<const double> &history) const;
-    template bool
-    MPMSolver<3>::fbar_cell(const CellCache            &c,
-                            const std::vector<double>  &du_local,
-                            dealii::Vector<double>     &r_local,
-                            dealii::FullMatrix<double> *k_local,
-                            std::string                &failure) const;
-    template void
-    MPMSolver<3>::cell_deformation_gradients(
-      const CellCache                   &c,
-      const std::vector<double>         &du_local,
-      std::vector<dealii::Tensor<2, 3>> &F_new) const;
-    template void
-    MPMSolver<3>::setup_ghost_penalty();
+#define TALUS_INSTANTIATE(dim)                                                  \
+  template bool MPMSolver<dim>::assemble(                                       \
+    const dealii::TrilinosWrappers::MPI::Vector &du,                            \
+    const bool                                   with_matrix,                   \
+    const bool                                   with_inertia,                  \
+    std::string                                 &failure,                       \
+    const bool                                   same_iterate);                                                   \
+  template void MPMSolver<dim>::record_branch(                                  \
+    const unsigned int k, const dealii::ArrayView<const double> &history)       \
+    const;                                                                      \
+  template bool MPMSolver<dim>::fbar_cell(const CellCache            &c,        \
+                                          const std::vector<double>  &du_local, \
+                                          dealii::Vector<double>     &r_local,  \
+                                          dealii::FullMatrix<double> *k_local,  \
+                                          std::string &failure) const;          \
+  template void MPMSolver<dim>::cell_deformation_gradients(                     \
+    const CellCache                     &c,                                     \
+    const std::vector<double>           &du_local,                              \
+    std::vector<dealii::Tensor<2, dim>> &F_new) const;                          \
+  template void MPMSolver<dim>::setup_ghost_penalty();
+
+    TALUS_INSTANTIATE(2)
+    TALUS_INSTANTIATE(3)
+#undef TALUS_INSTANTIATE
   } // namespace MPM
 } // namespace Talus

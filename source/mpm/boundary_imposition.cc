@@ -640,7 +640,8 @@ namespace Talus
                   // an extent that overlaps the boundary at the start is
                   // measured from its initial depth on (contact offset)
                   if (initializing && (x_c - x_b[j]) * n < 0.)
-                    props[points.contact_offset_index(b)] = -((x_c - x_b[j]) * n);
+                    props[points.contact_offset_index(b)] =
+                      -((x_c - x_b[j]) * n);
                   const double g0 =
                     (x_c - x_b[j]) * n + props[points.contact_offset_index(b)];
                   dealii::Tensor<1, dim> g_t;
@@ -941,108 +942,105 @@ namespace Talus
       point_contact_trial.clear();
       boundary_trial_work = 0.;
       {
-          double work = 0.;
-          // per-particle traction, force and gap at commit (debugging)
-          const bool debug_boundary = std::getenv("TALUS_DEBUG_NITSCHE");
-          const bool debug_point_contact =
-            std::getenv("TALUS_DEBUG_POINT_CONTACT");
-          std::vector<dealii::Tensor<1, dim>> dT(dofs_per_cell);
-          std::vector<double>                 du_local(dofs_per_cell);
-          for (const auto &c : boundary_cells)
-            {
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                du_local[i] = displacement(c.dofs[i]);
-              for (unsigned int b = 0; b < c.n_boundary; ++b)
-                {
-                  BoundaryPoint &bp = boundary_points[c.first_boundary + b];
-                  dealii::Tensor<1, dim> du_b;
-                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                    {
-                      const auto ci = fe.system_to_component_index(i);
-                      du_b[ci.first] += bp.N[ci.second] * du_local[i];
-                    }
-                  if (bp.nitsche && bp.with_stress)
-                    {
-                      dealii::Tensor<1, dim> T;
-                      boundary_traction(bp, du_local, T, dT);
-                      bp.lambda = bp.weight * T;
-                    }
-                  const BoundaryForce bf = boundary_force(bp, du_b);
-                  if (debug_boundary && bf.state != 0)
-                    std::cerr << "  bp " << bp.particle->get_location()
-                              << " lambda.n " << bp.lambda * bp.normal
-                              << " f.n " << bf.force * bp.normal << " g.n "
-                              << bf.gap * bp.normal << std::endl;
-                  // The part of the force on nodes without mass (constrained)
-                  // does not act on the material: report the rest.
-                  double active_share = 0.;
-                  for (unsigned int k = 0; k < n_nodes; ++k)
-                    if (nodal_mass(c.dofs[fe.component_to_system_index(0, k)]) >
-                        0.)
-                      active_share += bp.N[k];
-                  // dissipated: -f . (relative increment - elastic gap change)
-                  work -=
-                    bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
-                  // a merged (cell-wise) point shares its gap, state and,
-                  // by weight, its reaction among its particles
-                  // the multiplier the next step starts from reproduces this
-                  // force at zero increment: lambda - k g = f
-                  const dealii::Tensor<1, dim> lambda =
-                    bp.augmented ? bf.force + bp.beta * bp.weight * bf.gap :
-                                   dealii::Tensor<1, dim>();
-                  const auto write = [&](auto particle, const double share) {
-                    boundary_trial.push_back({particle,
-                                              bf.gap,
-                                              share * lambda,
-                                              -share * active_share * bf.force,
-                                              bf.state});
-                  };
-                  if (bp.on_material_point)
-                    {
-                      if (debug_point_contact && bf.state != 0)
-                        {
-                          std::cerr << "  t " << time << " mp "
-                                    << bp.particle->get_location() << " g0 "
-                                    << bp.gap_old * bp.normal << " du.n "
-                                    << (du_b - bp.du_bar) * bp.normal << " g.n "
-                                    << bf.gap * bp.normal << " f " << bf.force
-                                    << " state " << bf.state << " N";
-                          for (const double v : bp.N)
-                            std::cerr << ' ' << v;
-                          std::cerr << std::endl;
-                        }
-                      // the stick spring stays on the material point; the
-                      // reaction goes to the boundary's resultant
-                      PointContactTrial pc;
-                      pc.point    = bp.particle;
-                      pc.boundary = bp.boundary;
-                      pc.tangential_gap =
-                        bf.state == 0 ?
-                          dealii::Tensor<1, dim>() :
-                          bf.gap - (bf.gap * bp.normal) * bp.normal;
-                      pc.active = bf.state != 0;
-                      if (bf.state != 0)
-                        {
-                          // the dashpot's work on the normal increment
-                          const double dgn = (du_b - bp.du_bar) * bp.normal;
-                          work += bp.damping * bp.beta * bp.weight * dgn * dgn;
-                          pc.reaction    = -bf.force;
-                          pc.normal      = bp.normal;
-                          pc.penetration = std::max(0., -(bf.gap * bp.normal));
-                        }
-                      point_contact_trial.push_back(pc);
-                    }
-                  else if (bp.members.empty())
-                    write(bp.particle, 1.);
-                  else
-                    for (unsigned int m = 0; m < bp.members.size(); ++m)
-                      write(bp.members[m], bp.member_weights[m] / bp.weight);
-                }
-            }
-          boundary_trial_work =
-            dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
-        }
-
+        double work = 0.;
+        // per-particle traction, force and gap at commit (debugging)
+        const bool debug_boundary = std::getenv("TALUS_DEBUG_NITSCHE");
+        const bool debug_point_contact =
+          std::getenv("TALUS_DEBUG_POINT_CONTACT");
+        std::vector<dealii::Tensor<1, dim>> dT(dofs_per_cell);
+        std::vector<double>                 du_local(dofs_per_cell);
+        for (const auto &c : boundary_cells)
+          {
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              du_local[i] = displacement(c.dofs[i]);
+            for (unsigned int b = 0; b < c.n_boundary; ++b)
+              {
+                BoundaryPoint &bp = boundary_points[c.first_boundary + b];
+                dealii::Tensor<1, dim> du_b;
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  {
+                    const auto ci = fe.system_to_component_index(i);
+                    du_b[ci.first] += bp.N[ci.second] * du_local[i];
+                  }
+                if (bp.nitsche && bp.with_stress)
+                  {
+                    dealii::Tensor<1, dim> T;
+                    boundary_traction(bp, du_local, T, dT);
+                    bp.lambda = bp.weight * T;
+                  }
+                const BoundaryForce bf = boundary_force(bp, du_b);
+                if (debug_boundary && bf.state != 0)
+                  std::cerr << "  bp " << bp.particle->get_location()
+                            << " lambda.n " << bp.lambda * bp.normal << " f.n "
+                            << bf.force * bp.normal << " g.n "
+                            << bf.gap * bp.normal << std::endl;
+                // The part of the force on nodes without mass (constrained)
+                // does not act on the material: report the rest.
+                double active_share = 0.;
+                for (unsigned int k = 0; k < n_nodes; ++k)
+                  if (nodal_mass(c.dofs[fe.component_to_system_index(0, k)]) >
+                      0.)
+                    active_share += bp.N[k];
+                // dissipated: -f . (relative increment - elastic gap change)
+                work -= bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
+                // a merged (cell-wise) point shares its gap, state and,
+                // by weight, its reaction among its particles
+                // the multiplier the next step starts from reproduces this
+                // force at zero increment: lambda - k g = f
+                const dealii::Tensor<1, dim> lambda =
+                  bp.augmented ? bf.force + bp.beta * bp.weight * bf.gap :
+                                 dealii::Tensor<1, dim>();
+                const auto write = [&](auto particle, const double share) {
+                  boundary_trial.push_back({particle,
+                                            bf.gap,
+                                            share * lambda,
+                                            -share * active_share * bf.force,
+                                            bf.state});
+                };
+                if (bp.on_material_point)
+                  {
+                    if (debug_point_contact && bf.state != 0)
+                      {
+                        std::cerr << "  t " << time << " mp "
+                                  << bp.particle->get_location() << " g0 "
+                                  << bp.gap_old * bp.normal << " du.n "
+                                  << (du_b - bp.du_bar) * bp.normal << " g.n "
+                                  << bf.gap * bp.normal << " f " << bf.force
+                                  << " state " << bf.state << " N";
+                        for (const double v : bp.N)
+                          std::cerr << ' ' << v;
+                        std::cerr << std::endl;
+                      }
+                    // the stick spring stays on the material point; the
+                    // reaction goes to the boundary's resultant
+                    PointContactTrial pc;
+                    pc.point    = bp.particle;
+                    pc.boundary = bp.boundary;
+                    pc.tangential_gap =
+                      bf.state == 0 ? dealii::Tensor<1, dim>() :
+                                      bf.gap - (bf.gap * bp.normal) * bp.normal;
+                    pc.active = bf.state != 0;
+                    if (bf.state != 0)
+                      {
+                        // the dashpot's work on the normal increment
+                        const double dgn = (du_b - bp.du_bar) * bp.normal;
+                        work += bp.damping * bp.beta * bp.weight * dgn * dgn;
+                        pc.reaction    = -bf.force;
+                        pc.normal      = bp.normal;
+                        pc.penetration = std::max(0., -(bf.gap * bp.normal));
+                      }
+                    point_contact_trial.push_back(pc);
+                  }
+                else if (bp.members.empty())
+                  write(bp.particle, 1.);
+                else
+                  for (unsigned int m = 0; m < bp.members.size(); ++m)
+                    write(bp.members[m], bp.member_weights[m] / bp.weight);
+              }
+          }
+        boundary_trial_work =
+          dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
+      }
     }
 
 
@@ -1097,7 +1095,8 @@ namespace Talus
 
 
     template <int dim>
-    std::vector<std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>
+    std::vector<
+      std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>
     MPMSolver<dim>::boundary_reactions() const
     {
       Assert(solved, dealii::ExcMessage("solve_step() first"));
@@ -1112,55 +1111,27 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-    template void
-    MPMSolver<2>::evaluate_boundary_trial();
-    template void
-    MPMSolver<2>::commit_boundary_trial();
-    template std::vector<
-      std::pair<dealii::types::particle_index, dealii::Tensor<1, 2>>>
-    MPMSolver<2>::boundary_reactions() const;
-    template void
-    MPMSolver<3>::evaluate_boundary_trial();
-    template void
-    MPMSolver<3>::commit_boundary_trial();
-    template std::vector<
-      std::pair<dealii::types::particle_index, dealii::Tensor<1, 3>>>
-    MPMSolver<3>::boundary_reactions() const;
-    template void
-    MPMSolver<2>::initial_acceleration_with_boundaries(
-      dealii::TrilinosWrappers::MPI::Vector &a);
-    template void
-    MPMSolver<2>::cache_boundary_particles();
-    template void
-    MPMSolver<2>::cache_point_contacts();
-    template void
-    MPMSolver<2>::boundary_traction(
-      const BoundaryPoint               &b,
-      const std::vector<double>         &du_local,
-      dealii::Tensor<1, 2>              &T,
-      std::vector<dealii::Tensor<1, 2>> &dT) const;
-    template double
-    MPMSolver<2>::update_multipliers();
-    template MPMSolver<2>::BoundaryForce
-    MPMSolver<2>::boundary_force(const BoundaryPoint        &b,
-                                 const dealii::Tensor<1, 2> &du) const;
-    template void
-    MPMSolver<3>::initial_acceleration_with_boundaries(
-      dealii::TrilinosWrappers::MPI::Vector &a);
-    template void
-    MPMSolver<3>::cache_boundary_particles();
-    template void
-    MPMSolver<3>::cache_point_contacts();
-    template void
-    MPMSolver<3>::boundary_traction(
-      const BoundaryPoint               &b,
-      const std::vector<double>         &du_local,
-      dealii::Tensor<1, 3>              &T,
-      std::vector<dealii::Tensor<1, 3>> &dT) const;
-    template double
-    MPMSolver<3>::update_multipliers();
-    template MPMSolver<3>::BoundaryForce
-    MPMSolver<3>::boundary_force(const BoundaryPoint        &b,
-                                 const dealii::Tensor<1, 3> &du) const;
+#define TALUS_INSTANTIATE(dim)                                                 \
+  template void MPMSolver<dim>::evaluate_boundary_trial();                     \
+  template void MPMSolver<dim>::commit_boundary_trial();                       \
+  template std::vector<                                                        \
+    std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>          \
+                MPMSolver<dim>::boundary_reactions() const;                    \
+  template void MPMSolver<dim>::initial_acceleration_with_boundaries(          \
+    dealii::TrilinosWrappers::MPI::Vector &a);                                 \
+  template void MPMSolver<dim>::cache_boundary_particles();                    \
+  template void MPMSolver<dim>::cache_point_contacts();                        \
+  template void MPMSolver<dim>::boundary_traction(                             \
+    const BoundaryPoint                 &b,                                    \
+    const std::vector<double>           &du_local,                             \
+    dealii::Tensor<1, dim>              &T,                                    \
+    std::vector<dealii::Tensor<1, dim>> &dT) const;                            \
+  template double                        MPMSolver<dim>::update_multipliers(); \
+  template MPMSolver<dim>::BoundaryForce MPMSolver<dim>::boundary_force(       \
+    const BoundaryPoint &b, const dealii::Tensor<1, dim> &du) const;
+
+    TALUS_INSTANTIATE(2)
+    TALUS_INSTANTIATE(3)
+#undef TALUS_INSTANTIATE
   } // namespace MPM
 } // namespace Talus

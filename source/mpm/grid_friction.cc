@@ -542,43 +542,21 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-    template void
-    MPMSolver<2>::setup_friction_nodes();
-    template double
-    MPMSolver<2>::new_velocity(const dealii::types::global_dof_index i,
-                               const double du_i) const;
-    template double
-    MPMSolver<2>::resting_increment(
-      const dealii::types::global_dof_index i) const;
-    template void
-    MPMSolver<2>::exchange_friction_states();
-    template void
-    MPMSolver<2>::apply_impact_friction();
-    template void
-    MPMSolver<2>::initialize_friction_states();
-    template void
-    MPMSolver<2>::commit_friction_states();
-    template unsigned int
-    MPMSolver<2>::update_friction_states(
-      dealii::TrilinosWrappers::MPI::Vector &du);
-    template void
-    MPMSolver<3>::setup_friction_nodes();
-    template double
-    MPMSolver<3>::new_velocity(const dealii::types::global_dof_index i,
-                               const double du_i) const;
-    template double
-    MPMSolver<3>::resting_increment(
-      const dealii::types::global_dof_index i) const;
-    template void
-    MPMSolver<3>::exchange_friction_states();
-    template void
-    MPMSolver<3>::apply_impact_friction();
-    template void
-    MPMSolver<3>::initialize_friction_states();
-    template void
-    MPMSolver<3>::commit_friction_states();
-    template unsigned int
-    MPMSolver<3>::update_friction_states(
-      dealii::TrilinosWrappers::MPI::Vector &du);
+#define TALUS_INSTANTIATE(dim)                                         \
+  template void   MPMSolver<dim>::setup_friction_nodes();              \
+  template double MPMSolver<dim>::new_velocity(                        \
+    const dealii::types::global_dof_index i, const double du_i) const; \
+  template double MPMSolver<dim>::resting_increment(                   \
+    const dealii::types::global_dof_index i) const;                    \
+  template void         MPMSolver<dim>::exchange_friction_states();    \
+  template void         MPMSolver<dim>::apply_impact_friction();       \
+  template void         MPMSolver<dim>::initialize_friction_states();  \
+  template void         MPMSolver<dim>::commit_friction_states();      \
+  template unsigned int MPMSolver<dim>::update_friction_states(        \
+    dealii::TrilinosWrappers::MPI::Vector &du);
+
+    TALUS_INSTANTIATE(2)
+    TALUS_INSTANTIATE(3)
+#undef TALUS_INSTANTIATE
   } // namespace MPM
 } // namespace Talus

@@ -547,7 +547,7 @@ namespace Talus
           "direction).");
 
       std::vector<std::vector<double>> properties(points.size());
-      const unsigned int     n_properties =
+      const unsigned int               n_properties =
         Properties::n_properties(n_history, contact_slots);
       dealii::Vector<double> v0(dim);
       for (unsigned int i = 0; i < points.size(); ++i)

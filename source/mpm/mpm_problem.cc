@@ -22,15 +22,14 @@ namespace Talus
     template <int dim>
     void
     MPMProblem<dim>::declare_parameters(dealii::ParameterHandler &prm,
-                                        const unsigned int n_boundaries)
+                                        const unsigned int        n_boundaries)
     {
       BackgroundGrid<dim>::declare_parameters(prm);
       MaterialPoints<dim>::declare_parameters(prm);
       InitialStress<dim>::declare_parameters(prm);
       Materials::declare_parameters(prm);
       MPMSolver<dim>::declare_parameters(prm);
-      Boundaries::BoundaryParticles<dim>::declare_parameters(prm,
-                                                             n_boundaries);
+      Boundaries::BoundaryParticles<dim>::declare_parameters(prm, n_boundaries);
     }
 
 
@@ -61,8 +60,11 @@ namespace Talus
       material_points->parse_parameters(prm);
       initial_stress_field.parse_parameters(prm);
 
-      mpm_solver = std::make_unique<MPMSolver<dim>>(
-        *background_grid, *material_points, *constitutive_model, newmark, timer);
+      mpm_solver = std::make_unique<MPMSolver<dim>>(*background_grid,
+                                                    *material_points,
+                                                    *constitutive_model,
+                                                    newmark,
+                                                    timer);
       mpm_solver->parse_parameters(prm);
 
       boundary_particles =
@@ -168,8 +170,7 @@ namespace Talus
       const auto &boundaries = *boundary_particles;
       out << "  background grid: " << grid.triangulation.n_global_active_cells()
           << " cells, " << grid.dof_handler.n_dofs() << " DoFs\n"
-          << "  material points: " << material_points->n_global_points()
-          << '\n'
+          << "  material points: " << material_points->n_global_points() << '\n'
           << "  material: " << constitutive_model->name() << ", density "
           << material_density << " kg/m^3\n";
       if (initial_stress_field.enabled())
@@ -202,17 +203,21 @@ namespace Talus
           const auto &desc = boundaries.boundary(b);
           out << "  boundary " << desc.name << ": " << desc.geometry << ", "
               << count[b] << " boundary particles, "
-              << (desc.condition == Boundaries::Condition::fixed   ? "fixed" :
-                  desc.condition == Boundaries::Condition::slip    ? "slip" :
-                  desc.condition == Boundaries::Condition::contact ? "contact" :
+              << (desc.condition == Boundaries::Condition::fixed ?
+                    "fixed" :
+                  desc.condition == Boundaries::Condition::slip ?
+                    "slip" :
+                  desc.condition == Boundaries::Condition::contact ?
+                    "contact" :
                     "friction mu = " + number(desc.friction_coefficient))
-              << (desc.augmented ? ", augmented Lagrangian, penalty" :
+              << (desc.augmented ?
+                    ", augmented Lagrangian, penalty" :
                   desc.lagrange_multiplier ?
-                                   ", Lagrange multipliers, trial-force" :
-                  desc.nitsche ? ", Nitsche (theta = " +
-                                   number(desc.nitsche_theta) +
-                                   "), stabilisation" :
-                                 ", penalty")
+                    ", Lagrange multipliers, trial-force" :
+                  desc.nitsche ?
+                    ", Nitsche (theta = " + number(desc.nitsche_theta) +
+                      "), stabilisation" :
+                    ", penalty")
               << " beta = " << std::setprecision(4) << desc.beta << " Pa/m"
               << std::defaultfloat << '\n';
         }

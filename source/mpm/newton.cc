@@ -515,15 +515,15 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-    template void
-    MPMSolver<2>::newton_solve(dealii::TrilinosWrappers::MPI::Vector &du,
-                               const double  f_ext_norm,
-                               double       &reference,
-                               NewtonResult &result);
-    template void
-    MPMSolver<3>::newton_solve(dealii::TrilinosWrappers::MPI::Vector &du,
-                               const double  f_ext_norm,
-                               double       &reference,
-                               NewtonResult &result);
+#define TALUS_INSTANTIATE(dim)                         \
+  template void MPMSolver<dim>::newton_solve(          \
+    dealii::TrilinosWrappers::MPI::Vector &du,         \
+    const double                           f_ext_norm, \
+    double                                &reference,  \
+    NewtonResult                          &result);
+
+    TALUS_INSTANTIATE(2)
+    TALUS_INSTANTIATE(3)
+#undef TALUS_INSTANTIATE
   } // namespace MPM
 } // namespace Talus

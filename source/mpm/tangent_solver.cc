@@ -564,25 +564,18 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-    template unsigned int
-    MPMSolver<2>::solve_linear(dealii::TrilinosWrappers::MPI::Vector &x);
-    template void
-    MPMSolver<2>::build_amg();
-    template unsigned int
-    MPMSolver<2>::solve_with_tangent(
-      dealii::TrilinosWrappers::MPI::Vector       &x,
-      const dealii::TrilinosWrappers::MPI::Vector &b);
-    template unsigned int
-    MPMSolver<2>::solve_saddle_point(dealii::TrilinosWrappers::MPI::Vector &x);
-    template unsigned int
-    MPMSolver<3>::solve_linear(dealii::TrilinosWrappers::MPI::Vector &x);
-    template void
-    MPMSolver<3>::build_amg();
-    template unsigned int
-    MPMSolver<3>::solve_with_tangent(
-      dealii::TrilinosWrappers::MPI::Vector       &x,
-      const dealii::TrilinosWrappers::MPI::Vector &b);
-    template unsigned int
-    MPMSolver<3>::solve_saddle_point(dealii::TrilinosWrappers::MPI::Vector &x);
+#define TALUS_INSTANTIATE(dim)                              \
+  template unsigned int MPMSolver<dim>::solve_linear(       \
+    dealii::TrilinosWrappers::MPI::Vector &x);              \
+  template void         MPMSolver<dim>::build_amg();        \
+  template unsigned int MPMSolver<dim>::solve_with_tangent( \
+    dealii::TrilinosWrappers::MPI::Vector       &x,         \
+    const dealii::TrilinosWrappers::MPI::Vector &b);        \
+  template unsigned int MPMSolver<dim>::solve_saddle_point( \
+    dealii::TrilinosWrappers::MPI::Vector &x);
+
+    TALUS_INSTANTIATE(2)
+    TALUS_INSTANTIATE(3)
+#undef TALUS_INSTANTIATE
   } // namespace MPM
 } // namespace Talus

@@ -583,27 +583,16 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-    template void
-    MPMSolver<2>::cache_particles();
-    template void
-    MPMSolver<2>::project_to_grid();
-    template void
-    MPMSolver<2>::compute_xpic_correction(
-      std::vector<dealii::Tensor<1, 2>> &w) const;
-    template void
-    MPMSolver<2>::commit_step();
-    template void
-    MPMSolver<2>::project_stress_to_grid();
-    template void
-    MPMSolver<3>::cache_particles();
-    template void
-    MPMSolver<3>::project_to_grid();
-    template void
-    MPMSolver<3>::compute_xpic_correction(
-      std::vector<dealii::Tensor<1, 3>> &w) const;
-    template void
-    MPMSolver<3>::commit_step();
-    template void
-    MPMSolver<3>::project_stress_to_grid();
+#define TALUS_INSTANTIATE(dim)                           \
+  template void MPMSolver<dim>::cache_particles();       \
+  template void MPMSolver<dim>::project_to_grid();       \
+  template void MPMSolver<dim>::compute_xpic_correction( \
+    std::vector<dealii::Tensor<1, dim>> &w) const;       \
+  template void MPMSolver<dim>::commit_step();           \
+  template void MPMSolver<dim>::project_stress_to_grid();
+
+    TALUS_INSTANTIATE(2)
+    TALUS_INSTANTIATE(3)
+#undef TALUS_INSTANTIATE
   } // namespace MPM
 } // namespace Talus

@@ -109,7 +109,7 @@ namespace
     Talus::Simulation<2>::declare_parameters(prm);
     prm.parse_input(file);
 
-    TimerOutput timer(MPI_COMM_WORLD,
+    TimerOutput        timer(MPI_COMM_WORLD,
                       std::cout,
                       TimerOutput::never,
                       TimerOutput::wall_times);
@@ -151,10 +151,9 @@ namespace
     // (a) trial reactions = committed reactions
     const auto trial = nonzero(reactions(problem));
     problem.commit_step();
-    const auto after_first = committed_state(problem);
+    const auto after_first     = committed_state(problem);
     const bool with_boundaries = !problem.boundaries().empty();
-    const bool same_reactions =
-      trial == committed_reactions(problem);
+    const bool same_reactions  = trial == committed_reactions(problem);
 
     // (c) restore, the same step again
     problem.restore_state();
@@ -169,8 +168,7 @@ namespace
     if (with_boundaries)
       out << "  (a) reactions after solve_step = after commit_step: "
           << yes(same_reactions) << '\n';
-    out << "  (b) repeated solve bitwise identical: " << yes(same_solve)
-        << '\n'
+    out << "  (b) repeated solve bitwise identical: " << yes(same_solve) << '\n'
         << "  (c) restore_state gives the saved state: " << yes(restored)
         << ", the redone step equals the first commit: " << yes(same_commit)
         << '\n';

@@ -220,9 +220,8 @@ namespace Talus
       explicit BoundaryParticles(const MPM::BackgroundGrid<dim> &grid);
 
       static void
-      declare_parameters(
-        dealii::ParameterHandler &prm,
-        const unsigned int        n_slots = default_boundary_slots);
+      declare_parameters(dealii::ParameterHandler &prm,
+                         const unsigned int n_slots = default_boundary_slots);
 
       /** Parse subsection "Boundary particles". */
       void

@@ -271,7 +271,7 @@ namespace Talus
       bool clip_to_body = false;
       std::unique_ptr<dealii::Functions::ParsedFunction<dim>> initial_velocity;
       unsigned int                                            history_size;
-      unsigned int contact_slots = 0;
+      unsigned int                                            contact_slots = 0;
 
       double       lost_mass;
       unsigned int lost_count;
