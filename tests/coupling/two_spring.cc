@@ -324,6 +324,58 @@ namespace
       out << "  " << std::left << std::setw(28) << row.first << row.second
           << std::right << '\n';
   }
+
+
+  /** The optional force test: starting at d* the displacement residual is
+   * zero at once, but the force test needs a previous force, so the first
+   * window takes a second evaluation (force change at round-off); from a
+   * wrong start both tests must hold. */
+  void
+  force_test()
+  {
+    const TwoSpring::Scalar model(10.);
+    out << "\nForce test (k_D/k_N = 10, force tolerance 1e-8):\n";
+    auto operator_with_force =
+      [&](const Vector<double> &x, Vector<double> &x_tilde, Vector<double> &f) {
+        f.reinit(1);
+        f[0] = model.force(x[0]);
+        model(x, x_tilde);
+      };
+    Vector<double> exact(1);
+    exact[0] = model.solution();
+    for (const double force_tolerance : {0., 1e-8})
+      {
+        ConvergenceCriterion criterion(1e-10, 1e-15, force_tolerance, 30);
+        AitkenRelaxation     aitken(0.5);
+        const WindowResult   at_solution =
+          iterate_window(operator_with_force, exact, aitken, criterion);
+        const ConvergenceStatus &last = at_solution.history.back().status;
+        out << "  force tolerance " << force_tolerance
+            << ", start at d*: " << at_solution.iterations
+            << " iterations, force checked " << last.force_checked
+            << ", change "
+            << (last.force_change <= 1e-12 ? "<= 1e-12" : "> 1e-12") << '\n';
+        check(at_solution.accepted &&
+                at_solution.iterations == (force_tolerance > 0. ? 2 : 1) &&
+                last.force_checked == (force_tolerance > 0.) &&
+                last.force_change <= 1e-12,
+              "start at d*: 1 iteration, 2 with the force test (change at "
+              "round-off)");
+        // next window from 0: the force of the last window is the first
+        // reference; it converges with both tests
+        const WindowResult       from_zero = iterate_window(operator_with_force,
+                                                      Vector<double>(1),
+                                                      aitken,
+                                                      criterion);
+        const ConvergenceStatus &end       = from_zero.history.back().status;
+        out << "  force tolerance " << force_tolerance
+            << ", start at 0: " << from_zero.iterations << " iterations\n";
+        check(from_zero.accepted && end.force_change <= force_tolerance &&
+                std::abs(from_zero.x_tilde[0] - model.solution()) <=
+                  1e-10 * model.solution(),
+              "start at 0: converges with the force change within tolerance");
+      }
+  }
 } // namespace
 
 
@@ -333,5 +385,6 @@ main()
   out << std::setprecision(6);
   scalar_model();
   vector_model();
+  force_test();
   return 0;
 }
