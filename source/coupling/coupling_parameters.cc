@@ -1,0 +1,94 @@
+#include <talus/coupling/coupling_parameters.h>
+
+namespace Talus
+{
+  namespace Coupling
+  {
+    void
+    CouplingParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Coupling");
+      {
+        prm.declare_entry(
+          "scheme",
+          "strong",
+          dealii::Patterns::Selection("strong|weak"),
+          "strong: iterate each step until the interface converges "
+          "(implicit Gauss-Seidel); weak: one pass of both solvers per step "
+          "(explicit, staggered; unstable when the soil's interface "
+          "stiffness including inertia exceeds the barrier's).");
+        prm.declare_entry(
+          "order",
+          "MPM first",
+          dealii::Patterns::Selection("MPM first|structure first"),
+          "MPM first: the MPM gets the structure's interface displacement "
+          "(Dirichlet), the structure the MPM's reactions (Neumann); the "
+          "displacement is accelerated. structure first: the structure is "
+          "solved first with the last reactions.");
+        AccelerationParameters::declare_parameters(prm);
+        ConvergenceCriterion::declare_parameters(prm);
+        InterfacePredictor::declare_parameters(prm);
+      }
+      prm.leave_subsection();
+    }
+
+
+    void
+    CouplingParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Coupling");
+      scheme = (prm.get("scheme") == "weak" ? Scheme::weak : Scheme::strong);
+      order  = (prm.get("order") == "structure first" ? Order::structure_first :
+                                                        Order::MPM_first);
+      acceleration.parse_parameters(prm, "Coupling");
+      criterion.parse_parameters(prm, "Coupling");
+      predictor.parse_parameters(prm);
+      prm.leave_subsection();
+    }
+
+
+    WindowResult
+    iterate_window(
+      const std::function<void(const dealii::Vector<double> &,
+                               dealii::Vector<double> &,
+                               dealii::Vector<double> &)> &fixed_point,
+      const dealii::Vector<double>                        &x0,
+      InterfaceAccelerator                                &accelerator,
+      ConvergenceCriterion                                &criterion,
+      const bool                                           strong)
+    {
+      WindowResult result;
+      result.x = x0;
+      result.x_tilde.reinit(x0.size());
+      dealii::Vector<double> force;
+      accelerator.start_window();
+      criterion.start_window();
+      while (true)
+        {
+          force.reinit(0);
+          fixed_point(result.x, result.x_tilde, force);
+          ++result.iterations;
+          IterationRecord record;
+          record.status        = criterion.check(result.x,
+                                          result.x_tilde,
+                                          force.size() > 0 ? &force : nullptr);
+          const bool converged = record.status.converged;
+          if (converged || !strong)
+            {
+              result.history.push_back(record);
+              accelerator.end_window(result.x, result.x_tilde);
+              result.accepted = true;
+              return result;
+            }
+          if (record.status.maximum_reached)
+            {
+              result.history.push_back(record);
+              return result;
+            }
+          result.x = accelerator.compute_next(result.x, result.x_tilde);
+          record.acceleration = accelerator.info();
+          result.history.push_back(record);
+        }
+    }
+  } // namespace Coupling
+} // namespace Talus
