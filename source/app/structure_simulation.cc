@@ -9,6 +9,7 @@
 #include <talus/structure/plane_string.h>
 #include <talus/structure/static_solver.h>
 #include <talus/structure/structure.h>
+#include <talus/structure/structure_problem.h>
 
 #include <deal.II/base/convergence_table.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -115,10 +116,10 @@ namespace Talus
            level < p.first_level + p.n_levels;
            ++level)
         {
-          auto      model = create_model(p);
-          Structure structure;
-          model->build(structure, level);
-          structure.setup_system();
+          auto                               model = create_model(p);
+          Talus::Structure::StructureProblem problem;
+          problem.build(*model, level);
+          Structure &structure = problem.get_structure();
           // A part held by no support (an unconnected component) makes the
           // static stiffness singular; in a dynamic run a part with mass
           // may move freely.
@@ -194,12 +195,11 @@ namespace Talus
                 const auto what = model->support_parameter();
                 InputFile::reject(what[0], what[1], what[2], msg.str());
               }
-          Talus::Structure::StaticSolver solver(structure);
           prm.enter_subsection(S);
-          solver.parse_parameters(prm);
+          problem.parse_solver_parameters(prm);
           prm.leave_subsection();
-          solver.setup();
-          model->initial_guess(structure, solver.displacement);
+          problem.setup_solvers(*model);
+          auto &solver = problem.get_static_solver();
 
           unsigned int n_cells = 0;
           for (const auto &m : structure.line_meshes)
@@ -261,8 +261,8 @@ namespace Talus
           const auto run_step    = [&](const unsigned int step,
                                     const double       lambda) {
             const auto status = step == 0 ?
-                                     solver.solve(lambda) :
-                                     solver.solve_with_cuts(last_lambda, lambda);
+                                     problem.solve_load_factor(lambda) :
+                                     problem.solve_load_step(last_lambda, lambda);
             last_lambda       = lambda;
             if (!status.converged)
               {
@@ -306,9 +306,9 @@ namespace Talus
             return status;
           };
 
-          Talus::Structure::DynamicSolver dynamics(structure, solver);
+          const auto &dynamics = problem.get_dynamic_solver();
           prm.enter_subsection(S);
-          dynamics.parse_parameters(prm);
+          problem.parse_dynamics_parameters(prm);
           prm.leave_subsection();
           if (dynamics.enabled)
             {
@@ -316,7 +316,7 @@ namespace Talus
                 {
                   // Stage 1 (the pre-stress step) and the model's further
                   // stages, then the motion under the full loads.
-                  const auto status = solver.solve(0.);
+                  const auto status = problem.solve_load_factor(0.);
                   if (!status.converged)
                     throw ExcSimulationFailed(
                       "the pre-stress equilibrium did not converge: " +
@@ -325,14 +325,14 @@ namespace Talus
                             << status.iterations << " Newton iterations\n";
                   model->before_load_steps(structure, solver);
                 }
-              dynamics.initialize();
+              problem.initialize();
               const auto energy = [&]() {
-                return dynamics.kinetic_energy() + structure.strain_energy() +
+                return problem.kinetic_energy() + structure.strain_energy() +
                        structure.load_potential(solver.displacement, 1.);
               };
               model->time           = 0.;
               model->total_energy   = energy();
-              model->kinetic_energy = dynamics.kinetic_energy();
+              model->kinetic_energy = problem.kinetic_energy();
               model->monitor(structure, solver.displacement, 0.);
               unsigned int       step = 0, newton = 0;
               double             t       = 0.;
@@ -343,13 +343,14 @@ namespace Talus
               const double dt = dynamics.end_time / n_steps;
               while (step < n_steps)
                 {
-                  const auto status = dynamics.solve_step(dt);
+                  problem.prepare_step(t, dt);
+                  const auto status = problem.solve_step();
                   if (!status.converged)
                     throw ExcSimulationFailed(
                       "the time step from t = " + std::to_string(t) +
                       " s did not converge: " + status.failure +
                       ". Reduce 'time step' in subsection Structure/Dynamics.");
-                  dynamics.commit_step();
+                  problem.commit_step();
                   t = (step + 1) * dt;
                   ++step;
                   newton += status.iterations;
@@ -358,7 +359,7 @@ namespace Talus
                   structure.assemble(solver.displacement, 1., r, nullptr);
                   model->time           = t;
                   model->total_energy   = energy();
-                  model->kinetic_energy = dynamics.kinetic_energy();
+                  model->kinetic_energy = problem.kinetic_energy();
                   auto values =
                     model->monitor(structure, solver.displacement, t);
                   for (const auto &c : structure_columns(structure))
@@ -389,8 +390,8 @@ namespace Talus
               path.clear();
               if (model->relax_to_equilibrium())
                 {
-                  const double T      = dynamics.kinetic_energy();
-                  const auto   status = solver.solve(1.);
+                  const double T      = problem.kinetic_energy();
+                  const auto   status = problem.solve_load_factor(1.);
                   if (!status.converged)
                     throw ExcSimulationFailed(
                       "the static equilibrium after the dynamic relaxation "
@@ -422,9 +423,8 @@ namespace Talus
               unsigned int           newton = 0;
               for (unsigned int k = 1; k <= solver.load_steps; ++k)
                 {
-                  const auto status = solver.solve_arc_length(lambda,
-                                                              solver.arc_length,
-                                                              direction);
+                  const auto status =
+                    problem.solve_arc_length_step(lambda, direction);
                   if (!status.converged)
                     throw ExcSimulationFailed(
                       "arc-length step " + std::to_string(k) +

@@ -8,6 +8,7 @@
 #include <talus/structure/sliding_cable.h>
 #include <talus/structure/static_solver.h>
 #include <talus/structure/structure.h>
+#include <talus/structure/structure_problem.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
@@ -142,7 +143,7 @@ namespace Talus
      * reference. build() creates the meshes, supports and loads of the
      * given refinement level.
      */
-    class Model
+    class Model : public Talus::Structure::StructureBuilder
     {
     public:
       explicit Model(const Parameters &p)
@@ -150,12 +151,12 @@ namespace Talus
       {}
       virtual ~Model() = default;
 
-      virtual void
-      build(Structure &s, const unsigned int level) = 0;
+      void
+      build(Structure &s, const unsigned int level) override = 0;
 
       /** Start of Newton (e.g. a bulge for a flat, unstressed membrane). */
-      virtual void
-      initial_guess(const Structure &, dealii::Vector<double> &) const
+      void
+      initial_guess(const Structure &, dealii::Vector<double> &) const override
       {}
 
       /** Extra load factors to visit (inserted into the load path). */
