@@ -186,26 +186,14 @@ namespace Talus
     NewtonStatus
     StructureProblem::solve_load_factor(const double load_factor)
     {
-      const NewtonStatus status = static_solver.solve(load_factor);
-      if (status.converged)
-        {
-          store(committed);
-          committed.time = load_factor;
-        }
-      return status;
+      return accept_load_step(static_solver.solve(load_factor), load_factor);
     }
 
 
     NewtonStatus
     StructureProblem::solve_load_step(const double from, const double to)
     {
-      const NewtonStatus status = static_solver.solve_with_cuts(from, to);
-      if (status.converged)
-        {
-          store(committed);
-          committed.time = to;
-        }
-      return status;
+      return accept_load_step(static_solver.solve_with_cuts(from, to), to);
     }
 
 
@@ -217,12 +205,7 @@ namespace Talus
         static_solver.solve_arc_length(load_factor,
                                        static_solver.arc_length,
                                        direction);
-      if (status.converged)
-        {
-          store(committed);
-          committed.time = load_factor;
-        }
-      return status;
+      return accept_load_step(status, load_factor);
     }
 
 
@@ -272,6 +255,19 @@ namespace Talus
     StructureProblem::get_dynamic_solver() const
     {
       return dynamic_solver;
+    }
+
+
+    NewtonStatus
+    StructureProblem::accept_load_step(const NewtonStatus &status,
+                                       const double        time)
+    {
+      if (status.converged)
+        {
+          store(committed);
+          committed.time = time;
+        }
+      return status;
     }
 
 

@@ -184,7 +184,8 @@ namespace Talus
 
       /** One arc-length step (StaticSolver::solve_arc_length()). */
       NewtonStatus
-      solve_arc_length_step(double &load_factor, dealii::Vector<double> &dir);
+      solve_arc_length_step(double                 &load_factor,
+                            dealii::Vector<double> &direction);
       /** @} */
 
       /** Kinetic energy of the committed state (dynamic mode) [J]. */
@@ -238,6 +239,12 @@ namespace Talus
       /** The committed state from the solvers and the structure. */
       void
       store(State &state) const;
+
+      /** After a load step of the application that committed itself: if
+       * it converged, the solvers' state at @p time is the committed one.
+       * Returns @p status. */
+      NewtonStatus
+      accept_load_step(const NewtonStatus &status, const double time);
 
       /** Make @p state the solvers' and the structure's state. */
       void
