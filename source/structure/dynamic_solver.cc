@@ -237,6 +237,13 @@ namespace Talus
     }
 
 
+    const dealii::Vector<double> &
+    DynamicSolver::trial_velocity() const
+    {
+      return v_trial;
+    }
+
+
     double
     DynamicSolver::kinetic_energy() const
     {

@@ -139,6 +139,28 @@ namespace Talus
     }
 
 
+    StaticSolver::History
+    StaticSolver::get_history() const
+    {
+      History h;
+      h.force_scale           = force_scale;
+      h.previous_displacement = previous_displacement;
+      h.previous_load_factor  = previous_load_factor;
+      h.previous_valid        = previous_valid;
+      return h;
+    }
+
+
+    void
+    StaticSolver::set_history(const History &history)
+    {
+      force_scale           = history.force_scale;
+      previous_displacement = history.previous_displacement;
+      previous_load_factor  = history.previous_load_factor;
+      previous_valid        = history.previous_valid;
+    }
+
+
     NewtonStatus
     StaticSolver::solve_with_cuts(const double from, const double to)
     {

@@ -56,6 +56,20 @@ namespace Talus
       void
       commit_step();
 
+      /**
+       * Make the current displacement of the Newton solver the start of the
+       * next step: u_n, and for stiffness damping the tangent K_n at u_n
+       * (with the committed history). commit_step() and initialize() call
+       * it; call it after restoring a saved state (displacement,
+       * velocity, acceleration, history).
+       */
+      void
+      update_step_start();
+
+      /** Velocity of the last solve_step() (before commit_step()). */
+      const dealii::Vector<double> &
+      trial_velocity() const;
+
       /** Kinetic energy v.M v/2 of the committed state [J]. */
       double
       kinetic_energy() const;
@@ -84,9 +98,6 @@ namespace Talus
              mass_vmult(dealii::Vector<double>       &y,
                         const dealii::Vector<double> &x) const;
       double dt_last = 0.;
-
-      void
-      update_step_start();
     };
   } // namespace Structure
 } // namespace Talus

@@ -101,6 +101,28 @@ namespace Talus
                        const double            ds,
                        dealii::Vector<double> &direction);
 
+      /**
+       * What the solver remembers between solves besides the displacement:
+       * the force scale of the Newton tolerance (the largest nodal force of
+       * converged states) and the last converged state of
+       * solve_with_cuts() (secant predictor). StructureProblem saves and
+       * restores it with the structure's state, so that a repeated solve
+       * from a committed state is the same.
+       */
+      struct History
+      {
+        double                 force_scale = 0.; ///< [N]
+        dealii::Vector<double> previous_displacement;
+        double                 previous_load_factor = 0.;
+        bool                   previous_valid       = false;
+      };
+
+      History
+      get_history() const;
+
+      void
+      set_history(const History &history);
+
       dealii::Vector<double> displacement;
 
       unsigned int load_steps     = 10;

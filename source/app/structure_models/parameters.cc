@@ -1,0 +1,703 @@
+// Parameters of the structure application: subsection Structure.
+
+#include <talus/app/simulation.h>
+#include <talus/app/structure_models/factory.h>
+#include <talus/app/structure_models/model.h>
+#include <talus/base/input.h>
+#include <talus/structure/barrier_builder.h>
+#include <talus/structure/continuum_solid.h>
+#include <talus/structure/dynamic_solver.h>
+#include <talus/structure/mesh_input.h>
+#include <talus/structure/plane_string.h>
+#include <talus/structure/static_solver.h>
+#include <talus/structure/structure.h>
+
+#include <deal.II/base/convergence_table.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/tria.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <tuple>
+
+namespace Talus
+{
+  namespace StructureModels
+  {
+    using namespace dealii;
+
+
+    Parameters
+    parse_parameters(ParameterHandler &prm)
+    {
+      Parameters p;
+      prm.enter_subsection(structure_section);
+      p.model      = prm.get("model");
+      p.model_text = p.model;
+      for (const std::string base :
+           {"solid", "cantilever", "axial bar", "hanging block"})
+        if (p.model == "plane " + base)
+          {
+            p.plane_solid = true;
+            p.model       = base;
+          }
+
+      const std::string lm = structure_section + "/Line members";
+      prm.enter_subsection("Line members");
+      p.line_element = prm.get("element");
+      p.E            = get_positive(prm, lm, "Young's modulus");
+      p.A            = get_positive(prm, lm, "cross-section area");
+      p.prestress    = prm.get_double("prestress");
+      p.density      = get_non_negative(prm, lm, "density");
+      p.yield_stress = get_non_negative(prm, lm, "yield stress");
+      p.hardening    = get_non_negative(prm, lm, "hardening modulus");
+      p.elements     = prm.get_integer("elements per member");
+      if (p.elements < 1)
+        InputFile::reject(lm,
+                          "elements per member",
+                          prm.get("elements per member"),
+                          "a member needs at least one element (two nodes)");
+      p.slack_ratio = get_positive(prm, lm, "slack stiffness ratio");
+      p.friction    = get_non_negative(prm, lm, "friction coefficient");
+      p.stick_slip  = prm.get("friction law") == "stick-slip";
+      if (p.stick_slip && !(p.friction > 0.))
+        InputFile::reject(lm,
+                          "friction law",
+                          "stick-slip",
+                          "the stick-slip law needs a 'friction coefficient' "
+                          "> 0 (without friction a sliding cable has no "
+                          "stick)");
+      prm.leave_subsection();
+
+      const std::string ms = structure_section + "/Membrane";
+      prm.enter_subsection("Membrane");
+      p.membrane_E = get_positive(prm, ms, "Young's modulus");
+      p.membrane_nu =
+        get_in_open_interval(prm, ms, "Poisson's ratio", -1., 0.5 + 1e-12);
+      p.orthotropic = prm.get_bool("orthotropic");
+      if (p.orthotropic)
+        {
+          p.membrane_E2 = get_positive(prm, ms, "Young's modulus 2");
+          p.membrane_G  = get_positive(prm, ms, "shear modulus");
+        }
+      p.thickness          = get_positive(prm, ms, "thickness");
+      p.mode_amplitude     = prm.get_double("initial mode amplitude");
+      p.membrane_density   = get_non_negative(prm, ms, "density");
+      p.membrane_prestress = get_vector(prm, ms, "prestress");
+      p.wrinkling          = prm.get_bool("wrinkling");
+      p.initial_deflection = prm.get_double("initial deflection");
+      p.shear_strain       = prm.get_double("shear strain");
+      {
+        const auto e = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("stretch")));
+        p.stretch_x = e[0];
+        p.stretch_y = e[1];
+      }
+      p.uniaxial_stress = prm.get_bool("uniaxial stress");
+      prm.leave_subsection();
+
+      const std::string bs = structure_section + "/Brake";
+      prm.enter_subsection("Brake");
+      p.brake_k      = get_positive(prm, bs, "stiffness");
+      p.brake_Fa     = get_positive(prm, bs, "activation force");
+      p.brake_H      = get_non_negative(prm, bs, "hardening");
+      p.brake_smax   = get_non_negative(prm, bs, "stroke limit");
+      p.brake_length = get_positive(prm, bs, "length");
+      prm.leave_subsection();
+
+      const std::string solid_s = structure_section + "/Solid";
+      prm.enter_subsection("Solid");
+      p.solid.parse_parameters(prm, solid_s);
+      p.solid_geometry.parse_parameters(prm, solid_s);
+      p.solid_traction_text = prm.get("traction");
+      prm.leave_subsection();
+      if ((p.model == "cantilever" || p.model == "hanging block" ||
+           p.model == "axial bar") &&
+          !p.solid_geometry.mesh_file.empty())
+        InputFile::reject(solid_s,
+                          "mesh file",
+                          p.solid_geometry.mesh_file,
+                          "models 'cantilever', 'hanging block' and "
+                          "'axial bar' generate their box (leave 'mesh "
+                          "file' empty)");
+
+      const std::string gs = structure_section + "/Geometry";
+      prm.enter_subsection("Geometry");
+      p.half_span          = get_positive(prm, gs, "half span");
+      p.rise               = get_positive(prm, gs, "rise");
+      p.span               = get_positive(prm, gs, "span");
+      p.unstretched_length = get_positive(prm, gs, "unstretched length");
+      p.radius             = get_positive(prm, gs, "radius");
+      p.side               = get_positive(prm, gs, "side");
+      p.cable_length       = get_positive(prm, gs, "cable length");
+      p.spring_EA          = get_non_negative(prm, gs, "spring EA");
+      p.string_amplitude   = prm.get_double("string amplitude");
+      p.wrap_angle         = prm.get_double("wrap angle");
+      p.drum_radius        = get_positive(prm, gs, "drum radius");
+      p.spring_length      = get_positive(prm, gs, "spring length");
+      p.refinements        = prm.get_integer("refinements");
+      p.mesh_file          = prm.get("mesh file");
+      p.mesh_is_membrane   = prm.get("mesh file type") == "membrane";
+      prm.leave_subsection();
+      const bool catenary =
+        p.model == "catenary" || p.model == "plane catenary";
+      if (catenary && !(p.unstretched_length > p.span))
+        InputFile::reject(gs,
+                          "unstretched length",
+                          std::to_string(p.unstretched_length),
+                          "the catenary needs a cable longer than the span");
+      if (p.model == "mesh file" && p.mesh_file.empty())
+        InputFile::reject(gs,
+                          "mesh file",
+                          "",
+                          "model 'mesh file' needs the name of a Gmsh file");
+
+      const std::string ls = structure_section + "/Loads";
+      prm.enter_subsection("Loads");
+      p.gravity                         = get_vector(prm, ls, "gravity");
+      const std::string gravity_text    = prm.get("gravity");
+      p.point_load                      = get_vector(prm, ls, "point load");
+      const std::string point_load_text = prm.get("point load");
+      p.pressure                        = prm.get_double("pressure");
+      p.prescribed_displacement = prm.get_double("prescribed displacement");
+      p.load_path               = Utilities::string_to_double(
+        Utilities::split_string_list(prm.get("load path")));
+      prm.leave_subsection();
+      if (p.model == "plane catenary" &&
+          !(p.gravity[0] == 0. && p.gravity[2] == 0. && p.gravity[1] < 0.))
+        InputFile::reject(ls,
+                          "gravity",
+                          gravity_text,
+                          "the plane catenary lies in the x-y plane of a "
+                          "2D problem and sags along -y: gravity must be "
+                          "0, -g, 0 with g > 0");
+      if (catenary && !(p.density > 0. && p.gravity.norm() > 0.))
+        InputFile::reject(lm,
+                          "density",
+                          std::to_string(p.density),
+                          "the catenary needs a weight: density > 0 and a "
+                          "non-zero 'gravity' in subsection Loads");
+      if ((p.model == "sliding ring" || p.model == "capstan") &&
+          !(p.point_load.norm() > 0.))
+        InputFile::reject(ls,
+                          "point load",
+                          point_load_text,
+                          "the sliding ring needs a non-zero load in the "
+                          "x-z plane");
+
+      // Models loaded by 'point load' along one axis c only.
+      const auto require_load_along =
+        [&](const bool applies, const unsigned int c, const std::string &what) {
+          if (applies &&
+              !(p.point_load[c] != 0. && p.point_load[(c + 1) % 3] == 0. &&
+                p.point_load[(c + 2) % 3] == 0.))
+            InputFile::reject(ls, "point load", point_load_text, what);
+        };
+      require_load_along(p.model == "cantilever" && !p.plane_solid,
+                         2,
+                         "the cantilever needs an end load 0, 0, P with "
+                         "P != 0");
+      require_load_along(p.model == "cantilever" && p.plane_solid,
+                         1,
+                         "the plane cantilever lies in the x-y plane and "
+                         "needs an end load 0, P, 0 with P != 0");
+      require_load_along(p.model == "plastic bar",
+                         0,
+                         "the plastic bar needs an end load F, 0, 0 with "
+                         "F != 0");
+      require_load_along(p.model == "axial bar",
+                         0,
+                         "the axial bar needs an end load F, 0, 0 with "
+                         "F != 0");
+      if (p.plane_solid && p.gravity[2] != 0.)
+        InputFile::reject(ls,
+                          "gravity",
+                          gravity_text,
+                          "a plane-strain solid lies in the x-y plane of "
+                          "a 2D problem: gravity must be g_x, g_y, 0");
+      if (p.plane_solid && p.solid_geometry.traction[2] != 0.)
+        InputFile::reject(structure_section + "/Solid",
+                          "traction",
+                          p.solid_traction_text,
+                          "a plane-strain solid lies in the x-y plane of "
+                          "a 2D problem: its traction must be t_x, t_y, 0");
+      if (p.model == "plastic bar" && p.line_element != "truss")
+        InputFile::reject(lm,
+                          "element",
+                          p.line_element,
+                          "the plastic bar is made of 'truss' elements "
+                          "(a cable has no plasticity)");
+      if (p.model == "hanging block")
+        {
+          if (!p.plane_solid &&
+              !(p.gravity[0] == 0. && p.gravity[1] == 0. && p.gravity[2] < 0.))
+            InputFile::reject(ls,
+                              "gravity",
+                              gravity_text,
+                              "the hanging block needs gravity 0, 0, -g "
+                              "with g > 0");
+          if (p.plane_solid &&
+              !(p.gravity[0] == 0. && p.gravity[1] < 0. && p.gravity[2] == 0.))
+            InputFile::reject(ls,
+                              "gravity",
+                              gravity_text,
+                              "the plane hanging block needs gravity 0, "
+                              "-g, 0 with g > 0 (it hangs along -y in the "
+                              "x-y plane)");
+          if (p.prestress != 0.)
+            InputFile::reject(lm,
+                              "prestress",
+                              std::to_string(p.prestress),
+                              "the hanging block's cable has no "
+                              "pre-stress (its reference is for 0)");
+        }
+      p.barrier.parse_parameters(prm, structure_section + "/Barrier");
+      prm.enter_subsection("Solver");
+      p.arc_length_control = prm.get("control") == "arc length";
+      prm.leave_subsection();
+
+      prm.enter_subsection("Dynamics");
+      p.dynamic           = prm.get_bool("dynamic");
+      p.mass_damping      = prm.get_double("mass damping");
+      p.stiffness_damping = prm.get_double("stiffness damping");
+      p.bossak_alpha      = prm.get_double("Bossak alpha");
+      p.dynamic_time_step = prm.get_double("time step");
+      prm.leave_subsection();
+      if (p.dynamic && p.model != "square membrane" && p.model != "barrier" &&
+          p.model != "vibrating string" && p.model != "solid" &&
+          p.model != "axial bar")
+        InputFile::reject(structure_section + "/Dynamics",
+                          "dynamic",
+                          "true",
+                          "only models 'square membrane', 'vibrating "
+                          "string', 'solid', 'axial bar' and 'barrier' run "
+                          "in time so far");
+      if (!p.dynamic && p.model == "vibrating string")
+        InputFile::reject(structure_section + "/Dynamics",
+                          "dynamic",
+                          "false",
+                          "model 'vibrating string' needs 'dynamic = true'");
+
+      prm.enter_subsection("Output");
+      p.directory = prm.get("output directory");
+      p.write_vtu = prm.get_bool("write vtu");
+      p.test_mode = prm.get_bool("test mode");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Verification");
+      p.tolerance = prm.get_double("tolerance");
+      p.reference_displacement =
+        prm.get_double("reference largest displacement");
+      p.n_levels     = prm.get_integer("number of levels");
+      p.first_level  = prm.get_integer("first level");
+      p.minimum_rate = prm.get_double("minimum rate");
+      prm.leave_subsection();
+      prm.leave_subsection();
+      return p;
+    }
+
+
+    void
+    declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection(structure_section);
+      prm.declare_entry(
+        "model",
+        "von Mises truss",
+        Patterns::Selection("von Mises truss|catenary|plane catenary|"
+                            "circular membrane|"
+                            "square membrane|sheared membrane|vibrating string|"
+                            "sliding ring|capstan|brake|mesh file|barrier|"
+                            "solid|cantilever|hanging block|axial bar|"
+                            "plane solid|plane cantilever|plane axial bar|"
+                            "plane hanging block|"
+                            "stretched membrane|plastic bar"),
+        "Structural model built from the subsections below (used with "
+        "'set problem = structure'): 'von Mises truss' (two bars, apex "
+        "pushed down by 'prescribed displacement'), 'catenary' (cable "
+        "under self weight between two supports), 'plane catenary' (the "
+        "same as a 2D string: a Triangulation<1,2> in the x-y plane, "
+        "gravity 0, -g, 0), 'circular membrane' "
+        "(Hencky: clamped disk under pressure), 'square membrane' "
+        "(pre-stressed, clamped, small pressure), 'sheared membrane' "
+        "(square in simple shear: tension field with wrinkling), "
+        "'vibrating string' (pre-stressed cable of two elements, middle node "
+        "released: one degree of freedom against the Bossak recurrence), "
+        "'sliding ring' (ring "
+        "on a frictionless cable under 'point load'), 'capstan' (a sliding "
+        "cable with friction around a drum, its free end pulled by "
+        "|point load|), 'brake' (brake in "
+        "series with a cable, end pulled by 'prescribed displacement'), "
+        "'mesh file' (a line or membrane mesh read from 'mesh file', "
+        "ends or boundary fixed, gravity and pressure), 'barrier' (the standard barrier of subsection Barrier "
+        "with net, posts, support cables, retaining and lateral ropes and "
+        "brakes: staged form finding of the pre-stressed state, then "
+        "gravity and the field load; checks the global force balance), "
+        "'solid' (a continuum solid of subsection Solid with its supports, "
+        "traction and gravity), 'cantilever' (the box of subsection Solid "
+        "clamped at x_min, end load 'point load' (0, 0, P) as a shear "
+        "traction on x_max: Timoshenko's tip deflection), 'hanging block' "
+        "(the box hanging under gravity on a vertical cable of 'cable "
+        "length' tied to the centre of its top face: cable force and "
+        "stretch by hand), 'axial bar' (the box on its symmetry planes "
+        "pulled on x_max by 'point load' (F, 0, 0) as a traction: exact "
+        "uniaxial stress, or with 'dynamic' the first axial period 4 L/c), "
+        "'plane solid', 'plane cantilever', 'plane axial bar', 'plane "
+        "hanging block' (the same four as plane-strain solids of a 2D "
+        "problem: the rectangle of the x, y coordinates of subsection Solid "
+        "as a Triangulation<2,2> in the x-y plane, 'thickness' t out of "
+        "plane, u_z = 0; the cantilever is loaded along y by 'point load' "
+        "(0, P, 0) against the plane-strain Timoshenko beam, the block "
+        "hangs on a 2D string (Triangulation<1,2>) under gravity 0, -g, 0), "
+        "'stretched membrane' (square membrane, orthotropic or not, under "
+        "the homogeneous biaxial stretch or uniaxial stress of 'stretch'), "
+        "'plastic bar' (a straight truss of 'span' along x, fixed at x = 0, "
+        "its end loaded by the x component of 'point load' along 'load "
+        "path': elasto-plastic with linear hardening, loading, unloading "
+        "and residual elongation in closed form). "
+        "Each model with a closed "
+        "form reports and checks it.");
+
+      prm.enter_subsection("Line members");
+      prm.declare_entry("element",
+                        "truss",
+                        Patterns::Selection("truss|cable"),
+                        "Element of the bars/cables: 'truss' (tension and "
+                        "compression, optional plasticity) or 'cable' "
+                        "(tension only, slack in compression).");
+      prm.declare_entry("Young's modulus",
+                        "2e11",
+                        Patterns::Double(),
+                        "E of the line members [Pa], > 0.");
+      prm.declare_entry("cross-section area",
+                        "1e-4",
+                        Patterns::Double(),
+                        "A of the line members [m^2], > 0.");
+      prm.declare_entry("prestress",
+                        "0",
+                        Patterns::Double(),
+                        "PK2 pre-stress sigma_0 added to E eps [Pa].");
+      prm.declare_entry("density",
+                        "0",
+                        Patterns::Double(),
+                        "Density [kg/m^3] (weight rho A g per unstretched "
+                        "length), >= 0.");
+      prm.declare_entry("yield stress",
+                        "0",
+                        Patterns::Double(),
+                        "Truss yield stress (PK2) [Pa]; 0: elastic.");
+      prm.declare_entry("hardening modulus",
+                        "0",
+                        Patterns::Double(),
+                        "Linear isotropic hardening H of the truss [Pa].");
+      prm.declare_entry("elements per member",
+                        "1",
+                        Patterns::Integer(),
+                        "Elements along each bar or cable [-], >= 1 (the "
+                        "catenary: on the coarsest level, even).");
+      prm.declare_entry("friction coefficient",
+                        "0",
+                        Patterns::Double(),
+                        "Capstan friction coefficient mu of sliding cables "
+                        "at their interior nodes (model 'capstan') [-], >= "
+                        "0.");
+      prm.declare_entry("friction law",
+                        "slide",
+                        Patterns::Selection("slide|stick-slip"),
+                        "Capstan friction of sliding cables: 'slide' (the "
+                        "cable slides towards its last node at every node, "
+                        "no history) or 'stick-slip' (a node sticks while "
+                        "exp(-mu theta) <= N_k/N_{k-1} <= exp(mu theta) and "
+                        "slips at the limit otherwise; history: the material "
+                        "length of every segment).");
+      prm.declare_entry("slack stiffness ratio",
+                        "1e-8",
+                        Patterns::Double(),
+                        "Stiffness of a slack cable or brake in the Newton "
+                        "matrix only (never in the forces), as a fraction "
+                        "of EA/L (brake: of k_e) [-], > 0.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Membrane");
+      prm.declare_entry("Young's modulus",
+                        "1e9",
+                        Patterns::Double(),
+                        "E (isotropic) or E1 along material axis 1 [Pa], > "
+                        "0.");
+      prm.declare_entry("Poisson's ratio",
+                        "0.3",
+                        Patterns::Double(),
+                        "nu (isotropic) or nu12 [-], in (-1, 0.5].");
+      prm.declare_entry("orthotropic",
+                        "false",
+                        Patterns::Bool(),
+                        "Orthotropic plane-stress SVK with E2 and G12 below "
+                        "(axis 1: global x projected on the surface).");
+      prm.declare_entry("Young's modulus 2",
+                        "1e9",
+                        Patterns::Double(),
+                        "E2 along material axis 2 (orthotropic) [Pa].");
+      prm.declare_entry("shear modulus",
+                        "4e8",
+                        Patterns::Double(),
+                        "G12 (orthotropic) [Pa].");
+      prm.declare_entry("thickness",
+                        "1e-3",
+                        Patterns::Double(),
+                        "Membrane thickness t [m], > 0.");
+      prm.declare_entry("density",
+                        "0",
+                        Patterns::Double(),
+                        "Density [kg/m^3], >= 0.");
+      prm.declare_entry("prestress",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "In-plane PK2 pre-stress S11, S22, S12 in the "
+                        "material axes [Pa].");
+      prm.declare_entry("wrinkling",
+                        "false",
+                        Patterns::Bool(),
+                        "Tension-field law: no compressive principal stress "
+                        "(taut / wrinkled / slack).");
+      prm.declare_entry("initial mode amplitude",
+                        "0",
+                        Patterns::Double(),
+                        "Dynamic square membrane: initial deflection A "
+                        "cos(pi x/a) cos(pi y/a) (the first mode) [m], "
+                        "released from rest.");
+      prm.declare_entry("shear strain",
+                        "1e-4",
+                        Patterns::Double(),
+                        "Model 'sheared membrane': engineering shear strain "
+                        "gamma imposed on the boundary (u_x = gamma (y + "
+                        "a/2)) at load factor 1 [-].");
+      prm.declare_entry("stretch",
+                        "0.01, 0.005",
+                        Patterns::List(Patterns::Double(), 2, 2),
+                        "Model 'stretched membrane': engineering strains "
+                        "lambda_1 - 1, lambda_2 - 1 along x and y imposed on "
+                        "the boundary (u_x = e_x x, u_y = e_y y) at load "
+                        "factor 1 [-]; with 'uniaxial stress' only e_x is "
+                        "used.");
+      prm.declare_entry("uniaxial stress",
+                        "false",
+                        Patterns::Bool(),
+                        "Model 'stretched membrane': prescribe u_x = e_x x "
+                        "on the edges x = +-a/2 only and hold u_y on the "
+                        "line y = 0 (lateral edges free: uniaxial stress) "
+                        "instead of the biaxial stretch of the whole "
+                        "boundary.");
+      prm.declare_entry("initial deflection",
+                        "0",
+                        Patterns::Double(),
+                        "Start of Newton for the circular membrane: a "
+                        "paraboloid bulge of this height [m] (a flat "
+                        "unstressed membrane has no stiffness normal to "
+                        "itself). It does not change the solution.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Brake");
+      prm.declare_entry("stiffness",
+                        "1e6",
+                        Patterns::Double(),
+                        "Elastic stiffness k_e [N/m], > 0.");
+      prm.declare_entry("activation force",
+                        "5e4",
+                        Patterns::Double(),
+                        "Force F_a at which the brake starts to slip [N], > "
+                        "0.");
+      prm.declare_entry("hardening",
+                        "0",
+                        Patterns::Double(),
+                        "Hardening H: force rise per metre of stroke [N/m], "
+                        ">= 0.");
+      prm.declare_entry("stroke limit",
+                        "0",
+                        Patterns::Double(),
+                        "Stroke s_max after which the brake blocks [m]; 0: "
+                        "unlimited.");
+      prm.declare_entry("length",
+                        "1",
+                        Patterns::Double(),
+                        "Reference length of the brake element [m], > 0.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Geometry");
+      prm.declare_entry("half span",
+                        "1",
+                        Patterns::Double(),
+                        "Half the distance between the supports b (von "
+                        "Mises truss, sliding ring) [m], > 0.");
+      prm.declare_entry("rise",
+                        "0.1",
+                        Patterns::Double(),
+                        "Height h of the truss apex above the supports [m], "
+                        "> 0.");
+      prm.declare_entry("wrap angle",
+                        "180",
+                        Patterns::Double(1, 720),
+                        "Capstan: angle the cable is wrapped around the drum "
+                        "[degrees], 1 to 720 (more than 360: helix in the "
+                        "plane is not modelled, keep <= 360).");
+      prm.declare_entry("drum radius",
+                        "0.5",
+                        Patterns::Double(),
+                        "Capstan: radius of the drum (fixed nodes on a "
+                        "circle in the x-z plane) [m], > 0.");
+      prm.declare_entry("string amplitude",
+                        "1e-3",
+                        Patterns::Double(),
+                        "Model 'vibrating string': initial deflection of "
+                        "the middle node, released from rest [m].");
+      prm.declare_entry("spring EA",
+                        "0",
+                        Patterns::Double(),
+                        "von Mises truss: if > 0, a vertical Truss spring of "
+                        "this axial stiffness E A [N] stands on the apex and "
+                        "carries the load at its top (snap-back under load "
+                        "control when EA/L_s < EA h^2/L0^3).");
+      prm.declare_entry("spring length",
+                        "1",
+                        Patterns::Double(),
+                        "Length L_s of that spring [m], > 0.");
+      prm.declare_entry("span",
+                        "10",
+                        Patterns::Double(),
+                        "Distance between the catenary supports l [m], > 0.");
+      prm.declare_entry("unstretched length",
+                        "12",
+                        Patterns::Double(),
+                        "Stress-free length of the catenary or ring cable "
+                        "[m], > 0.");
+      prm.declare_entry("radius",
+                        "1",
+                        Patterns::Double(),
+                        "Radius a of the circular membrane [m], > 0.");
+      prm.declare_entry("side",
+                        "1",
+                        Patterns::Double(),
+                        "Side a of the square membrane [m], > 0.");
+      prm.declare_entry("cable length",
+                        "5",
+                        Patterns::Double(),
+                        "Length of the cable behind the brake [m], > 0.");
+      prm.declare_entry("refinements",
+                        "3",
+                        Patterns::Integer(0, 10),
+                        "Global refinements of the membrane meshes (level 0 "
+                        "of a convergence study) [-].");
+      prm.declare_entry("mesh file type",
+                        "lines",
+                        Patterns::Selection("lines|membrane"),
+                        "What the file of model 'mesh file' holds: 'lines' "
+                        "(a cable or truss, element of subsection Line "
+                        "members) or 'membrane' (quadrilaterals, material of "
+                        "subsection Membrane).");
+      prm.declare_entry("mesh file",
+                        "",
+                        Patterns::Anything(),
+                        "Gmsh (.msh) file of a line mesh for model 'mesh "
+                        "file'.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Loads");
+      prm.declare_entry("gravity",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "Gravity acceleration [m/s^2], scaled by the load "
+                        "factor.");
+      prm.declare_entry("point load",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "Load at the model's load point (the ring) [N].");
+      prm.declare_entry("pressure",
+                        "0",
+                        Patterns::Double(),
+                        "Follower pressure on the membranes, along the "
+                        "normal t1 x t2 of the current surface [Pa].");
+      prm.declare_entry("prescribed displacement",
+                        "0",
+                        Patterns::Double(),
+                        "Displacement of the controlled node at load factor "
+                        "1 (truss apex down, brake cable end along x) [m].");
+      prm.declare_entry("load path",
+                        "",
+                        Patterns::List(Patterns::Double()),
+                        "Load factors to visit in order (e.g. '1, 0.5, 1.5' "
+                        "to load, unload, reload), each leg in 'load steps' "
+                        "increments; empty: 0 to 1 [-].");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Solid");
+      Talus::Structure::ContinuumSolid<3>::declare_parameters(prm);
+      Talus::Structure::SolidGeometry::declare_parameters(prm);
+      prm.leave_subsection();
+
+      Talus::Structure::BarrierBuilder::declare_parameters(prm);
+      Talus::Structure::StaticSolver::declare_parameters(prm);
+      Talus::Structure::DynamicSolver::declare_parameters(prm);
+
+      prm.enter_subsection("Output");
+      prm.declare_entry("output directory",
+                        "output-structure",
+                        Patterns::Anything(),
+                        "Directory of the VTU files and of "
+                        "load_steps.csv.");
+      prm.declare_entry("write vtu",
+                        "false",
+                        Patterns::Bool(),
+                        "Write one VTU file per mesh and load step (and a "
+                        ".pvd per mesh).");
+      prm.declare_entry("test mode",
+                        "false",
+                        Patterns::Bool(),
+                        "Deterministic terminal output: no step lines.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Verification");
+      prm.declare_entry("tolerance",
+                        "0",
+                        Patterns::Double(0),
+                        "If > 0: the run fails (exit code 3) when a checked "
+                        "quantity misses its closed form by more than this "
+                        "relative error on the finest level [-].");
+      prm.declare_entry("reference largest displacement",
+                        "0",
+                        Patterns::Double(0),
+                        "Model 'mesh file': if > 0, the largest nodal "
+                        "displacement is compared with this value [m].");
+      prm.declare_entry("number of levels",
+                        "1",
+                        Patterns::Integer(1, 8),
+                        "Number of meshes, each refined once more (membranes: "
+                        "one global refinement, catenary: twice the "
+                        "elements) [-].");
+      prm.declare_entry("first level",
+                        "0",
+                        Patterns::Integer(0, 8),
+                        "Refinement level of the first run [-].");
+      prm.declare_entry("minimum rate",
+                        "0",
+                        Patterns::Double(0),
+                        "If > 0: the study fails when the rate of a checked "
+                        "error between the last two levels is below this "
+                        "[-].");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+  } // namespace StructureModels
+} // namespace Talus
