@@ -22,29 +22,26 @@
 
 namespace Talus
 {
+  std::string
+  demangle_parameter_name(const std::string &s)
+  {
+    std::string r;
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (s[i] == '_' && i + 2 < s.size())
+        {
+          r += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+          i += 2;
+        }
+      else
+        r += s[i];
+    return r;
+  }
+
+
   namespace InputCheck
   {
     namespace
     {
-      // deal.II mangles names in its JSON export: every character that is
-      // not a letter or digit is written as _XX (hex).
-      std::string
-      demangle(const std::string &s)
-      {
-        std::string r;
-        for (std::size_t i = 0; i < s.size(); ++i)
-          if (s[i] == '_' && i + 2 < s.size())
-            {
-              r +=
-                static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-              i += 2;
-            }
-          else
-            r += s[i];
-        return r;
-      }
-
-
       /** The first token of @p value that is a non-finite number, or "". */
       std::string
       non_finite_token(const std::string &value)
@@ -82,7 +79,7 @@ namespace Talus
       {
         for (const auto &[mangled, node] : tree)
           {
-            const std::string name = demangle(mangled);
+            const std::string name = demangle_parameter_name(mangled);
             if (const auto value = node.get_optional<std::string>("value"))
               {
                 const std::string token = non_finite_token(*value);

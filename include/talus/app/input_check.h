@@ -11,6 +11,14 @@
 namespace Talus
 {
   /**
+   * A subsection or entry name as deal.II's JSON and XML export writes it
+   * (every character that is not a letter or digit as _XX, hex) turned
+   * back into the name.
+   */
+  std::string
+  demangle_parameter_name(const std::string &mangled);
+
+  /**
    * Checks of an input file that need nothing but the file: they run before
    * a simulation allocates anything (main.cc calls check_input_file() first)
    * and are all that `talus --check <file>` does. Each failure throws
