@@ -5,7 +5,8 @@
 #   usage: bash contrib/setup.sh
 set -euo pipefail
 
-packages=(libdeal.ii-dev numdiff openmpi-bin cmake python3-matplotlib g++ make)
+packages=(libdeal.ii-dev numdiff openmpi-bin cmake python3-matplotlib g++ make
+          clang-format)
 
 if ! command -v dpkg-query >/dev/null 2>&1; then
   echo "setup.sh: dpkg-query not found: this script is for Debian 12 only." >&2

@@ -1,6 +1,7 @@
 // Talus: implicit Material Point Method and FEM for mass movements hitting
 // flexible protective barriers. The executable only reads the command line;
 // everything else is in the talus library.
+#include <talus/app/input_check.h>
 #include <talus/app/simulation.h>
 #include <talus/base/input.h>
 
@@ -18,6 +19,8 @@ namespace
     "                                       allowed values, unit and meaning\n"
     "       talus --print-parameters prm    a complete parameter file with\n"
     "                                       all defaults\n"
+    "       talus --check <file>...         parse and check the files, do not\n"
+    "                                       run them (exit code 0: all valid)\n"
     "       talus --help                    this text\n"
     "Run in parallel with: mpirun -np N talus <parameter file>\n"
     "Documentation: doc/ (parameters: doc/parameters.md).\n";
@@ -60,6 +63,8 @@ main(int argc, char **argv)
         Talus::print_parameters(std::cout, format);
       return 0;
     }
+  if (arg == "--check")
+    return Talus::check_input_files({argv + 2, argv + argc}, comm);
   if (arg.size() > 1 && arg[0] == '-')
     {
       if (root)
@@ -69,6 +74,7 @@ main(int argc, char **argv)
 
   try
     {
+      Talus::check_input_file(arg, comm);
       return Talus::run_parameter_file(arg, comm);
     }
   catch (const Talus::ExcInvalidInput &e)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Does the granular block on the 15 degree slope come to rest, and what
 # keeps it creeping, and does its deposit converge? (doc/verification.md,
-# 3D granular block, "Update 2026-12-02 (3)" and "(4)".) Plane-strain analogue of
+# "3D granular block on a slope".) Plane-strain analogue of
 # benchmarks/granular_3d/block_on_slope.prm (the x-z section: 0.4 x 0.2 m
 # Mohr-Coulomb block, phi = 30 deg, c = 0, psi = 0, E = 5 MPa, launched at
 # 1 m/s onto a mu = 0.6 floor, gravity tilted by 15 deg, 3 s), at 100, 50,
@@ -13,8 +13,9 @@
 # reference although no contact state and no return type changes; with
 # the defaults the rejections ratchet the adaptive step down to 1e-7 s,
 # and since 'minimum time step' exists, the run stops with an error;
-# the table of "Update 2026-12-02 (3)" was run with the defaults, the one
-# of "Update 2026-12-02 (4)" with these settings, FLIP at 12.5 mm there
+# the first table of that study (doc/verification.md before c5b4ceb,
+# "Update 2026-12-02 (3)") was run with the defaults, the second one
+# ("Update 2026-12-02 (4)") with these settings, FLIP at 12.5 mm there
 # with RESIDUAL_TOLERANCE=1e-5):
 #   flip     the benchmark's settings (FLIP, Newmark 1/4, 1/2)
 #   pic99    'FLIP fraction = 0.99' (1 % PIC per step)

@@ -9,7 +9,7 @@ mean travel along the slope (x - x0), the 1 %, 50 % and 99 % mass quantiles
 of x (rear, middle and front of the deposit without the few outermost
 points), the mass-weighted mean and the 99 % quantile of the height z, and the
 spread of the deposit across the slope (1 % to 99 % of y). Used for
-doc/verification.md, "3D granular block on a slope" ("Update 2026-12-02").
+doc/verification.md, "3D granular block on a slope".
 Needs numpy (/usr/bin/python3 with Debian's python3-numpy).
 """
 

@@ -15,17 +15,17 @@ toe with 0.43 m and the failure line with data/bui2008_failure_line.csv
 (subsection "Deposit profile"). Run from the repository top.
 --floor no-slip writes bui2008_<cell>_noslip.prm with a fixed floor instead,
 the floor of Bui's own SPH model and of Kratos' validation example
-(doc/verification.md, "Update 2026-11-30").
+(doc/verification.md, "Bui collapse, rate-independent Mohr-Coulomb and
+other models").
 --rate-dependent writes bui2008_<cell>[_noslip]_muI.prm with the mu(I)
 friction (Material/Mohr-Coulomb, "limiting friction angle"; parameters
 MU_I below, chosen before the runs and not calibrated); --recoverable adds
 "separated volume = recoverable" (suffix _recoverable). Both together are
 the model of Dunatunga & Kamrin, JFM 779 (2015) 483 (doc/verification.md,
-"Update 2026-12-01 (5)").
+"Bui collapse, no-slip floor, μ(I)").
 --estimated-error sets the Newton tests to a relative residual of 1e-6 and
 an estimated error of the iterate of 1e-6 (Solver/"increment test =
-estimated error"; doc/performance.md, "Newton: the friction state guess and
-an estimated error"), on every grid; without it the 20 and 10 mm inputs keep
+estimated error"; doc/performance.md, "Granular collapse: time to solution"), on every grid; without it the 20 and 10 mm inputs keep
 the defaults (1e-8, last correction) and the finer ones a residual of 1e-6.
 --previous-step-guess starts the friction floor's nodes in the state of the
 previous step (Background grid/"friction state guess = previous step").
@@ -35,7 +35,7 @@ The benchmarks' mu(I) + recoverable inputs are written with
   make_bui_inputs.py --floor no-slip --rate-dependent --recoverable \
     --estimated-error
 (the second: bui2008_*_noslip_muI_recoverable.prm, doc/verification.md,
-"Update 2026-12-04: the no-slip floor with mu(I)"). --cells 0.0025 writes
+"Bui collapse, no-slip floor, μ(I)"). --cells 0.0025 writes
 the 2.5 mm inputs of the refinement studies (not kept in benchmarks/).
 """
 
@@ -55,8 +55,8 @@ MU_I = """\
     set grain diameter = 0.00125
 """
 
-# --estimated-error: the Newton tests of doc/performance.md, "Newton: the
-# friction state guess and an estimated error" (the deposit is unchanged
+# --estimated-error: the Newton tests of doc/performance.md, "Granular
+# collapse: time to solution" (the deposit is unchanged
 # within the runs' path sensitivity, the Newton iterations drop by a third).
 NEWTON_ESTIMATED = """\
   # Newton: relative residual 1e-6 and the iterate's estimated error 1e-6
@@ -181,10 +181,10 @@ def main():
         # 1e-3 s at 10 mm), i.e. a front at 1 m/s crosses a tenth of a cell
         # per step; the adaptive step halves where Newton needs it. The
         # earlier dt = cell size was not converged (doc/verification.md,
-        # granular column collapse, "Update 2026-11-30 (2)"). Halving this
+        # "Bui collapse, rate-independent Mohr-Coulomb and other models"). Halving this
         # step changes the runout by < 1 % on the no-slip floor, and on the
         # mu = 0.36 floor since the impact friction at the grid reset
-        # ("Update 2026-11-30 (3)"; before it the runout grew when the step
+        # (same section; before it the runout grew when the step
         # was halved).
         dt = float("%.3g" % (0.1 * cell))
         text = TEMPLATE.format(

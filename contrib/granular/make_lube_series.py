@@ -23,17 +23,18 @@ Aspect ratios in [1.8, 2.8] are refused. --cells-per-side N replaces the
 fixed cell size by N cells over the column's shorter side, min(H0, L0)
 (from 20 to 40 cells the runout changed by 2 % at a = 1 and 1.5; from 10
 to 20 by 3-6 % at a = 3 to 8 and by 14.5 % at a = 0.5; doc/verification.md,
-"Update 2026-12-02 (2)"). Run from the repository top.
+"Lube series, resolved, μ(I)"). Run from the repository top.
 --rate-dependent adds the model that validates Bui (separated volume =
 recoverable and mu(I) with Jop et al.'s friction increment tan phi_2 - tan
 phi = 0.2616, I_0 = 0.279 and a grain diameter of 0.5 mm, a guess: Lube's
 grain sizes are not in the data we hold); --friction-increment DMU replaces
 Jop et al.'s mu_2 - mu_s = 0.2616 (the well-posedness study of
-doc/verification.md, "Update 2026-12-02 (2)"); --wall-friction MU replaces the
+doc/verification.md, "Lube series at 10 mm, and what the grid dependence
+is not"); --wall-friction MU replaces the
 smooth wall by a Coulomb wall with friction coefficient MU (the friction of
 the experiment's end wall is not given either); --output-prefix sets where
-the runs write (default output/granular). doc/verification.md, "Update
-2026-12-02", uses these options for the sensitivity study.
+the runs write (default output/granular). doc/verification.md, "Lube
+series at 10 mm, and what the grid dependence is not", uses these options for the sensitivity study.
 """
 
 import argparse
@@ -118,15 +119,15 @@ DT_PER_CELL = 0.1
 # the a = 8 run halved its step to 3e-5 s and did not finish; with 1e-6 it
 # finishes in 3.7 min. At a = 5 (which converges either way) 1e-6 changes
 # (L - L0)/L0 by 1e-5 relative and H/L0 by 6 % (1.196 against 1.125; the
-# height at the wall is the most sensitive quantity) (doc/verification.md,
-# granular column collapse, "Update 2026-12-01").
+# height at the wall is the most sensitive quantity) (doc/verification.md
+# before c5b4ceb, "Update 2026-12-01"; not kept in the current one).
 TALL_COLUMN_TOLERANCE = """
   # a > 5: looser Newton tolerance (make_lube_series.py, TALL_COLUMN_TOLERANCE)
   set residual tolerance = 1e-6"""
 
 
 # make_lube_series.py --rate-dependent: the model that converges within 10 %
-# on Bui (doc/verification.md, "Update 2026-12-01 (5)").
+# on Bui (doc/verification.md, "Bui collapse, no-slip floor, μ(I)").
 MU_I = """
     # recoverable volume and mu(I) (make_lube_series.py --rate-dependent)
     set separated volume = recoverable
@@ -198,8 +199,8 @@ def main():
         # Halving 1e-3 s changes (L - L0)/L0 by about 2 % or less for
         # a <= 1.5 on this floor and on a no-slip floor, but by +3.9 % at
         # a = 3 (the runout on the friction floor grows as the step shrinks)
-        # and H/L0 by +5 % at a = 1.5 (doc/verification.md, granular column
-        # collapse, "Update 2026-11-30 (2)").
+        # and H/L0 by +5 % at a = 1.5 (doc/verification.md before c5b4ceb,
+        # "Update 2026-11-30 (2)"; not kept in the current one).
         dt = float("%.3g" % (DT_PER_CELL * cell))
         name = "lube2005_a%g" % a
         path = os.path.join(args.directory, name.replace(".", "p") + ".prm")

@@ -11,7 +11,7 @@ The runs of one aspect ratio a (default 0.5) with the same friction angle
 and note form one line of (L - L0)/L0 against the number of cells over the
 column height, H0/h (L0 = 0.1 m, so H0 = 0.05 m at a = 0.5), with Lube et
 al.'s law and its +-15 % band. Used for the grid-convergence study of
-doc/verification.md ("Update 2026-12-02 (2)"). Needs Debian's
+doc/verification.md ("Lube series, resolved, μ(I)"). Needs Debian's
 python3-matplotlib (/usr/bin/python3).
 """
 

@@ -15,7 +15,8 @@ a single column, which plot_lube_convergence.py shows, are left out). Left panel
 collapses of aluminium rods (h0/h = 1.42 a^(2/3) for a > 0.65, H/L0 = a
 below; abstract of arXiv:1512.05180, "Failure mechanism of true 2D
 granular flows"). Used for the friction-angle, grid and wall
-sensitivity study of doc/verification.md ("Update 2026-12-02"). Needs
+sensitivity study of doc/verification.md ("Lube series at 10 mm, and what the
+grid dependence is not"). Needs
 Debian's python3-matplotlib (/usr/bin/python3).
 """
 

@@ -12,7 +12,8 @@
 # the experiment's toe (0.43 m), the largest |h - h_exp| of the surface
 # stations (target 0.01 m), the transfer dissipation (kinetic energy the
 # update removes relative to FLIP), steps and wall time. The benchmark
-# inputs themselves keep FLIP (doc/verification.md, "Update 2026-12-01 (3)").
+# inputs themselves keep FLIP (doc/verification.md, "Bui
+# collapse, rate-independent Mohr-Coulomb and other models").
 set -uo pipefail
 
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)

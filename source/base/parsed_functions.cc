@@ -5,6 +5,7 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <cmath>
 #include <sstream>
 
 namespace Talus
@@ -21,6 +22,19 @@ namespace Talus
         function.parse_parameters(prm);
         dealii::Vector<double> values(function.n_components);
         function.vector_value(dealii::Point<dim>(), values);
+        for (unsigned int c = 0; c < values.size(); ++c)
+          if (!std::isfinite(values[c]))
+            {
+              std::ostringstream at_origin;
+              at_origin << values[c];
+              InputFile::reject(subsection_path,
+                                "Function expression",
+                                expression,
+                                "it must evaluate to finite values; at x = " +
+                                  std::string(dim == 3 ? "y = z = " : "y = ") +
+                                  "0, t = 0 component " + std::to_string(c) +
+                                  " is " + at_origin.str());
+            }
       }
     catch (const dealii::ExceptionBase &e)
       {

@@ -32,7 +32,12 @@ namespace Talus
   void
   NewmarkBeta::parse_parameters(dealii::ParameterHandler &prm)
   {
-    beta  = get_in_open_interval(prm, "Time", "Newmark beta", 0., 0.5 + 1e-14);
+    beta = prm.get_double("Newmark beta");
+    if (!(beta > 0. && beta <= 0.5))
+      InputFile::reject("Time",
+                        "Newmark beta",
+                        prm.get("Newmark beta"),
+                        "it must be larger than 0 and at most 0.5");
     gamma = prm.get_double("Newmark gamma");
     if (gamma < 0.5 || gamma > 1.)
       InputFile::reject("Time",

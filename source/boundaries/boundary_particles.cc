@@ -994,11 +994,13 @@ namespace Talus
             }
         }
 
+      // Boxes of level 1, or of level 0 on an unrefined grid: deal.II
+      // asserts (Debug) that the level exists.
       const auto local_boxes =
         dealii::GridTools::compute_mesh_predicate_bounding_box(
           grid.triangulation,
           dealii::IteratorFilters::LocallyOwnedCell(),
-          1,
+          std::min(1U, grid.triangulation.n_levels() - 1),
           true,
           4);
       const auto global_boxes =

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-# Used by doc/verification.md, "Update 2026-12-02 (2)" (well-posedness of mu(I)).
+# Used by doc/verification.md, "Lube series at 10 mm, and what the grid
+# dependence is not" (well-posedness of mu(I)).
 """Ill-posed ranges of the incompressible mu(I) rheology (Barker et al. 2015 criterion).
 
 Pure Python (no numpy needed).  Run:  python3 contrib/granular/lube_study/mu_i_wellposedness.py

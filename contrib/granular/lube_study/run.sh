@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sensitivity of the Lube et al. 2005 series to the friction angle, the grid
-# and the wall friction (doc/verification.md, granular column collapse,
-# "Update 2026-12-02"). Model: the one that validates Bui (recoverable
+# and the wall friction (doc/verification.md, "Lube series at 10 mm, and
+# what the grid dependence is not"). Model: the one that validates Bui (recoverable
 # volume + mu(I), make_lube_series.py --rate-dependent), floor mu = tan phi.
 #   usage: bash contrib/granular/lube_study/run.sh [STUDY...]
 #   STUDY: phi30 phi33 phi36 (10 mm, a = 0.5 ... 8), phi33_5mm (5 mm,
@@ -24,7 +24,7 @@
 #          on both sides of the well-posedness limit of Barker et al. 2015:
 #          phi 27 and 29 with mu_2 - mu_s = 0.2616 (limit phi 27.8), phi
 #          30 with mu_2 - mu_s = 0.6 (limit 0.411); doc/verification.md,
-#          "Update 2026-12-02 (2)"; wellposed27, wellposed29 and
+#          "Lube series at 10 mm, and what the grid dependence is not"; wellposed27, wellposed29 and
 #          wellposed30 run one of the three cases);
 #          default: all. Each study writes its inputs to
 #          output/lube_study/<study>/inputs and its results to
