@@ -182,9 +182,13 @@ namespace Talus
           StructureSimulation::declare_parameters(prm);
         }
       else if (dimension == 2)
-        Simulation<2>::declare_parameters(prm);
+        Simulation<2>::declare_parameters(
+          prm,
+          Boundaries::BoundaryParticles<2>::n_boundaries_in_file(filename));
       else
-        Simulation<3>::declare_parameters(prm);
+        Simulation<3>::declare_parameters(
+          prm,
+          Boundaries::BoundaryParticles<3>::n_boundaries_in_file(filename));
       prm.parse_input(filename);
       return problem;
     }

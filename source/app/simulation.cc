@@ -1,3 +1,4 @@
+#include <talus/app/input_check.h>
 #include <talus/app/simulation.h>
 #include <talus/app/structure_simulation.h>
 #include <talus/base/input.h>
@@ -1355,23 +1356,6 @@ namespace Talus
 
   namespace
   {
-    // deal.II mangles names in its JSON export: every character that is not
-    // a letter or digit is written as _XX (hex).
-    std::string
-    demangle(const std::string &s)
-    {
-      std::string r;
-      for (std::size_t i = 0; i < s.size(); ++i)
-        if (s[i] == '_' && i + 2 < s.size())
-          {
-            r += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-          }
-        else
-          r += s[i];
-      return r;
-    }
-
     void
     print_tree(std::ostream                      &out,
                const boost::property_tree::ptree &tree,
@@ -1382,7 +1366,7 @@ namespace Talus
       for (const auto &[name, node] : tree)
         if (node.get_child_optional("value"))
           {
-            out << pad << "set " << demangle(name) << " = "
+            out << pad << "set " << demangle_parameter_name(name) << " = "
                 << node.get<std::string>("default_value") << '\n'
                 << pad << "    # allowed: "
                 << node.get<std::string>("pattern_description") << '\n';
@@ -1403,7 +1387,9 @@ namespace Talus
       for (const auto &[name, node] : tree)
         if (!node.get_child_optional("value"))
           {
-            out << '\n' << pad << "subsection " << demangle(name) << '\n';
+            out << '\n'
+                << pad << "subsection " << demangle_parameter_name(name)
+                << '\n';
             print_tree(out, node, indent + 2);
             out << pad << "end\n";
           }

@@ -191,8 +191,8 @@ namespace Talus
           "iterations of the granular collapse benchmarks (which use it), but "
           "the bouncing layer of tests/granular/cohesive_layer_at_rest (sudden "
           "gravity, no step halvings) fails to converge with it, hence not "
-          "the default (doc/performance.md, 'Newton: the friction state "
-          "guess and an estimated error').");
+          "the default (doc/performance.md, 'Granular collapse: time to "
+          "solution').");
         prm.declare_entry(
           "separation lift height",
           "0.05",

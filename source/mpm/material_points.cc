@@ -604,7 +604,7 @@ namespace Talus
             dealii::GridTools::compute_mesh_predicate_bounding_box(
               grid.triangulation,
               dealii::IteratorFilters::LocallyOwnedCell(),
-              1,
+              std::min(1U, grid.triangulation.n_levels() - 1),
               true,
               4);
           const auto global_boxes =

@@ -179,8 +179,8 @@ namespace Talus
           "section 2.1); it saves the last iteration when the residual test "
           "already holds. Used with an increment tolerance matched to the "
           "residual tolerance (e.g. 1e-6 both) by the granular collapse "
-          "benchmarks (doc/performance.md, 'Newton: the friction state "
-          "guess and an estimated error').");
+          "benchmarks (doc/performance.md, 'Granular collapse: time to "
+          "solution').");
         prm.declare_entry("linear solver",
                           "CG",
                           Patterns::Selection("CG|GMRES|direct"),
@@ -270,7 +270,8 @@ namespace Talus
           "du = 0 (one extra residual assembly per step with the predictor), "
           "so the tolerances mean the same. 'automatic': 'constant "
           "acceleration' without boundary particles, 'zero' with them. "
-          "Measured (doc/performance.md, 'Newton predictor'): the Bui "
+          "Measured (doc/performance.md, 'Granular collapse: time to "
+          "solution'): the Bui "
           "collapse at 5 mm needs 4.4 instead of 5.8 Newton iterations per "
           "step, the plane-strain granular block of "
           "contrib/granular/block_rest_study.sh at 25 mm 670 instead of 1329 "

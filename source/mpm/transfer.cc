@@ -336,7 +336,7 @@ namespace Talus
           for (const auto i : grid.locally_owned_dofs)
             if (nodal_mass(i) > 0.)
               dv(i) -= velocity_p2g(i) - velocity_n(i);
-          dv.compress(dealii::VectorOperation::insert);
+          dv.compress(dealii::VectorOperation::add);
           dv_flip = dv;
         }
 
