@@ -39,6 +39,6 @@ ctest -j"$jobs" --output-on-failure -R "$subset" -E 'mpirun=|_slow' 2>&1 |
 awk '/tests passed, [0-9]+ tests? failed out of/ { f = $4; n = $NF }
      END { printf "run_debug_tests.sh: %d tests in %d s (build %d s)\n",
                   n, '"$SECONDS"', '"$build_time"';
-           printf "debug tests: %d passed, %d failed\n", n - f, f }' "$log"
+           printf "debug: %d passed, %d failed\n", n - f, f }' "$log"
 bash "$top/contrib/slowest_tests.sh" "$log"
 exit "$status"
