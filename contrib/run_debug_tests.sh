@@ -18,12 +18,12 @@ echo "run_debug_tests.sh: Debug build done after ${build_time} s"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 
-# The subset: every .cc test (materials/, solver/, structure/elements,
+# The subset: every .cc test (materials/, solver/, coupling/, structure/elements,
 # structure/structure_api, boundaries/external_displacement), every errors/
 # test on one rank, doc/parameters_up_to_date, and one .prm test each of
 # mpm/, boundaries/ and structure/ (seconds in Debug; doc/testing.md).
 # doc/inputs_parse only parses (71 s in Debug): the Release suite runs it.
-subset='^(materials/|solver/|structure/elements\.|structure/structure_api\.'
+subset='^(materials/|solver/|coupling/|structure/elements\.|structure/structure_api\.'
 subset+='|boundaries/external_displacement\.|errors/|doc/parameters_up_to_date'
 subset+='|mpm/incline_slide_mu01\.debug$|boundaries/incline_rotated_30_mu01\.debug$'
 subset+='|structure/von_mises_truss\.debug$)'

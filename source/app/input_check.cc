@@ -154,23 +154,27 @@ namespace Talus
 
 
     std::string
+    problem_and_dimension(const std::string &filename, unsigned int &dimension)
+    {
+      dealii::ParameterHandler pre;
+      pre.declare_entry("problem",
+                        "mpm",
+                        dealii::Patterns::Selection("mpm|structure"));
+      pre.declare_entry("dimension", "2", dealii::Patterns::Integer(2, 3));
+      pre.parse_input(filename, "", true);
+      dimension = pre.get_integer("dimension");
+      return pre.get("problem");
+    }
+
+
+    std::string
     parse(const std::string        &filename,
           dealii::ParameterHandler &prm,
           unsigned int             &dimension)
     {
       // First pass, as run_parameter_file(): only the problem and the
       // dimension.
-      std::string problem;
-      {
-        dealii::ParameterHandler pre;
-        pre.declare_entry("problem",
-                          "mpm",
-                          dealii::Patterns::Selection("mpm|structure"));
-        pre.declare_entry("dimension", "2", dealii::Patterns::Integer(2, 3));
-        pre.parse_input(filename, "", true);
-        problem   = pre.get("problem");
-        dimension = pre.get_integer("dimension");
-      }
+      const std::string problem = problem_and_dimension(filename, dimension);
       // Second pass: every declaration of that problem (as
       // StructureSimulation::run_parameter_file() and run_parameter_file()).
       if (problem == "structure")

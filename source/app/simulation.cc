@@ -1324,17 +1324,8 @@ namespace Talus
     }
     // First pass: only the problem and the dimension.
     unsigned int dimension;
-    {
-      dealii::ParameterHandler pre;
-      pre.declare_entry("problem",
-                        "mpm",
-                        dealii::Patterns::Selection("mpm|structure"));
-      pre.declare_entry("dimension", "2", dealii::Patterns::Integer(2, 3));
-      pre.parse_input(filename, "", true);
-      if (pre.get("problem") == "structure")
-        return StructureSimulation::run_parameter_file(filename);
-      dimension = pre.get_integer("dimension");
-    }
+    if (InputCheck::problem_and_dimension(filename, dimension) == "structure")
+      return StructureSimulation::run_parameter_file(filename);
     dealii::ParameterHandler prm;
     // as many boundary subsections as the file has (no fixed limit)
     const unsigned int n_boundaries =

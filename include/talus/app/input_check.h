@@ -37,6 +37,13 @@ namespace Talus
     require_statements(const std::string &filename);
 
     /**
+     * The first pass over an input file: only `problem` ("mpm" or
+     * "structure", returned) and `dimension` (set in @p dimension).
+     */
+    std::string
+    problem_and_dimension(const std::string &filename, unsigned int &dimension);
+
+    /**
      * Declare every parameter of the file's problem in @p prm and parse the
      * file, as a run does: first `problem` and `dimension` alone, then the
      * full declarations (Simulation<dim> for `problem = mpm`,
