@@ -12,7 +12,7 @@ while [[ $# -gt 0 ]]; do
   esac
 done
 echo "slowest tests (wall seconds):"
-grep -h -E '^ *[0-9]+/[0-9]+ Test +#[0-9]+: ' "${files[@]}" |
+{ grep -h -E '^ *[0-9]+/[0-9]+ Test +#[0-9]+: ' "${files[@]}" || true; } |
   sed -E 's/^ *[0-9]+\/[0-9]+ Test +#[0-9]+: ([^ ]+) .* ([0-9.]+) sec.*$/\2 \1/' |
-  grep -E '^[0-9.]+ ' | sort -g -r | head -n "$n" |
-  awk '{ printf "  %8.1f  %s\n", $1, $2 }'
+  { grep -E '^[0-9.]+ ' || true; } | sort -g -r |
+  awk -v n="$n" 'NR <= n { printf "  %8.1f  %s\n", $1, $2 }'
