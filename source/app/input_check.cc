@@ -1,3 +1,4 @@
+#include <talus/app/coupled_simulation.h>
 #include <talus/app/input_check.h>
 #include <talus/app/simulation.h>
 #include <talus/app/structure_simulation.h>
@@ -159,7 +160,7 @@ namespace Talus
       dealii::ParameterHandler pre;
       pre.declare_entry("problem",
                         "mpm",
-                        dealii::Patterns::Selection("mpm|structure"));
+                        dealii::Patterns::Selection("mpm|structure|coupled"));
       pre.declare_entry("dimension", "2", dealii::Patterns::Integer(2, 3));
       pre.parse_input(filename, "", true);
       dimension = pre.get_integer("dimension");
@@ -185,6 +186,14 @@ namespace Talus
           prm.declare_entry("dimension", "3", dealii::Patterns::Integer(2, 3));
           StructureSimulation::declare_parameters(prm);
         }
+      else if (problem == "coupled" && dimension == 2)
+        CoupledSimulation<2>::declare_parameters(
+          prm,
+          Boundaries::BoundaryParticles<2>::n_boundaries_in_file(filename));
+      else if (problem == "coupled")
+        CoupledSimulation<3>::declare_parameters(
+          prm,
+          Boundaries::BoundaryParticles<3>::n_boundaries_in_file(filename));
       else if (dimension == 2)
         Simulation<2>::declare_parameters(
           prm,
@@ -424,11 +433,12 @@ namespace Talus
     unsigned int             dimension = 2;
     const std::string problem = InputCheck::parse(filename, prm, dimension);
     InputCheck::require_finite_numbers(prm);
-    if (problem == "mpm")
+    if (problem != "structure")
       InputCheck::require_memory(prm, dimension, communicator);
     return "problem = " + problem +
-           (problem == "mpm" ? ", dimension = " + std::to_string(dimension) :
-                               std::string());
+           (problem != "structure" ?
+              ", dimension = " + std::to_string(dimension) :
+              std::string());
   }
 
 

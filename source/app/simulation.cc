@@ -1,3 +1,4 @@
+#include <talus/app/coupled_simulation.h>
 #include <talus/app/input_check.h>
 #include <talus/app/simulation.h>
 #include <talus/app/structure_simulation.h>
@@ -296,10 +297,12 @@ namespace Talus
   {
     prm.declare_entry("problem",
                       "mpm",
-                      dealii::Patterns::Selection("mpm|structure"),
+                      dealii::Patterns::Selection("mpm|structure|coupled"),
                       "What to simulate: 'mpm' (the soil, everything but "
-                      "subsection Structure) or 'structure' (a barrier "
-                      "structure model of subsection Structure alone).");
+                      "subsections Structure and Coupling), 'structure' (a "
+                      "barrier structure model of subsection Structure "
+                      "alone) or 'coupled' (both, coupled through the "
+                      "interface of subsection Coupling).");
     prm.declare_entry("dimension",
                       "2",
                       dealii::Patterns::Integer(2, 3),
@@ -1326,10 +1329,24 @@ namespace Talus
     unsigned int dimension;
     if (InputCheck::problem_and_dimension(filename, dimension) == "structure")
       return StructureSimulation::run_parameter_file(filename);
+    const std::string problem =
+      InputCheck::problem_and_dimension(filename, dimension);
     dealii::ParameterHandler prm;
     // as many boundary subsections as the file has (no fixed limit)
     const unsigned int n_boundaries =
       Boundaries::BoundaryParticles<2>::n_boundaries_in_file(filename);
+    if (problem == "coupled")
+      {
+        if (dimension == 2)
+          {
+            CoupledSimulation<2>::declare_parameters(prm, n_boundaries);
+            prm.parse_input(filename);
+            return CoupledSimulation<2>(communicator).run(prm);
+          }
+        CoupledSimulation<3>::declare_parameters(prm, n_boundaries);
+        prm.parse_input(filename);
+        return CoupledSimulation<3>(communicator).run(prm);
+      }
     if (dimension == 2)
       {
         Simulation<2>::declare_parameters(prm, n_boundaries);
@@ -1394,6 +1411,7 @@ namespace Talus
     dealii::ParameterHandler prm;
     Simulation<2>::declare_parameters(prm);
     StructureSimulation::declare_parameters(prm);
+    CoupledSimulation<2>::declare_coupling_parameters(prm);
     if (format == "prm")
       {
         prm.print_parameters(out,

@@ -28,6 +28,11 @@ namespace Talus
           std::snprintf(line, sizeof(line), "  df/f = %.3e", force_change);
           s += line;
         }
+      if (defect_checked)
+        {
+          std::snprintf(line, sizeof(line), "  |k dx|/|f| = %.3e", defect);
+          s += line;
+        }
       if (converged)
         s += "  converged";
       else if (maximum_reached)

@@ -1,3 +1,4 @@
+#include <talus/base/input.h>
 #include <talus/coupling/coupling_parameters.h>
 
 namespace Talus
@@ -25,6 +26,23 @@ namespace Talus
           "(Dirichlet), the structure the MPM's reactions (Neumann); the "
           "displacement is accelerated. structure first: the structure is "
           "solved first with the last reactions.");
+        prm.declare_entry(
+          "Robin stiffness",
+          "automatic",
+          dealii::Patterns::Anything(),
+          "Interface springs of the structure during the iteration "
+          "(Robin-Neumann, they vanish at convergence): 0 (plain "
+          "Dirichlet-Neumann), a stiffness per interface area [Pa/m] >= 0, "
+          "'inertia' (rho d / (beta dt^2): the inertia of a layer of "
+          "material of depth d = 'Robin depth' cells behind the interface) "
+          "or 'automatic' (that inertia plus the layer's stiffness M / d, M "
+          "the p-wave modulus). Without it a heavy material on a light "
+          "barrier makes the iteration diverge or need many iterations.");
+        prm.declare_entry("Robin depth",
+                          "4",
+                          dealii::Patterns::Double(0.),
+                          "Depth of the material layer of 'Robin stiffness "
+                          "= inertia' [background cells], > 0.");
         AccelerationParameters::declare_parameters(prm);
         ConvergenceCriterion::declare_parameters(prm);
         InterfacePredictor::declare_parameters(prm);
@@ -40,6 +58,24 @@ namespace Talus
       scheme = (prm.get("scheme") == "weak" ? Scheme::weak : Scheme::strong);
       order  = (prm.get("order") == "structure first" ? Order::structure_first :
                                                         Order::MPM_first);
+      {
+        const std::string text = prm.get("Robin stiffness");
+        robin_elastic          = text == "automatic";
+        robin_inertia          = text == "inertia" || robin_elastic;
+        if (!robin_inertia &&
+            (!parse_double(text, robin_stiffness) || robin_stiffness < 0.))
+          InputFile::reject("Coupling",
+                            "Robin stiffness",
+                            text,
+                            "'automatic', 'inertia' or a number >= 0 "
+                            "[Pa/m]");
+        robin_depth = prm.get_double("Robin depth");
+        if (!(robin_depth > 0.))
+          InputFile::reject("Coupling",
+                            "Robin depth",
+                            prm.get("Robin depth"),
+                            "a number > 0 [cells]");
+      }
       acceleration.parse_parameters(prm, "Coupling");
       criterion.parse_parameters(prm, "Coupling");
       predictor.parse_parameters(prm);
@@ -55,7 +91,8 @@ namespace Talus
       const dealii::Vector<double>                        &x0,
       InterfaceAccelerator                                &accelerator,
       ConvergenceCriterion                                &criterion,
-      const bool                                           strong)
+      const bool                                           strong,
+      const std::function<double()>                       &equilibrium_defect)
     {
       WindowResult result;
       result.x = x0;
@@ -69,9 +106,20 @@ namespace Talus
           fixed_point(result.x, result.x_tilde, force);
           ++result.iterations;
           IterationRecord record;
-          record.status        = criterion.check(result.x,
+          record.status = criterion.check(result.x,
                                           result.x_tilde,
                                           force.size() > 0 ? &force : nullptr);
+          if (equilibrium_defect)
+            {
+              record.status.defect         = equilibrium_defect();
+              record.status.defect_checked = true;
+              if (!(record.status.defect <= criterion.relative_tolerance()))
+                {
+                  record.status.converged = false;
+                  record.status.maximum_reached =
+                    record.status.iterations >= criterion.maximum_iterations();
+                }
+            }
           const bool converged = record.status.converged;
           if (converged || !strong)
             {

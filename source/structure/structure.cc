@@ -1446,6 +1446,23 @@ namespace Talus
               raw_residual[i] += value[0];
               constraints.distribute_local_to_global(value, one, r);
             }
+        if (interface_springs.size() == total_dofs)
+          {
+            dealii::FullMatrix<double> k(1, 1);
+            for (global_dof_index i = 0; i < total_dofs; ++i)
+              if (interface_springs[i] != 0.)
+                {
+                  one[0]   = i;
+                  k(0, 0)  = interface_springs[i];
+                  value[0] = k(0, 0) * (u[i] - interface_anchor[i]);
+                  raw_residual[i] += value[0];
+                  if (K != nullptr)
+                    constraints.distribute_local_to_global(
+                      k, value, one, *K, r);
+                  else
+                    constraints.distribute_local_to_global(value, one, r);
+                }
+          }
       }
       return r.l2_norm();
     }

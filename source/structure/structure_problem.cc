@@ -153,6 +153,20 @@ namespace Talus
     }
 
 
+    void
+    StructureProblem::set_interface_springs(
+      const dealii::Vector<double> &stiffness,
+      const dealii::Vector<double> &anchor)
+    {
+      AssertThrow(
+        stiffness.size() == anchor.size() &&
+          (stiffness.size() == 0 || stiffness.size() == structure.n_dofs()),
+        dealii::ExcDimensionMismatch(stiffness.size(), structure.n_dofs()));
+      structure.interface_springs = stiffness;
+      structure.interface_anchor  = anchor;
+    }
+
+
     const dealii::Vector<double> &
     StructureProblem::interface_forces() const
     {

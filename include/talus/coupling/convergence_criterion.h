@@ -36,6 +36,14 @@ namespace Talus
       /** The force test was made. */
       bool force_checked = false;
 
+      /** Equilibrium defect of a Robin iteration, |k (x̃ − x)| / |f| [-]
+       * (iterate_window() with an equilibrium defect; then it must also be
+       * below the relative tolerance). */
+      double defect = 0.;
+
+      /** The defect test was made. */
+      bool defect_checked = false;
+
       /** Both tests hold. */
       bool converged = false;
 

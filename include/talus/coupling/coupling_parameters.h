@@ -58,6 +58,29 @@ namespace Talus
       void
       parse_parameters(dealii::ParameterHandler &prm);
 
+      /**
+       * Robin-Neumann stabilisation (Badia, Nobile & Vergara 2008, J.
+       * Comput. Phys. 227:7027): the structure is solved with interface
+       * springs k_i (x̃_i - x_i) towards the iterate x handed to the MPM,
+       * k_i = k_R sum_p N_i(X_p) w_p over the interface particles with
+       * material in their cell (w_p: their surface measure). The springs
+       * vanish at the converged state (x̃ = x): they change how the
+       * iteration converges, not its result. With k_R close to the
+       * material's interface stiffness the iteration operator's large
+       * eigenvalues (a heavy material on a light barrier: the added-mass
+       * effect of the Dirichlet-Neumann scheme) shrink below one.
+       * 'Robin stiffness': 0 (plain Dirichlet-Neumann), a value k_R
+       * [Pa/m], 'inertia': k_R = rho d / (beta dt^2), the inertia of a
+       * layer of material of depth d = 'Robin depth' cells behind the
+       * interface, or 'automatic': that inertia plus the stiffness M / d of
+       * the layer (M: the material's p-wave modulus), the material's
+       * impedance for smooth and for short-wave interface motions.
+       */
+      bool   robin_inertia   = false;
+      bool   robin_elastic   = false; ///< add M / d ('automatic')
+      double robin_stiffness = 0.;    ///< k_R [Pa/m] when not 'inertia'
+      double robin_depth     = 4.;    ///< d [cells] for 'inertia'
+
       Scheme                 scheme = Scheme::strong;
       Order                  order  = Order::MPM_first;
       AccelerationParameters acceleration;
@@ -107,6 +130,12 @@ namespace Talus
      * @p strong false (weak scheme) the window is accepted after one
      * evaluation. A window that is not accepted leaves the accelerator as
      * it was after its last step: call reset() before repeating the step.
+     *
+     * With @p equilibrium_defect (a Robin iteration: the structure was
+     * solved with springs k (x̃ − x), so x̃ − x is small although the
+     * structure alone is out of equilibrium by the spring force), the
+     * relative defect it returns after each evaluation must also be at
+     * most the criterion's relative tolerance.
      */
     WindowResult
     iterate_window(
@@ -116,7 +145,8 @@ namespace Talus
       const dealii::Vector<double>                             &x0,
       InterfaceAccelerator                                     &accelerator,
       ConvergenceCriterion                                     &criterion,
-      const bool                                                strong = true);
+      const bool                                                strong = true,
+      const std::function<double()> &equilibrium_defect                = {});
   } // namespace Coupling
 } // namespace Talus
 

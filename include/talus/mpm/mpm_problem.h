@@ -217,6 +217,13 @@ namespace Talus
         return initial_stress_field;
       }
 
+      /** The time integrator of the caller. */
+      const NewmarkBeta &
+      time_integrator() const
+      {
+        return newmark;
+      }
+
       MPI_Comm
       get_communicator() const
       {

@@ -304,6 +304,17 @@ namespace Talus
        * factor (set from outside each step, e.g. by the coupling). */
       dealii::Vector<double> external_forces;
 
+      /**
+       * Interface springs of a Robin coupling [N/m] per global DoF
+       * (default empty: none): assemble() adds the force
+       * k_i (u_i - a_i) towards the anchor a = interface_anchor and k_i
+       * to the tangent. Set by the coupling for one time window; they
+       * vanish at its converged state (u = a there), so they change how
+       * the coupling iterates, not its result
+       * (Coupling::GaussSeidelCoupling).
+       */
+      dealii::Vector<double> interface_springs, interface_anchor;
+
       /** Constraints, sparsity, matrix and vectors. */
       void
       setup_system();

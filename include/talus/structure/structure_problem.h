@@ -153,6 +153,12 @@ namespace Talus
       const dealii::Vector<double> &
       interface_forces() const;
 
+      /** Robin interface springs [N/m] per global DoF towards @p anchor
+       * (Structure::interface_springs); empty vectors remove them. */
+      void
+      set_interface_springs(const dealii::Vector<double> &stiffness,
+                            const dealii::Vector<double> &anchor);
+
       /** Displacement [m]: the trial after solve_step(), the committed one
        * after commit_step() and restore_state(). */
       const dealii::Vector<double> &

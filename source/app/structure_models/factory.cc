@@ -39,6 +39,8 @@ namespace Talus
         return create_square_membrane(p);
       if (p.model == "sliding ring")
         return create_sliding_ring(p);
+      if (p.model == "plane string")
+        return create_plane_string(p);
       if (p.model == "brake")
         return create_brake_test(p);
       return create_line_from_file(p);

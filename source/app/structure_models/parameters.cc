@@ -150,6 +150,7 @@ namespace Talus
       p.drum_radius        = get_positive(prm, gs, "drum radius");
       p.spring_length      = get_positive(prm, gs, "spring length");
       p.refinements        = prm.get_integer("refinements");
+      p.origin             = get_vector(prm, gs, "origin");
       p.mesh_file          = prm.get("mesh file");
       p.mesh_is_membrane   = prm.get("mesh file type") == "membrane";
       prm.leave_subsection();
@@ -279,13 +280,13 @@ namespace Talus
       prm.leave_subsection();
       if (p.dynamic && p.model != "square membrane" && p.model != "barrier" &&
           p.model != "vibrating string" && p.model != "solid" &&
-          p.model != "axial bar")
+          p.model != "axial bar" && p.model != "plane string")
         InputFile::reject(structure_section + "/Dynamics",
                           "dynamic",
                           "true",
                           "only models 'square membrane', 'vibrating "
-                          "string', 'solid', 'axial bar' and 'barrier' run "
-                          "in time so far");
+                          "string', 'solid', 'axial bar', 'plane string' and "
+                          "'barrier' run in time so far");
       if (!p.dynamic && p.model == "vibrating string")
         InputFile::reject(structure_section + "/Dynamics",
                           "dynamic",
@@ -324,7 +325,7 @@ namespace Talus
                             "sliding ring|capstan|brake|mesh file|barrier|"
                             "solid|cantilever|hanging block|axial bar|"
                             "plane solid|plane cantilever|plane axial bar|"
-                            "plane hanging block|"
+                            "plane hanging block|plane string|"
                             "stretched membrane|plastic bar"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
@@ -368,7 +369,10 @@ namespace Talus
         "'plastic bar' (a straight truss of 'span' along x, fixed at x = 0, "
         "its end loaded by the x component of 'point load' along 'load "
         "path': elasto-plastic with linear hardening, loading, unloading "
-        "and residual elongation in closed form). "
+        "and residual elongation in closed form), 'plane string' (a "
+        "pre-tensioned straight string of a 2D problem: 'span' along x "
+        "centred at 'origin', both ends fixed, mesh name 'string'; the "
+        "barrier of the coupled 2D cases). "
         "Each model with a closed "
         "form reports and checks it.");
 
@@ -574,6 +578,11 @@ namespace Talus
                         "1",
                         Patterns::Double(),
                         "Length L_s of that spring [m], > 0.");
+      prm.declare_entry("origin",
+                        "0, 0, 0",
+                        Patterns::Anything(),
+                        "Centre of model 'plane string' (x, y, z; z = 0 for "
+                        "a 2D problem) [m].");
       prm.declare_entry("span",
                         "10",
                         Patterns::Double(),

@@ -55,6 +55,9 @@ namespace Talus
     create_catenary(const Parameters &p);
 
     std::unique_ptr<Model>
+    create_plane_string(const Parameters &p);
+
+    std::unique_ptr<Model>
     create_circular_membrane(const Parameters &p);
 
     std::unique_ptr<Model>

@@ -84,8 +84,10 @@ namespace Talus
       // Geometry.
       double half_span = 0., rise = 0., span = 0., unstretched_length = 0.,
              radius = 0., side = 0., cable_length = 0.;
-      unsigned int refinements = 0;
-      std::string  mesh_file;
+      /** Centre of the models placed in space ('plane string') [m]. */
+      dealii::Tensor<1, 3> origin;
+      unsigned int         refinements = 0;
+      std::string          mesh_file;
       // Loads.
       dealii::Tensor<1, 3> gravity, point_load;
       double               pressure = 0., prescribed_displacement = 0.;

@@ -1,0 +1,52 @@
+#ifndef talus_app_coupled_simulation_h
+#define talus_app_coupled_simulation_h
+
+#include <talus/boundaries/boundary_particles.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+namespace Talus
+{
+  /**
+   * The coupled application (`set problem = coupled`): the MPM of the file
+   * (every subsection of `set problem = mpm`), the structure model of
+   * subsection `Structure` and the partitioned coupling of subsection
+   * `Coupling` (Coupling::GaussSeidelCoupling over MPM::MPMProblem and
+   * Structure::StructureProblem, interface Coupling::StructureInterface).
+   * The loop takes coupled steps of the time control's size, halves the
+   * step of both fields when the interface or a field does not converge,
+   * writes `coupling.csv` (per step: coupling iterations, interface
+   * residual, relaxation, Newton iterations of both fields, interface
+   * force and work, energies of both fields) and the points and the
+   * structure for visualization, and checks subsection
+   * `Coupling/Verification`.
+   */
+  template <int dim>
+  class CoupledSimulation
+  {
+  public:
+    explicit CoupledSimulation(const MPI_Comm communicator);
+
+    /** Every parameter of a coupled run. */
+    static void
+    declare_parameters(
+      dealii::ParameterHandler &prm,
+      const unsigned int        n_boundaries =
+        Boundaries::BoundaryParticles<dim>::default_boundary_slots);
+
+    /** Declare subsection `Coupling` (with `Interface` and
+     * `Verification`) alone, e.g. for --print-parameters. */
+    static void
+    declare_coupling_parameters(dealii::ParameterHandler &prm);
+
+    /** Run the file's coupled problem; returns the exit code. */
+    int
+    run(dealii::ParameterHandler &prm);
+
+  private:
+    MPI_Comm communicator;
+  };
+} // namespace Talus
+
+#endif

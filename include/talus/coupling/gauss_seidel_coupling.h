@@ -1,0 +1,158 @@
+#ifndef talus_coupling_gauss_seidel_coupling_h
+#define talus_coupling_gauss_seidel_coupling_h
+
+#include <talus/coupling/accelerators.h>
+#include <talus/coupling/coupling_parameters.h>
+#include <talus/coupling/structure_interface.h>
+#include <talus/mpm/mpm_problem.h>
+#include <talus/structure/structure_problem.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <memory>
+#include <string>
+
+namespace Talus
+{
+  namespace Coupling
+  {
+    /** Outcome of one coupled step (GaussSeidelCoupling::solve_step()). */
+    template <int dim>
+    struct CoupledStepResult
+    {
+      /** The interface converged (strong) or the one pass was made (weak),
+       * and both solvers converged in every iteration. */
+      bool converged = false;
+      /** Evaluations of the fixed point: solves of both fields. */
+      unsigned int iterations = 0;
+      /** The last iteration's convergence test and what the accelerator did
+       * before it. */
+      ConvergenceStatus status;
+      /** Relaxation factor of the last accelerated iteration (0: a
+       * quasi-Newton step or none). */
+      double relaxation = 0.;
+      /** Newton iterations summed over the coupling iterations. */
+      unsigned int mpm_newton = 0, structure_newton = 0;
+      /** The MPM's result of the last iteration (the accepted one). */
+      MPM::NewtonResult mpm;
+      /** Sum of the interface forces on the structure [N]. */
+      dealii::Tensor<1, dim> interface_force;
+      /** Interface work of the structure's vectors U . F and of the points
+       * sum u_p . f_p at the accepted iterate [J] (equal to round-off). */
+      double work_structure = 0., work_points = 0.;
+      /** Why the step failed (empty if it converged). */
+      std::string failure;
+    };
+
+
+    /**
+     * The partitioned coupling of the MPM and the barrier structure
+     * (founding paper, section 4): Dirichlet-Neumann Gauss-Seidel per time
+     * step, the structure's displacement imposed on the MPM's boundary
+     * particles of the interface, the MPM's reactions sent back to the
+     * structure as nodal forces, iterated with convergence acceleration
+     * until the interface is in equilibrium (doc/coupling.md).
+     *
+     * One coupled step from t to t + dt:
+     * @code
+     * x = predictor(t + dt)               (structure first: x = S(F_n))
+     * repeat                              (iterate_window())
+     *   MPM:       u_bar(t..t+dt) = U_n .. x on the interface particles,
+     *              prepare_step, solve_step  -> reactions f_p
+     *   transfer:  F = sum_p N(X_p) f_p, MPI-summed
+     *   structure: prepare_step, solve_step with F  -> x̃
+     *   converged? else x = accelerator(x, x̃)
+     * @endcode
+     * Neither field commits inside the iteration (their solve_step() is
+     * repeatable); commit_step() commits both, so a step that does not
+     * converge (the interface, or either Newton) is rejected on both sides
+     * by not committing it: the caller halves dt and calls solve_step()
+     * again. Both fields always take the same dt.
+     *
+     * The structure is dynamic (Bossak-Newmark over dt) or static (the
+     * equilibrium under its full loads, load factor 1, and the interface
+     * forces at every step: a massless barrier).
+     */
+    template <int dim>
+    class GaussSeidelCoupling
+    {
+    public:
+      GaussSeidelCoupling(MPM::MPMProblem<dim>        &mpm,
+                          Structure::StructureProblem &structure,
+                          StructureInterface<dim>     &interface,
+                          const CouplingParameters    &parameters,
+                          dealii::TimerOutput         &timer,
+                          const MPI_Comm               communicator);
+
+      /**
+       * The initial state at time @p t0: the interface at the structure's
+       * committed displacement (the boundary particles are moved there),
+       * the MPM's initial accelerations, the predictor's first value.
+       */
+      void
+      initialize(const double t0);
+
+      /** Iterate the step from @p t to @p t + @p dt; commits nothing. */
+      CoupledStepResult<dim>
+      solve_step(const double t, const double dt);
+
+      /** Commit both fields (the last solve_step() must have converged). */
+      void
+      commit_step();
+
+      /** Forget what the accelerator learned (after a rejected step: the
+       * repeated step is shorter). */
+      void
+      reject_step();
+
+      /** The interface force of the last solve_step() (structure DoFs). */
+      const dealii::Vector<double> &
+      interface_forces() const
+      {
+        return force;
+      }
+
+      const InterfaceAccelerator &
+      accelerator() const
+      {
+        return *acceleration;
+      }
+
+    private:
+      MPM::MPMProblem<dim>        &mpm;
+      Structure::StructureProblem &structure;
+      StructureInterface<dim>     &interface;
+      const CouplingParameters    &parameters;
+      dealii::TimerOutput         &timer;
+      MPI_Comm                     communicator;
+
+      std::unique_ptr<InterfaceAccelerator> acceleration;
+      ConvergenceCriterion                  criterion;
+      InterfacePredictor                    predictor;
+
+      /** The structure's committed displacement (start of the step). */
+      dealii::Vector<double> committed;
+      /** Interface force of the last iteration and of the last committed
+       * step (structure DoFs) [N]. */
+      dealii::Vector<double> force, committed_force;
+      double                 step_end = 0.;
+
+      /** k_R of the Robin springs for the step @p dt [Pa/m]
+       * (CouplingParameters::robin_stiffness). */
+      double
+      robin_stiffness(const double dt) const;
+
+      /** The structure's step from @p t to @p t + @p dt with @p F. */
+      Structure::NewtonStatus
+      solve_structure(const double                  t,
+                      const double                  dt,
+                      const dealii::Vector<double> &F);
+    };
+  } // namespace Coupling
+} // namespace Talus
+
+#endif

@@ -1,0 +1,469 @@
+// The coupled application: MPM + barrier structure, partitioned
+// (set problem = coupled).
+
+#include <talus/app/coupled_simulation.h>
+#include <talus/app/simulation.h>
+#include <talus/app/structure_models/factory.h>
+#include <talus/app/structure_models/model.h>
+#include <talus/base/input.h>
+#include <talus/base/time_control.h>
+#include <talus/coupling/coupling_parameters.h>
+#include <talus/coupling/gauss_seidel_coupling.h>
+#include <talus/coupling/structure_interface.h>
+#include <talus/io/visualization_output.h>
+#include <talus/mpm/mpm_problem.h>
+#include <talus/structure/structure_problem.h>
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace Talus
+{
+  namespace
+  {
+    const std::string verification_section = "Coupling/Verification";
+
+    /** A vector entry: empty, or @p dim components. */
+    template <int dim>
+    std::pair<bool, dealii::Tensor<1, dim>>
+    optional_vector(const dealii::ParameterHandler &prm,
+                    const std::string              &entry)
+    {
+      const std::string         text = prm.get(entry);
+      const std::vector<double> v    = dealii::Utilities::string_to_double(
+        dealii::Utilities::split_string_list(text));
+      if (!v.empty() && v.size() != dim)
+        InputFile::reject(verification_section,
+                          entry,
+                          text,
+                          "an empty value or " + std::to_string(dim) +
+                            " components");
+      dealii::Tensor<1, dim> t;
+      for (unsigned int d = 0; d < v.size(); ++d)
+        t[d] = v[d];
+      return {!v.empty(), t};
+    }
+  } // namespace
+
+
+  template <int dim>
+  CoupledSimulation<dim>::CoupledSimulation(const MPI_Comm communicator)
+    : communicator(communicator)
+  {}
+
+
+  template <int dim>
+  void
+  CoupledSimulation<dim>::declare_coupling_parameters(
+    dealii::ParameterHandler &prm)
+  {
+    Coupling::CouplingParameters::declare_parameters(prm);
+    prm.enter_subsection("Coupling");
+    prm.enter_subsection("Interface");
+    Coupling::StructureInterface<dim>::declare_parameters(prm);
+    prm.leave_subsection();
+    prm.enter_subsection("Verification");
+    prm.declare_entry("expected interface force",
+                      "",
+                      dealii::Patterns::Anything(),
+                      "Empty, or the sum of the interface forces on the "
+                      "structure at the end of the run, one component per "
+                      "space dimension [N] (e.g. the weight of a block at "
+                      "rest): checked with 'interface force tolerance'.");
+    prm.declare_entry("interface force tolerance",
+                      "1e-6",
+                      dealii::Patterns::Double(0.),
+                      "Largest |F - F_expected| / |F_expected| [-].");
+    prm.declare_entry("maximum mean coupling iterations",
+                      "0",
+                      dealii::Patterns::Double(0.),
+                      "If > 0: the coupling iterations per accepted step, "
+                      "averaged over the run, must not exceed it.");
+    prm.declare_entry(
+      "energy balance tolerance",
+      "0",
+      dealii::Patterns::Double(0.),
+      "If > 0: the largest change of the coupled system's energy (kinetic, "
+      "strain and gravitational energy of both fields plus the MPM's "
+      "dissipation) over the run, relative to the largest released "
+      "gravitational energy of the material, must not exceed it.");
+    prm.declare_entry(
+      "conservation tolerance",
+      "1e-10",
+      dealii::Patterns::Double(0.),
+      "Largest relative difference between the interface work of the "
+      "structure's nodal vectors U . F and of the boundary particles "
+      "sum u_p . f_p (the transfer is conservative: round-off).");
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  CoupledSimulation<dim>::declare_parameters(dealii::ParameterHandler &prm,
+                                             const unsigned int n_boundaries)
+  {
+    Simulation<dim>::declare_parameters(prm, n_boundaries);
+    StructureModels::declare_parameters(prm);
+    declare_coupling_parameters(prm);
+  }
+
+
+  template <int dim>
+  int
+  CoupledSimulation<dim>::run(dealii::ParameterHandler &prm)
+  {
+    const bool root =
+      dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+    prm.enter_subsection("Output");
+    const bool test_mode = prm.get_bool("test mode");
+    prm.leave_subsection();
+    dealii::ConditionalOStream pcout(std::cout, root);
+    dealii::TimerOutput        timer(pcout,
+                              test_mode ? dealii::TimerOutput::never :
+                                                 dealii::TimerOutput::summary,
+                              dealii::TimerOutput::wall_times);
+
+    // The MPM.
+    TimeControl time_control;
+    time_control.parse_parameters(prm);
+    MPM::MPMProblem<dim> mpm(communicator, time_control.newmark, timer);
+    mpm.parse_parameters(prm);
+    IO::VisualizationOutput<dim> output;
+    output.parse_parameters(prm);
+
+    // The structure, in equilibrium under its pre-stress and its loads.
+    const StructureModels::Parameters sp =
+      StructureModels::parse_parameters(prm);
+    if (sp.dynamic)
+      {
+        const auto probe = StructureModels::create_model(sp);
+        if (!probe->supports_dynamics())
+          InputFile::reject("Structure/Dynamics",
+                            "dynamic",
+                            "true",
+                            "false for model '" + sp.model_text +
+                              "' (it has no dynamic form)");
+      }
+    auto                        model = StructureModels::create_model(sp);
+    Structure::StructureProblem structure;
+    structure.build(*model, 0);
+    prm.enter_subsection(StructureModels::structure_section);
+    structure.parse_solver_parameters(prm);
+    structure.parse_dynamics_parameters(prm);
+    prm.leave_subsection();
+    structure.setup_solvers(*model);
+    {
+      dealii::TimerOutput::Scope scope(timer, "structure: initial state");
+      if (model->prestress_step())
+        {
+          const auto status = structure.solve_load_factor(0.);
+          if (!status.converged)
+            throw ExcSimulationFailed(
+              "the structure's pre-stress equilibrium did not converge: " +
+              status.failure);
+        }
+      model->before_load_steps(structure.get_structure(),
+                               structure.get_static_solver());
+      const auto status = structure.solve_load_step(0., 1.);
+      if (!status.converged)
+        throw ExcSimulationFailed(
+          "the structure's equilibrium under its loads (before the "
+          "coupling) did not converge: " +
+          status.failure);
+      structure.initialize();
+    }
+
+    // The coupling.
+    Coupling::CouplingParameters parameters;
+    parameters.parse_parameters(prm);
+    Coupling::StructureInterface<dim> interface;
+    prm.enter_subsection("Coupling");
+    prm.enter_subsection("Interface");
+    interface.parse_parameters(prm);
+    prm.leave_subsection();
+    prm.enter_subsection("Verification");
+    const auto expected_force =
+      optional_vector<dim>(prm, "expected interface force");
+    const double force_tolerance = prm.get_double("interface force tolerance");
+    const double max_mean_iterations =
+      prm.get_double("maximum mean coupling iterations");
+    const double balance_tolerance = prm.get_double("energy balance tolerance");
+    const double conservation_tolerance =
+      prm.get_double("conservation tolerance");
+    prm.leave_subsection();
+    prm.leave_subsection();
+
+    interface.attach(structure.get_structure(), mpm.boundaries());
+    mpm.setup();
+    output.initialize(communicator);
+    interface.setup(mpm.boundaries(), communicator);
+
+    Coupling::GaussSeidelCoupling<dim> coupling(
+      mpm, structure, interface, parameters, timer, communicator);
+
+    pcout << "Talus: " << dim << "D coupled MPM + structure, "
+          << dealii::Utilities::MPI::n_mpi_processes(communicator)
+          << " MPI rank(s)\n";
+    mpm.print_summary(pcout);
+    pcout
+      << "  structure: model '" << sp.model_text << "' ("
+      << model->description() << "), " << structure.get_structure().n_dofs()
+      << " DoFs, " << (structure.is_dynamic() ? "dynamic" : "static") << '\n'
+      << "  interface: mesh '" << interface.mesh_name() << "', "
+      << interface.n_points() << " boundary particles; "
+      << (parameters.scheme == Coupling::CouplingParameters::Scheme::strong ?
+            "strong" :
+            "weak")
+      << " coupling, "
+      << (parameters.order == Coupling::CouplingParameters::Order::MPM_first ?
+            "MPM first" :
+            "structure first")
+      << ", " << coupling.accelerator().name() << '\n';
+
+    coupling.initialize(0.);
+
+    // Energies of both fields at the committed state.
+    auto &S = structure.get_structure();
+    struct Energies
+    {
+      double mpm = 0., structure = 0., dissipation = 0., released = 0.;
+    };
+    const auto energies = [&](const MPM::Diagnostics<dim> &d) {
+      dealii::Vector<double> r;
+      S.assemble(structure.displacement(), 1., r, nullptr);
+      Energies e;
+      e.mpm = d.kinetic_energy + d.strain_energy + d.gravitational_energy;
+      // the structure's own loads only: the interface force is internal
+      // to the coupled system (load_potential() includes -F . u)
+      e.structure = structure.kinetic_energy() + S.strain_energy() +
+                    S.load_potential(structure.displacement(), 1.) +
+                    S.external_forces * structure.displacement();
+      e.dissipation = d.plastic_dissipation + d.friction_dissipation +
+                      d.reset_dissipation + d.transfer_dissipation;
+      return e;
+    };
+    const auto   initial_diagnostics = mpm.diagnostics();
+    const auto   initial             = energies(initial_diagnostics);
+    const double initial_total =
+      initial.mpm + initial.structure + initial.dissipation;
+
+    std::ofstream csv;
+    if (root)
+      {
+        csv.open(output.directory() + "/coupling.csv");
+        if (!csv)
+          throw ExcSimulationFailed("cannot write <" + output.directory() +
+                                    "/coupling.csv>");
+        csv << "step,time,dt,coupling_iterations,interface_residual,"
+               "relaxation,mpm_newton,structure_newton";
+        for (unsigned int d = 0; d < dim; ++d)
+          csv << ",interface_force_" << char('x' + d);
+        csv << ",work_structure,work_points,mpm_energy,structure_energy,"
+               "dissipation,energy_change,max_structure_displacement,"
+               "penetration,mass\n";
+        csv << std::setprecision(12);
+      }
+
+    const auto    wall_start       = std::chrono::steady_clock::now();
+    unsigned long total_iterations = 0, total_rejected = 0;
+    double        max_balance = 0., max_released = 0.;
+    double        max_conservation = 0.;
+    Coupling::CoupledStepResult<dim> result;
+    while (!time_control.finished())
+      {
+        while (true)
+          {
+            const double dt = time_control.next_step();
+            result          = coupling.solve_step(time_control.time, dt);
+            if (result.converged)
+              break;
+            ++total_rejected;
+            coupling.reject_step();
+            pcout << "  step " << time_control.step + 1
+                  << " at t = " << time_control.time
+                  << " s rejected (dt = " << dt << " s): " << result.failure
+                  << '\n';
+            if (!time_control.reject())
+              {
+                std::ostringstream msg;
+                msg << "The coupled step from t = " << time_control.time
+                    << " s could not be solved after " << time_control.halvings
+                    << " halvings of the time step (last dt = " << dt
+                    << " s): " << result.failure
+                    << ". Raise 'maximum coupling iterations' or change "
+                       "'acceleration' in subsection <Coupling>, reduce "
+                       "'time step' or raise 'maximum step halvings' in "
+                       "subsection <Time>.";
+                throw ExcSimulationFailed(msg.str());
+              }
+          }
+        const double dt = time_control.next_step();
+        coupling.commit_step();
+        time_control.accept(dt);
+        total_iterations += result.iterations;
+
+        const auto lost = mpm.take_losses();
+        if (lost.n_points > 0)
+          {
+            std::ostringstream msg;
+            msg << lost.n_points << " material point(s) with a mass of "
+                << lost.mass
+                << " kg left the background grid at t = " << time_control.time
+                << " s";
+            if (mpm.solver().abort_on_lost_points)
+              throw ExcSimulationFailed(msg.str() +
+                                        "; 'abort on lost material points' "
+                                        "is set. Enlarge the background "
+                                        "grid.");
+            pcout << "  Warning: " << msg.str() << '\n';
+          }
+        for (unsigned int b = 0; b < lost.boundary_particles.size(); ++b)
+          if (lost.boundary_particles[b] > 0)
+            pcout << "  Warning: " << lost.boundary_particles[b]
+                  << " boundary particle(s) of boundary '"
+                  << mpm.boundaries().name(b)
+                  << "' left the background grid at t = " << time_control.time
+                  << " s and no longer act.\n";
+
+        const auto   diagnostics = mpm.diagnostics();
+        const auto   e           = energies(diagnostics);
+        const double change =
+          e.mpm + e.structure + e.dissipation - initial_total;
+        max_balance = std::max(max_balance, std::abs(change));
+        max_released =
+          std::max(max_released,
+                   std::abs(diagnostics.gravitational_energy -
+                            initial_diagnostics.gravitational_energy));
+        const double scale = std::max({std::abs(result.work_structure),
+                                       std::abs(result.work_points),
+                                       1e-300});
+        max_conservation =
+          std::max(max_conservation,
+                   std::abs(result.work_structure - result.work_points) /
+                     scale);
+        double max_u = 0.;
+        for (unsigned int k = 0; k < S.n_nodes(); ++k)
+          max_u =
+            std::max(max_u,
+                     S.node_displacement(structure.displacement(), k).norm());
+        double penetration = 0.;
+        for (const auto &b : diagnostics.boundaries)
+          penetration = std::max(penetration, b.penetration);
+        if (root)
+          {
+            csv << time_control.step << ',' << time_control.time << ',' << dt
+                << ',' << result.iterations << ',' << result.status.residual
+                << ',' << result.relaxation << ',' << result.mpm_newton << ','
+                << result.structure_newton;
+            for (unsigned int d = 0; d < dim; ++d)
+              csv << ',' << result.interface_force[d];
+            csv << ',' << result.work_structure << ',' << result.work_points
+                << ',' << e.mpm << ',' << e.structure << ',' << e.dissipation
+                << ',' << change << ',' << max_u << ',' << penetration << ','
+                << diagnostics.mass << '\n';
+          }
+        if (output.due(time_control.time) || time_control.finished())
+          {
+            dealii::TimerOutput::Scope s(timer, "output");
+            output.write(time_control.time,
+                         mpm.grid(),
+                         mpm.points(),
+                         &mpm.solver().grid_velocity());
+            if (root)
+              S.write_vtu(structure.displacement(),
+                          output.directory(),
+                          time_control.step,
+                          time_control.time);
+            if (!test_mode)
+              {
+                const double wall =
+                  std::chrono::duration<double>(
+                    std::chrono::steady_clock::now() - wall_start)
+                    .count();
+                pcout << "step " << std::setw(6) << time_control.step
+                      << "  t = " << std::scientific << std::setprecision(4)
+                      << time_control.time
+                      << " s  dt = " << std::setprecision(2) << dt
+                      << " s  coupling " << result.iterations << "  |r| "
+                      << result.status.residual << "  omega "
+                      << result.relaxation << "  Newton MPM "
+                      << result.mpm_newton << " structure "
+                      << result.structure_newton
+                      << "  F = " << result.interface_force << std::defaultfloat
+                      << "  wall " << std::setprecision(3) << wall << " s\n";
+              }
+          }
+      }
+
+    const double mean_iterations =
+      static_cast<double>(total_iterations) / std::max(1u, time_control.step);
+    pcout << "Done: " << time_control.step << " coupled steps ("
+          << total_rejected << " rejected), " << std::setprecision(3)
+          << mean_iterations << " coupling iterations per step\n"
+          << std::setprecision(8)
+          << "  interface force at the end: " << result.interface_force
+          << " N\n"
+          << "  largest energy change " << std::setprecision(3) << max_balance
+          << " J (largest released gravitational energy " << max_released
+          << " J)\n"
+          << "  interface work, structure vs points: largest relative "
+             "difference "
+          << (max_conservation < 1e-12 ? std::string("< 1e-12") :
+                                         std::to_string(max_conservation))
+          << '\n';
+
+    if (std::getenv("TALUS_DEBUG_COUPLING") && root)
+      for (unsigned int k = 0; k < S.n_nodes(); ++k)
+        std::cerr << "node " << S.node_position(k) << "  u "
+                  << S.node_displacement(structure.displacement(), k) << "  F "
+                  << S.external_force(k) << '\n';
+
+    // Verification.
+    std::vector<std::string> failed;
+    if (expected_force.first)
+      {
+        const double error =
+          (result.interface_force - expected_force.second).norm() /
+          std::max(expected_force.second.norm(), 1e-300);
+        pcout << "  interface force error " << error << " (tolerance "
+              << force_tolerance << ")\n";
+        if (!(error <= force_tolerance))
+          failed.push_back("interface force");
+      }
+    if (max_mean_iterations > 0. && mean_iterations > max_mean_iterations)
+      failed.push_back("mean coupling iterations");
+    if (balance_tolerance > 0.)
+      {
+        const double relative = max_balance / std::max(max_released, 1e-300);
+        pcout << "  energy balance: largest change / released = " << relative
+              << " (tolerance " << balance_tolerance << ")\n";
+        if (!(relative <= balance_tolerance))
+          failed.push_back("energy balance");
+      }
+    if (!(max_conservation <= conservation_tolerance))
+      failed.push_back("interface conservation");
+    if (!failed.empty())
+      {
+        std::string list;
+        for (const auto &f : failed)
+          list += (list.empty() ? "" : ", ") + f;
+        throw ExcVerificationFailed("coupled verification failed: " + list);
+      }
+    return 0;
+  }
+
+
+  template class CoupledSimulation<2>;
+  template class CoupledSimulation<3>;
+} // namespace Talus

@@ -1,0 +1,258 @@
+#include <talus/coupling/gauss_seidel_coupling.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <stdexcept>
+
+namespace Talus
+{
+  namespace Coupling
+  {
+    namespace
+    {
+      /** A field's Newton failed inside a coupling iteration. */
+      struct FieldFailed : std::runtime_error
+      {
+        using std::runtime_error::runtime_error;
+      };
+    } // namespace
+
+
+    template <int dim>
+    GaussSeidelCoupling<dim>::GaussSeidelCoupling(
+      MPM::MPMProblem<dim>        &mpm,
+      Structure::StructureProblem &structure,
+      StructureInterface<dim>     &interface,
+      const CouplingParameters    &parameters,
+      dealii::TimerOutput         &timer,
+      const MPI_Comm               communicator)
+      : mpm(mpm)
+      , structure(structure)
+      , interface(interface)
+      , parameters(parameters)
+      , timer(timer)
+      , communicator(communicator)
+      , acceleration(create_accelerator(parameters.acceleration))
+      , criterion(parameters.criterion)
+      , predictor(parameters.predictor)
+    {}
+
+
+    template <int dim>
+    void
+    GaussSeidelCoupling<dim>::initialize(const double t0)
+    {
+      committed = structure.displacement();
+      force.reinit(committed.size());
+      committed_force.reinit(committed.size());
+      interface.set_step_displacement(committed, committed, t0, t0);
+      mpm.boundaries().move_to(t0);
+      mpm.initialize(t0);
+      predictor.clear();
+      predictor.add_converged(t0, committed);
+      step_end = t0;
+    }
+
+
+    template <int dim>
+    Structure::NewtonStatus
+    GaussSeidelCoupling<dim>::solve_structure(const double                  t,
+                                              const double                  dt,
+                                              const dealii::Vector<double> &F)
+    {
+      dealii::TimerOutput::Scope scope(timer, "coupling: structure");
+      structure.set_interface_forces(F);
+      // static: the equilibrium under the full loads (load factor 1)
+      if (structure.is_dynamic())
+        structure.prepare_step(t, dt);
+      else
+        structure.prepare_step(0., 1.);
+      return structure.solve_step();
+    }
+
+
+    template <int dim>
+    CoupledStepResult<dim>
+    GaussSeidelCoupling<dim>::solve_step(const double t, const double dt)
+    {
+      CoupledStepResult<dim> result;
+      step_end                           = t + dt;
+      unsigned int           evaluations = 0;
+      dealii::Vector<double> springs, last_x;
+      structure.set_interface_springs(dealii::Vector<double>(),
+                                      dealii::Vector<double>());
+      const bool strong =
+        parameters.scheme == CouplingParameters::Scheme::strong;
+      static const bool debug = std::getenv("TALUS_DEBUG_COUPLING") != nullptr;
+
+      // The fixed-point operator x -> x̃ of the Dirichlet-Neumann iteration.
+      const auto H = [&](const dealii::Vector<double> &x,
+                         dealii::Vector<double>       &x_tilde,
+                         dealii::Vector<double>       &f) {
+        {
+          dealii::TimerOutput::Scope scope(timer, "coupling: MPM");
+          interface.set_step_displacement(committed, x, t, t + dt);
+          mpm.prepare_step(t + dt, dt);
+          result.mpm = mpm.solve_step();
+          result.mpm_newton += result.mpm.iterations;
+        }
+        if (!result.mpm.converged)
+          throw FieldFailed("the MPM did not converge: " + result.mpm.failure);
+        {
+          dealii::TimerOutput::Scope scope(timer, "coupling: transfer");
+          const auto reactions = mpm.solver().boundary_reactions();
+          force                = interface.structure_forces(reactions,
+                                             committed.size(),
+                                             communicator);
+          // Robin springs, fixed for the window from its first MPM solve
+          if (evaluations == 0 && robin_stiffness(dt) > 0.)
+            {
+              springs = interface.covered_area(reactions,
+                                               committed.size(),
+                                               communicator);
+              springs *= robin_stiffness(dt);
+            }
+          ++evaluations;
+        }
+        if (springs.size() > 0)
+          structure.set_interface_springs(springs, x);
+        last_x            = x;
+        const auto status = solve_structure(t, dt, force);
+        result.structure_newton += status.iterations;
+        if (!status.converged)
+          throw FieldFailed("the structure did not converge: " +
+                            status.failure);
+        x_tilde = structure.displacement();
+        f       = force;
+        if (debug &&
+            dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+          {
+            dealii::Vector<double> r(x_tilde);
+            r -= x;
+            std::cerr << "coupling t = " << t + dt << "  |x| " << x.l2_norm()
+                      << "  |x~| " << x_tilde.l2_norm() << "  |r| "
+                      << r.l2_norm() << "  |F| " << force.l2_norm()
+                      << "  MPM Newton " << result.mpm.iterations
+                      << "  structure Newton " << status.iterations << '\n';
+          }
+      };
+
+      try
+        {
+          dealii::Vector<double> x0;
+          if (parameters.order == CouplingParameters::Order::structure_first)
+            {
+              // the structure first, with the last step's forces
+              const auto status = solve_structure(t, dt, committed_force);
+              result.structure_newton += status.iterations;
+              if (!status.converged)
+                throw FieldFailed("the structure did not converge: " +
+                                  status.failure);
+              x0 = structure.displacement();
+            }
+          else
+            x0 = predictor.predict(t + dt);
+          dealii::TimerOutput::Scope scope(timer, "coupling: iteration");
+          // with Robin springs: the structure's equilibrium defect
+          const auto defect = [&]() {
+            if (springs.size() == 0)
+              return 0.;
+            double d = 0.;
+            for (unsigned int i = 0; i < springs.size(); ++i)
+              d += dealii::Utilities::fixed_power<2>(
+                springs[i] * (structure.displacement()[i] - last_x[i]));
+            d = std::sqrt(d);
+            // below the absolute displacement tolerance: no defect
+            if (d <= springs.linfty_norm() * criterion.absolute_tolerance())
+              return 0.;
+            return d / std::max(
+                         {force.l2_norm(), committed_force.l2_norm(), 1e-300});
+          };
+          const WindowResult window =
+            iterate_window(H,
+                           x0,
+                           *acceleration,
+                           criterion,
+                           strong,
+                           robin_stiffness(dt) > 0. ?
+                             std::function<double()>(defect) :
+                             std::function<double()>());
+          result.iterations = window.iterations;
+          if (!window.history.empty())
+            result.status = window.history.back().status;
+          for (const auto &record : window.history)
+            if (record.acceleration.relaxation != 0.)
+              result.relaxation = record.acceleration.relaxation;
+          if (!window.accepted)
+            result.failure = "the interface did not converge in " +
+                             std::to_string(window.iterations) +
+                             " coupling iterations (" +
+                             result.status.to_string() + ")";
+        }
+      catch (const FieldFailed &e)
+        {
+          result.failure = e.what();
+        }
+      if (!result.failure.empty())
+        {
+          structure.set_interface_springs(dealii::Vector<double>(),
+                                          dealii::Vector<double>());
+          return result;
+        }
+      structure.set_interface_springs(dealii::Vector<double>(),
+                                      dealii::Vector<double>());
+      result.converged = true;
+      for (unsigned int d = 0; d < dim; ++d)
+        result.interface_force[d] = interface.total_particle_force()[d];
+      const auto work =
+        interface.interface_work(structure.displacement(), force);
+      result.work_structure = work.first;
+      result.work_points    = work.second;
+      return result;
+    }
+
+
+    template <int dim>
+    double
+    GaussSeidelCoupling<dim>::robin_stiffness(const double dt) const
+    {
+      if (!parameters.robin_inertia)
+        return parameters.robin_stiffness;
+      const double h = mpm.grid().minimal_cell_diameter / std::sqrt(1. * dim);
+      const double d = parameters.robin_depth * h;
+      return mpm.density() * d * mpm.time_integrator().mass_factor(dt) +
+             (parameters.robin_elastic ? mpm.model().p_wave_modulus() / d : 0.);
+    }
+
+
+    template <int dim>
+    void
+    GaussSeidelCoupling<dim>::commit_step()
+    {
+      mpm.commit_step();
+      structure.commit_step();
+      committed       = structure.displacement();
+      committed_force = force;
+      predictor.add_converged(step_end, committed);
+      // the boundary particles at the committed interface displacement
+      interface.set_step_displacement(committed, committed, step_end, step_end);
+    }
+
+
+    template <int dim>
+    void
+    GaussSeidelCoupling<dim>::reject_step()
+    {
+      acceleration->reset();
+      criterion.reset();
+    }
+
+
+    template class GaussSeidelCoupling<2>;
+    template class GaussSeidelCoupling<3>;
+  } // namespace Coupling
+} // namespace Talus
