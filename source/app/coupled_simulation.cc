@@ -380,7 +380,7 @@ namespace Talus
                          mpm.grid(),
                          mpm.points(),
                          &mpm.solver().grid_velocity());
-            if (root)
+            if (root && output.writes_files())
               S.write_vtu(structure.displacement(),
                           output.directory(),
                           time_control.step,

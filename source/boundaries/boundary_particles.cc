@@ -996,15 +996,7 @@ namespace Talus
 
       // Boxes of level 1, or of level 0 on an unrefined grid: deal.II
       // asserts (Debug) that the level exists.
-      const auto local_boxes =
-        dealii::GridTools::compute_mesh_predicate_bounding_box(
-          grid.triangulation,
-          dealii::IteratorFilters::LocallyOwnedCell(),
-          std::min(1U, grid.triangulation.n_levels() - 1),
-          true,
-          4);
-      const auto global_boxes =
-        dealii::Utilities::MPI::all_gather(grid.mpi_communicator, local_boxes);
+      const auto global_boxes = grid.global_bounding_boxes();
       handler.insert_global_particles(points, global_boxes, properties);
       handler.update_cached_numbers();
 

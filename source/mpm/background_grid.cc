@@ -380,6 +380,24 @@ namespace Talus
     }
 
 
+    template <int dim>
+    std::vector<std::vector<dealii::BoundingBox<dim>>>
+    BackgroundGrid<dim>::global_bounding_boxes() const
+    {
+      std::vector<dealii::BoundingBox<dim>> local;
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const auto box = cell->bounding_box();
+            if (local.empty())
+              local.push_back(box);
+            else
+              local[0].merge_with(box);
+          }
+      return dealii::Utilities::MPI::all_gather(mpi_communicator, local);
+    }
+
+
     template class BackgroundGrid<2>;
     template class BackgroundGrid<3>;
     template std::pair<dealii::Point<2>, dealii::Point<2>>

@@ -64,6 +64,13 @@ namespace Talus
         return output_directory;
       }
 
+      /** Visualization files are written (format is not 'none'). */
+      bool
+      writes_files() const
+      {
+        return enabled;
+      }
+
       double output_interval = 0.;
 
     private:

@@ -1,6 +1,7 @@
 #ifndef talus_mpm_background_grid_h
 #define talus_mpm_background_grid_h
 
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/parameter_handler.h>
 
@@ -43,6 +44,16 @@ namespace Talus
       /** Parse subsection "Background grid" and create the mesh. */
       void
       parse_parameters_and_create(dealii::ParameterHandler &prm);
+
+      /**
+       * The bounding box of every rank's locally owned cells (one box per
+       * rank, all ranks; collective), the guide of
+       * Particles::ParticleHandler::insert_global_particles(). (deal.II
+       * 9.4's GridTools::compute_mesh_predicate_bounding_box() with merged
+       * boxes crashes on some unrefined 3D grids, e.g. 20 x 20 x 10 cells.)
+       */
+      std::vector<std::vector<dealii::BoundingBox<dim>>>
+      global_bounding_boxes() const;
 
       /** Distribute the degrees of freedom (after creation/refinement). */
       void
