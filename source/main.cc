@@ -21,6 +21,9 @@ namespace
     "                                       all defaults\n"
     "       talus --check <file>...         parse and check the files, do not\n"
     "                                       run them (exit code 0: all valid)\n"
+    "       talus --resume <dir> <file>     continue the run of the file from\n"
+    "                                       the checkpoint <dir> (or the newest\n"
+    "                                       one in the directory <dir>)\n"
     "       talus --help                    this text\n"
     "Run in parallel with: mpirun -np N talus <parameter file>\n"
     "Documentation: doc/ (parameters: doc/parameters.md).\n";
@@ -65,7 +68,22 @@ main(int argc, char **argv)
     }
   if (arg == "--check")
     return Talus::check_input_files({argv + 2, argv + argc}, comm);
-  if (arg.size() > 1 && arg[0] == '-')
+  std::string resume_from;
+  std::string file = arg;
+  if (arg == "--resume")
+    {
+      if (argc != 4)
+        {
+          if (root)
+            std::cerr << "Error: --resume needs a checkpoint directory and "
+                         "a parameter file.\n"
+                      << usage;
+          return 2;
+        }
+      resume_from = argv[2];
+      file        = argv[3];
+    }
+  else if (arg.size() > 1 && arg[0] == '-')
     {
       if (root)
         std::cerr << "Error: unknown option <" << arg << ">.\n" << usage;
@@ -74,8 +92,8 @@ main(int argc, char **argv)
 
   try
     {
-      Talus::check_input_file(arg, comm);
-      return Talus::run_parameter_file(arg, comm);
+      Talus::check_input_file(file, comm);
+      return Talus::run_parameter_file(file, comm, resume_from);
     }
   catch (const Talus::ExcInvalidInput &e)
     {
@@ -97,7 +115,7 @@ main(int argc, char **argv)
     {
       if (root)
         {
-          std::cerr << "\nError (input file <" << arg << ">):\n";
+          std::cerr << "\nError (input file <" << file << ">):\n";
           e.print_info(std::cerr);
         }
     }

@@ -134,6 +134,18 @@ namespace Talus
                                                  dealii::TimerOutput::summary,
                               dealii::TimerOutput::wall_times);
 
+    // Checkpoints cover the MPM problem only so far: refuse rather than
+    // ignore them.
+    prm.enter_subsection("Checkpoint");
+    for (const std::string entry : {"every steps", "every minutes", "resume"})
+      if (prm.get(entry) != "0" && prm.get(entry) != "false")
+        InputFile::reject("Checkpoint",
+                          entry,
+                          prm.get(entry),
+                          "0 (false): checkpoints exist only for 'problem = "
+                          "mpm' so far, not for 'problem = coupled'");
+    prm.leave_subsection();
+
     // The MPM.
     TimeControl time_control;
     time_control.parse_parameters(prm);

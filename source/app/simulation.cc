@@ -6,7 +6,9 @@
 #include <talus/base/parsed_functions.h>
 #include <talus/base/time_control.h>
 #include <talus/boundaries/boundary_particles.h>
+#include <talus/io/checkpointing.h>
 #include <talus/io/deposit_profile.h>
+#include <talus/io/point_dump.h>
 #include <talus/io/time_series.h>
 #include <talus/io/visualization_output.h>
 #include <talus/materials/constitutive_model.h>
@@ -23,9 +25,12 @@
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/vector.hpp>
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
@@ -321,6 +326,7 @@ namespace Talus
     prm.leave_subsection();
     declare_verification_parameters<dim>(prm);
     IO::DepositProfile<dim>::declare_parameters(prm);
+    IO::Checkpointing::declare_parameters(prm);
   }
 
 
@@ -367,6 +373,32 @@ namespace Talus
 
     IO::DepositProfile<dim> deposit(communicator);
     deposit.parse_parameters(prm);
+
+    // Checkpoints, and the one to resume from (checked on rank 0 first).
+    IO::Checkpointing checkpointing;
+    checkpointing.parse_parameters(prm, output.directory());
+    std::string resume_path;
+    if (!resume_from.empty() || checkpointing.resume_requested())
+      {
+        if (refinement > 0)
+          InputFile::reject("Checkpoint",
+                            "resume",
+                            "true",
+                            "a run on a refined grid of a convergence study "
+                            "cannot be resumed");
+        if (deposit.enabled())
+          InputFile::reject("Checkpoint",
+                            "resume",
+                            "true",
+                            "a run with 'measure deposit = true' (subsection "
+                            "<Deposit profile>) cannot be resumed yet");
+        resume_path =
+          IO::Checkpointing::find_and_check(resume_from.empty() ?
+                                              checkpointing.directory() :
+                                              resume_from,
+                                            communicator);
+      }
+    const bool resuming = !resume_path.empty();
 
     // Verification.
     prm.enter_subsection("Verification");
@@ -452,12 +484,15 @@ namespace Talus
     output.initialize(communicator);
 
     IO::TimeSeries<dim> series;
-    {
-      std::vector<std::string> names;
-      for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
-        names.push_back(boundaries.boundary(b).name);
-      series.open(output.directory() + "/time_series.csv", communicator, names);
-    }
+    if (!resuming)
+      {
+        std::vector<std::string> names;
+        for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
+          names.push_back(boundaries.boundary(b).name);
+        series.open(output.directory() + "/time_series.csv",
+                    communicator,
+                    names);
+      }
 
     pcout << "Talus: " << dim << "D implicit MPM, "
           << dealii::Utilities::MPI::n_mpi_processes(communicator)
@@ -467,12 +502,18 @@ namespace Talus
       pcout << "  time: end " << time_control.end_time << " s, step "
             << time_control.initial_dt << " s\n";
 
-    problem.initialize(0.);
-    const auto        initial = problem.diagnostics();
-    MPM::NewtonResult none;
-    series.write(0, 0., 0., none, initial, 0.);
-    output.write(0., grid, points);
-    deposit.initialize(points, output.directory());
+    if (resuming)
+      problem.load_checkpoint(resume_path);
+    else
+      problem.initialize(0.);
+    auto initial = problem.diagnostics();
+    if (!resuming)
+      {
+        MPM::NewtonResult none;
+        series.write(0, 0., 0., none, initial, 0.);
+        output.write(0., grid, points);
+        deposit.initialize(points, output.directory());
+      }
 
     // Errors against the exact solution at the current state.
     std::vector<VerificationErrors> errors;
@@ -631,6 +672,56 @@ namespace Talus
     unsigned int        total_rejected                = 0;
     // steps accepted on the residual alone (MPM::NewtonResult)
     unsigned int total_without_descent = 0;
+
+    // What the time loop keeps besides the problem (checkpoints).
+    const auto loop_state = [&](auto &archive) {
+      archive &time_control &output &initial &window_speed &window_speed_time
+        &max_drift &max_balance_change &max_released &max_penetration
+          &last_momentum &crossings &total_lost_mass
+            &total_lost_boundary_particles &total_newton
+              &total_multiplier_updates &max_constraint_gap &total_rejected
+                &total_without_descent &errors &next_report;
+    };
+    const std::string loop_tag = "talus-time-loop";
+    // Write a checkpoint of the committed state; returns its path.
+    const auto write_checkpoint = [&](const std::string &reason) {
+      std::string csv  = series.contents();
+      const auto  path = checkpointing.write(
+        time_control.step,
+        time_control.time,
+        reason,
+        [&](const std::string &directory) {
+          problem.save_checkpoint(directory);
+          if (root)
+            IO::Checkpointing::save_archive(directory + "/time_loop",
+                                            loop_tag,
+                                            [&](auto &archive) {
+                                              archive &csv;
+                                              loop_state(archive);
+                                            });
+        },
+        communicator);
+      pcout << "  checkpoint (" << reason << ") at step " << time_control.step
+            << ", t = " << time_control.time << " s: " << path << '\n';
+      return path;
+    };
+    if (resuming)
+      {
+        std::string csv;
+        IO::Checkpointing::load_archive(resume_path,
+                                        resume_path + "/time_loop",
+                                        loop_tag,
+                                        [&](auto &archive) {
+                                          archive &csv;
+                                          loop_state(archive);
+                                        });
+        series.resume(output.directory() + "/time_series.csv",
+                      communicator,
+                      csv);
+        output.write_index(communicator);
+        pcout << "  resumed from " << resume_path << " at step "
+              << time_control.step << ", t = " << time_control.time << " s\n";
+      }
     while (!time_control.finished())
       {
         const double      step  = time_control.next_step();
@@ -666,6 +757,13 @@ namespace Talus
                        "<Solver>, reduce 'time step' or 'minimum time step' "
                        "or raise 'maximum step halvings' in subsection "
                        "<Time>, or check the material parameters.";
+                if (checkpointing.enabled())
+                  msg << " The last accepted step (" << time_control.step
+                      << ", t = " << time_control.time
+                      << " s) is in the checkpoint <"
+                      << write_checkpoint(
+                           "failure: the step could not be solved")
+                      << ">: change the parameters and resume from it.";
                 throw ExcSimulationFailed(msg.str());
               }
             pcout << "    retrying with dt = " << time_control.next_step()
@@ -696,9 +794,16 @@ namespace Talus
                 << "] m and were removed (lost so far: " << total_lost_mass
                 << " kg)";
             if (solver.abort_on_lost_points)
-              throw ExcSimulationFailed(
-                msg.str() + "; 'abort on lost material points' is set. "
-                            "Enlarge the background grid.");
+              {
+                msg << "; 'abort on lost material points' is set. Enlarge "
+                       "the background grid.";
+                if (checkpointing.enabled())
+                  msg << " The state after this step (" << time_control.step
+                      << ", without the lost points) is in the checkpoint <"
+                      << write_checkpoint("failure: material points lost")
+                      << ">.";
+                throw ExcSimulationFailed(msg.str());
+              }
             pcout << "  Warning: " << msg.str() << '\n';
           }
         {
@@ -803,7 +908,19 @@ namespace Talus
             errors.back().time = report_times[next_report];
             ++next_report;
           }
+
+        if (checkpointing.enabled() && !time_control.finished() &&
+            checkpointing.due(time_control.step, communicator))
+          write_checkpoint("scheduled");
+        // (the kill-and-resume test: die as if killed after this step)
+        if (const char *kill = std::getenv("TALUS_DEBUG_KILL_AFTER_STEP"))
+          if (std::to_string(time_control.step) == kill)
+            std::raise(SIGKILL);
       }
+
+    // (debugging and the checkpoint tests: every point in full precision)
+    if (const char *dump = std::getenv("TALUS_DEBUG_DUMP_POINTS"))
+      IO::write_points_text(points, dump, communicator);
 
     // Summary.
     const auto final_state = solver.compute_diagnostics();
@@ -1180,7 +1297,9 @@ namespace Talus
 
     template <int dim>
     int
-    run_dimension(dealii::ParameterHandler &prm, const MPI_Comm communicator)
+    run_dimension(dealii::ParameterHandler &prm,
+                  const MPI_Comm            communicator,
+                  const std::string        &resume_from)
     {
       prm.enter_subsection("Convergence study");
       const unsigned int n_levels     = prm.get_integer("number of levels");
@@ -1223,6 +1342,18 @@ namespace Talus
                           "<Deposit profile> and must be smaller than "
                           "'number of levels' (" +
                             std::to_string(n_levels) + ")");
+      prm.enter_subsection("Checkpoint");
+      const bool checkpoints = prm.get_integer("every steps") > 0 ||
+                               prm.get_double("every minutes") > 0. ||
+                               prm.get_bool("resume");
+      prm.leave_subsection();
+      if (n_levels > 1 && (checkpoints || !resume_from.empty()))
+        InputFile::reject("Convergence study",
+                          "number of levels",
+                          std::to_string(n_levels),
+                          "1 when checkpoints are written or resumed "
+                          "(subsection <Checkpoint>, --resume): a study "
+                          "cannot be checkpointed");
       // A study writes each level's files into <output directory>/level-N.
       prm.enter_subsection("Output");
       const std::string output_directory = prm.get("output directory");
@@ -1247,6 +1378,7 @@ namespace Talus
                 }
             }
           Simulation<dim> simulation(communicator);
+          simulation.set_resume(resume_from);
           // the deposit of a level is judged with the others (below)
           simulation.set_deposit_misses_fatal(n_levels == 1);
           const auto errors = simulation.run(prm, level);
@@ -1316,7 +1448,9 @@ namespace Talus
 
 
   int
-  run_parameter_file(const std::string &filename, const MPI_Comm communicator)
+  run_parameter_file(const std::string &filename,
+                     const MPI_Comm     communicator,
+                     const std::string &resume_from)
   {
     InputFile::set_name(filename);
     {
@@ -1328,9 +1462,19 @@ namespace Talus
     // First pass: only the problem and the dimension.
     unsigned int dimension;
     if (InputCheck::problem_and_dimension(filename, dimension) == "structure")
-      return StructureSimulation::run_parameter_file(filename);
+      {
+        if (!resume_from.empty())
+          throw ExcInvalidInput("--resume: checkpoints exist only for 'problem "
+                                "= mpm', the file <" +
+                                filename + "> sets 'problem = structure'.");
+        return StructureSimulation::run_parameter_file(filename);
+      }
     const std::string problem =
       InputCheck::problem_and_dimension(filename, dimension);
+    if (problem == "coupled" && !resume_from.empty())
+      throw ExcInvalidInput("--resume: checkpoints exist only for 'problem "
+                            "= mpm', the file <" +
+                            filename + "> sets 'problem = coupled'.");
     dealii::ParameterHandler prm;
     // as many boundary subsections as the file has (no fixed limit)
     const unsigned int n_boundaries =
@@ -1351,13 +1495,13 @@ namespace Talus
       {
         Simulation<2>::declare_parameters(prm, n_boundaries);
         prm.parse_input(filename);
-        return run_dimension<2>(prm, communicator);
+        return run_dimension<2>(prm, communicator, resume_from);
       }
     else
       {
         Simulation<3>::declare_parameters(prm, n_boundaries);
         prm.parse_input(filename);
-        return run_dimension<3>(prm, communicator);
+        return run_dimension<3>(prm, communicator, resume_from);
       }
   }
 

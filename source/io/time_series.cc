@@ -2,6 +2,7 @@
 #include <talus/io/time_series.h>
 
 #include <iomanip>
+#include <sstream>
 
 namespace Talus
 {
@@ -13,7 +14,8 @@ namespace Talus
                           const MPI_Comm                  communicator,
                           const std::vector<std::string> &boundary_names)
     {
-      is_root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+      is_root   = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+      file_name = filename;
       if (is_root)
         file.open(filename);
       const int ok =
@@ -39,6 +41,45 @@ namespace Talus
                << "_tangential_force," << name << "_penetration";
         }
       file << '\n';
+      file << std::setprecision(12);
+    }
+
+
+    template <int dim>
+    std::string
+    TimeSeries<dim>::contents()
+    {
+      if (!is_root)
+        return std::string();
+      file.flush();
+      std::ifstream      in(file_name);
+      std::ostringstream text;
+      text << in.rdbuf();
+      return text.str();
+    }
+
+
+    template <int dim>
+    void
+    TimeSeries<dim>::resume(const std::string &filename,
+                            const MPI_Comm     communicator,
+                            const std::string &contents)
+    {
+      is_root   = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+      file_name = filename;
+      if (is_root)
+        {
+          file.close();
+          file.open(filename, std::ios::out | std::ios::trunc);
+          file << contents;
+          file.flush();
+        }
+      const int ok =
+        dealii::Utilities::MPI::min(is_root ? (file ? 1 : 0) : 1, communicator);
+      if (!ok)
+        throw ExcInvalidInput("Cannot write the time series file <" + filename +
+                              ">: check 'output directory' in subsection "
+                              "<Output>.");
       file << std::setprecision(12);
     }
 

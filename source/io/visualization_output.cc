@@ -211,6 +211,38 @@ namespace Talus
 
 
     template <int dim>
+    void
+    VisualizationOutput<dim>::write_index(const MPI_Comm communicator) const
+    {
+      if (!enabled)
+        return;
+      const std::string dir = output_directory + "/";
+      if (format == "vtu")
+        {
+          if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+            {
+              std::ofstream pvd(dir + "particles.pvd");
+              dealii::DataOutBase::write_pvd_record(pvd, particle_records);
+              if (write_grid)
+                {
+                  std::ofstream gpvd(dir + "grid.pvd");
+                  dealii::DataOutBase::write_pvd_record(gpvd, grid_records);
+                }
+            }
+        }
+      else
+        {
+          dealii::DataOut<dim> index;
+          index.write_xdmf_file(particle_xdmf,
+                                dir + "particles.xdmf",
+                                communicator);
+          if (write_grid)
+            index.write_xdmf_file(grid_xdmf, dir + "grid.xdmf", communicator);
+        }
+    }
+
+
+    template <int dim>
     template <typename DataOutType>
     void
     VisualizationOutput<dim>::write_hdf5(

@@ -1,7 +1,16 @@
 #include <talus/base/input.h>
 #include <talus/mpm/mpm_problem.h>
 
+#include <deal.II/distributed/solution_transfer.h>
+
+#include <boost/archive/archive_exception.hpp>
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -159,6 +168,196 @@ namespace Talus
       material_points->restore_state();
       boundary_particles->restore_state();
       mpm_solver->restore_state();
+    }
+
+
+    namespace
+    {
+      /**
+       * What identifies the MPM problem a checkpoint belongs to: written
+       * first into `mpm_state`, compared with the problem built from the
+       * parameter file before anything is loaded.
+       */
+      struct CheckpointIdentity
+      {
+        std::string         name                 = "talus-mpm-state";
+        unsigned int        dimension            = 0;
+        unsigned int        n_point_properties   = 0;
+        unsigned int        n_history            = 0;
+        unsigned int        n_contact_slots      = 0;
+        unsigned int        n_boundaries         = 0;
+        unsigned long long  n_coarse_cells       = 0;
+        unsigned long long  n_active_cells       = 0;
+        unsigned long long  n_points             = 0;
+        unsigned long long  n_boundary_particles = 0;
+        std::vector<double> grid_box;
+
+        template <class Archive>
+        void
+        serialize(Archive &ar, const unsigned int /*version*/)
+        {
+          ar &name &dimension &n_point_properties &n_history &n_contact_slots
+            &n_boundaries &n_coarse_cells &n_active_cells &n_points
+              &n_boundary_particles &grid_box;
+        }
+      };
+    } // namespace
+
+
+    template <int dim>
+    void
+    MPMProblem<dim>::save_checkpoint(const std::string &directory)
+    {
+      auto &grid = *background_grid;
+
+      CheckpointIdentity id;
+      id.dimension = dim;
+      id.n_point_properties =
+        material_points->particle_handler().n_properties_per_particle();
+      id.n_history       = material_points->n_history();
+      id.n_contact_slots = material_points->n_contact_slots();
+      id.n_boundaries    = boundary_particles->n_boundaries();
+      id.n_coarse_cells  = grid.triangulation.n_cells(0);
+      id.n_active_cells  = grid.triangulation.n_global_active_cells();
+      id.n_points        = material_points->n_global_points();
+      id.n_boundary_particles =
+        boundary_particles->particle_handler().n_global_particles();
+      for (unsigned int d = 0; d < dim; ++d)
+        id.grid_box.push_back(grid.lower_corner[d]);
+      for (unsigned int d = 0; d < dim; ++d)
+        id.grid_box.push_back(grid.upper_corner[d]);
+
+      // The grid vectors must live until the triangulation is saved.
+      const auto vectors = mpm_solver->committed_grid_vectors();
+      std::vector<const dealii::TrilinosWrappers::MPI::Vector *> pointers;
+      for (const auto &v : vectors)
+        pointers.push_back(&v);
+      dealii::parallel::distributed::
+        SolutionTransfer<dim, dealii::TrilinosWrappers::MPI::Vector>
+          transfer(grid.dof_handler);
+      // the order of registration is the order of deserialization
+      material_points->particle_handler().prepare_for_serialization();
+      boundary_particles->particle_handler().prepare_for_serialization();
+      transfer.prepare_for_serialization(pointers);
+      grid.triangulation.save(directory + "/mpm_grid");
+
+      if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+        {
+          std::ofstream out(directory + "/mpm_state", std::ios::binary);
+          boost::archive::binary_oarchive archive(out);
+          archive << id;
+          mpm_solver->serialize_committed_scalars(archive);
+        }
+    }
+
+
+    template <int dim>
+    void
+    MPMProblem<dim>::load_checkpoint(const std::string &directory)
+    {
+      auto             &grid       = *background_grid;
+      const std::string state_file = directory + "/mpm_state";
+      const auto        reject     = [&](const std::string &what) {
+        throw ExcInvalidInput("Cannot resume from the checkpoint <" +
+                              directory + ">: " + what);
+      };
+
+      // First check that the checkpoint belongs to this problem.
+      CheckpointIdentity id;
+      {
+        std::ifstream in(state_file, std::ios::binary);
+        if (!in)
+          reject("the file <" + state_file + "> cannot be read.");
+        try
+          {
+            boost::archive::binary_iarchive archive(in);
+            archive >> id;
+            if (id.name != CheckpointIdentity().name)
+              reject("the file <" + state_file +
+                     "> is not the MPM state of a Talus checkpoint.");
+            mpm_solver->serialize_committed_scalars(archive);
+          }
+        catch (const boost::archive::archive_exception &e)
+          {
+            reject("the file <" + state_file +
+                   "> is not a readable MPM state (" + e.what() + ").");
+          }
+      }
+      const auto mismatch = [&](const std::string       &what,
+                                const unsigned long long stored,
+                                const unsigned long long here,
+                                const std::string       &hint) {
+        if (stored != here)
+          reject("it was written for " + what + " " + std::to_string(stored) +
+                 ", the parameter file gives " + std::to_string(here) + " (" +
+                 hint + ").");
+      };
+      mismatch("dimension", id.dimension, dim, "'dimension'");
+      mismatch("a background grid of coarse cells",
+               id.n_coarse_cells,
+               grid.triangulation.n_cells(0),
+               "subsection <Background grid>; checkpoints of refined levels "
+               "of a convergence study cannot be resumed");
+      mismatch("material points with history variables",
+               id.n_history,
+               material_points->n_history(),
+               "the constitutive model of subsection <Material>");
+      mismatch("boundaries",
+               id.n_boundaries,
+               boundary_particles->n_boundaries(),
+               "subsection <Boundary particles>");
+      mismatch("material points with properties",
+               id.n_point_properties,
+               material_points->particle_handler().n_properties_per_particle(),
+               "subsections <Material> and <Boundary particles>");
+      for (unsigned int d = 0; d < dim && id.grid_box.size() == 2 * dim; ++d)
+        if (std::abs(id.grid_box[d] - grid.lower_corner[d]) >
+              1e-12 * grid.minimal_cell_diameter ||
+            std::abs(id.grid_box[dim + d] - grid.upper_corner[d]) >
+              1e-12 * grid.minimal_cell_diameter)
+          reject("it was written for another background grid (bounding box) "
+                 "than subsection <Background grid> describes.");
+
+      // The grid with the particles and the grid vectors on it.
+      grid.triangulation.load(directory + "/mpm_grid");
+      grid.setup_dofs();
+      material_points->particle_handler().deserialize();
+      boundary_particles->particle_handler().deserialize();
+      std::vector<dealii::TrilinosWrappers::MPI::Vector>   owned(2);
+      std::vector<dealii::TrilinosWrappers::MPI::Vector *> pointers;
+      for (auto &v : owned)
+        {
+          v.reinit(grid.locally_owned_dofs, communicator);
+          pointers.push_back(&v);
+        }
+      dealii::parallel::distributed::
+        SolutionTransfer<dim, dealii::TrilinosWrappers::MPI::Vector>
+          transfer(grid.dof_handler);
+      transfer.deserialize(pointers);
+
+      if (material_points->n_global_points() != id.n_points ||
+          boundary_particles->particle_handler().n_global_particles() !=
+            id.n_boundary_particles)
+        reject("it holds " +
+               std::to_string(material_points->n_global_points()) +
+               " material points and " +
+               std::to_string(
+                 boundary_particles->particle_handler().n_global_particles()) +
+               " boundary particles after loading, its state file says " +
+               std::to_string(id.n_points) + " and " +
+               std::to_string(id.n_boundary_particles) + ".");
+
+      // Everything that depends on the partition of the grid.
+      mpm_solver->setup();
+      std::vector<dealii::TrilinosWrappers::MPI::Vector> ghosted(2);
+      for (unsigned int i = 0; i < 2; ++i)
+        {
+          ghosted[i].reinit(grid.locally_owned_dofs,
+                            grid.locally_relevant_dofs,
+                            communicator);
+          ghosted[i] = owned[i];
+        }
+      mpm_solver->set_committed_grid_vectors(ghosted);
     }
 
 

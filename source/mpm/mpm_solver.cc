@@ -1035,6 +1035,52 @@ namespace Talus
     }
 
 
+    template <int dim>
+    std::vector<dealii::TrilinosWrappers::MPI::Vector>
+    MPMSolver<dim>::committed_grid_vectors() const
+    {
+      const auto &owned    = grid.locally_owned_dofs;
+      const auto &relevant = grid.locally_relevant_dofs;
+      const auto  comm     = grid.mpi_communicator;
+      std::vector<dealii::TrilinosWrappers::MPI::Vector> vectors(2);
+      for (auto &v : vectors)
+        v.reinit(owned, relevant, comm);
+      if (committed_grid_velocity.size() == grid.dof_handler.n_dofs())
+        vectors[0] = committed_grid_velocity;
+      // only owned friction nodes read their committed state
+      dealii::TrilinosWrappers::MPI::Vector stuck(owned, comm);
+      for (unsigned int n = 0;
+           n < std::min(friction_nodes.size(), committed_stuck.size());
+           ++n)
+        if (friction_nodes[n].owned && committed_stuck[n])
+          stuck(friction_nodes[n].normal_dof) = 1.;
+      stuck.compress(dealii::VectorOperation::insert);
+      vectors[1] = stuck;
+      return vectors;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::set_committed_grid_vectors(
+      const std::vector<dealii::TrilinosWrappers::MPI::Vector> &vectors)
+    {
+      AssertThrow(vectors.size() == 2,
+                  dealii::ExcMessage("set_committed_grid_vectors() needs the "
+                                     "grid velocity and the stuck nodes"));
+      committed_grid_velocity.reinit(grid.locally_owned_dofs,
+                                     grid.locally_relevant_dofs,
+                                     grid.mpi_communicator);
+      committed_grid_velocity = vectors[0];
+      committed_stuck.assign(friction_nodes.size(), false);
+      for (unsigned int n = 0; n < friction_nodes.size(); ++n)
+        if (friction_nodes[n].owned)
+          committed_stuck[n] = vectors[1](friction_nodes[n].normal_dof) > 0.5;
+      prepared = false;
+      solved   = false;
+    }
+
+
     template class MPMSolver<2>;
     template class MPMSolver<3>;
   } // namespace MPM

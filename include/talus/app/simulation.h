@@ -40,6 +40,15 @@ namespace Talus
     double stress_error       = 0.; ///< max |sigma - sigma_ex| / max |sigma_ex|
     /** [sum V0 |sigma - sigma_ex|^2 / sum V0]^1/2 / max |sigma_ex| */
     double stress_rms_error = 0.;
+
+    /** Read or write with a boost archive (checkpoints). */
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int /*version*/)
+    {
+      ar &time &displacement_error &exact_displacement &stress_error
+        &stress_rms_error;
+    }
   };
 
   /**
@@ -102,6 +111,18 @@ namespace Talus
       deposit_misses_fatal = fatal;
     }
 
+    /**
+     * Continue the next run() from a checkpoint (IO::Checkpointing):
+     * @p path is a checkpoint directory or a directory of checkpoints,
+     * whose newest complete one is taken. Empty: start at t = 0 (unless
+     * the file sets `resume = true` in subsection `Checkpoint`).
+     */
+    void
+    set_resume(const std::string &path)
+    {
+      resume_from = path;
+    }
+
     /** The deposit of the last run() (cell size 0 if not measured). */
     const DepositErrors &
     deposit_errors() const
@@ -113,14 +134,19 @@ namespace Talus
     MPI_Comm      communicator;
     bool          deposit_misses_fatal = true;
     DepositErrors deposit_result;
+    std::string   resume_from;
   };
 
   /**
    * Read the file, select the dimension and run it (with a convergence
-   * study if the file asks for one). Returns the exit code.
+   * study if the file asks for one); with @p resume_from a checkpoint (or
+   * a directory of checkpoints) to continue from (Simulation::set_resume()).
+   * Returns the exit code.
    */
   int
-  run_parameter_file(const std::string &filename, const MPI_Comm communicator);
+  run_parameter_file(const std::string &filename,
+                     const MPI_Comm     communicator,
+                     const std::string &resume_from = "");
 
   /** Print every parameter with its documentation (both dimensions). */
   void

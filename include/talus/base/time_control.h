@@ -99,6 +99,19 @@ namespace Talus
     bool
     finished() const;
 
+    /**
+     * Read or write the state of the time stepping with a boost archive
+     * (checkpoints): time, step size, step number, halvings and the
+     * successes since the last cut. The parameters (end time, initial and
+     * minimum step, ...) come from the parameter file.
+     */
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int /*version*/)
+    {
+      ar &time &dt &step &halvings &successes_since_cut;
+    }
+
     double       time                = 0.;
     double       end_time            = 1.;
     double       initial_dt          = 0.1;

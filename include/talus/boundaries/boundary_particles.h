@@ -162,6 +162,14 @@ namespace Talus
       double                 tangential_force = 0.; ///< |sum R_t| [N]
       double                 penetration      = 0.; ///< max of -g . n [m]
       unsigned int           active           = 0;  ///< particles in contact
+
+      /** Read or write with a boost archive (checkpoints). */
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int /*version*/)
+      {
+        ar &force &normal_force &tangential_force &penetration &active;
+      }
     };
 
     /**

@@ -45,8 +45,26 @@ namespace Talus
             const MPM::Diagnostics<dim> &diagnostics,
             const double                 lost_mass);
 
+      /**
+       * Everything written so far (rank 0, after a flush; empty on the
+       * other ranks): what a checkpoint keeps of the time series.
+       */
+      std::string
+      contents();
+
+      /**
+       * Continue the time series of a resumed run: replace the file
+       * @p filename by @p contents (rows written after the checkpoint by
+       * the run that stopped are dropped) and append to it.
+       */
+      void
+      resume(const std::string &filename,
+             const MPI_Comm     communicator,
+             const std::string &contents);
+
     private:
       std::ofstream file;
+      std::string   file_name;
       bool          is_root = false;
     };
   } // namespace IO

@@ -9,6 +9,10 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -70,6 +74,28 @@ namespace Talus
       {
         return enabled;
       }
+
+      /**
+       * Read or write the record of the outputs so far with a boost
+       * archive (checkpoints): the output counter, the time of the last
+       * output and the entries of the PVD or XDMF index files.
+       */
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int /*version*/)
+      {
+        ar &counter &last_output_time &particle_records &grid_records
+          &particle_xdmf &grid_xdmf;
+      }
+
+      /**
+       * Rewrite the index files (particles.pvd and grid.pvd, or the .xdmf
+       * files) from the records, e.g. after a resume: the outputs a killed
+       * run wrote after its checkpoint are no longer listed (and are
+       * overwritten by the resumed run). Collective.
+       */
+      void
+      write_index(const MPI_Comm communicator) const;
 
       double output_interval = 0.;
 

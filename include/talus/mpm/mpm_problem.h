@@ -16,6 +16,7 @@
 
 #include <memory>
 #include <ostream>
+#include <string>
 
 namespace Talus
 {
@@ -135,6 +136,34 @@ namespace Talus
       /** Go back to the state of the last save_state(). */
       void
       restore_state();
+
+      /**
+       * Write the committed state into the directory @p directory (a
+       * checkpoint; collective): the parallel::distributed triangulation
+       * (Triangulation::save(), files `mpm_grid*`) carrying the material
+       * points and the boundary particles with all their properties
+       * (ParticleHandler::prepare_for_serialization(), one after the
+       * other on the same triangulation) and, through
+       * parallel::distributed::SolutionTransfer, the committed grid
+       * velocity and the stuck grid friction nodes; and a boost archive
+       * `mpm_state` (rank 0) with what identifies the problem (dimension,
+       * property counts, cells, points) and the solver's energy accounts.
+       * Call it between steps (after commit_step()).
+       */
+      void
+      save_checkpoint(const std::string &directory);
+
+      /**
+       * Replace the committed state by that of the checkpoint in
+       * @p directory, written by save_checkpoint() with any number of
+       * ranks. Call it after setup() (which builds everything the file
+       * describes) instead of initialize(). Throws ExcInvalidInput when
+       * the checkpoint does not belong to this problem (another
+       * dimension, grid, material model or number of boundaries) or its
+       * files cannot be read.
+       */
+      void
+      load_checkpoint(const std::string &directory);
 
       /** Integrals over all points (all ranks). */
       Diagnostics<dim>

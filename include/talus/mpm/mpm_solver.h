@@ -111,6 +111,17 @@ namespace Talus
       dealii::Tensor<1, dim> contact_force;
       /** Resultants of the boundaries imposed by boundary particles. */
       std::vector<Boundaries::BoundaryResultant<dim>> boundaries;
+
+      /** Read or write with a boost archive (checkpoints). */
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int /*version*/)
+      {
+        ar &mass &momentum &kinetic_energy &grid_kinetic_energy &max_grid_speed
+          &strain_energy &gravitational_energy &plastic_dissipation &volume
+            &friction_dissipation &reset_dissipation &transfer_dissipation
+              &contact_force &boundaries;
+      }
     };
 
     /**
@@ -259,6 +270,40 @@ namespace Talus
       /** Go back to the copy of the last save_state(). */
       void
       restore_state();
+
+      /**
+       * Read or write, with a boost archive, the committed scalars a
+       * checkpoint needs (MPMProblem::save_checkpoint()): the energy
+       * accounts (friction, reset and transfer dissipation), the grid
+       * kinetic energy and largest grid speed of the last commit and the
+       * friction boundaries' resultant. The same on every rank.
+       */
+      template <class Archive>
+      void
+      serialize_committed_scalars(Archive &ar)
+      {
+        ar &friction_dissipation &reset_dissipation &transfer_dissipation
+          &grid_kinetic_energy &max_grid_speed &contact_force;
+      }
+
+      /**
+       * The committed grid state as two ghosted grid vectors, which a
+       * checkpoint carries with the triangulation
+       * (parallel::distributed::SolutionTransfer, so that any number of
+       * ranks can read them): the grid velocity of the last commit and an
+       * indicator that is 1 at the normal dof of every grid friction node
+       * that ended the last committed step stuck (0 elsewhere).
+       */
+      std::vector<dealii::TrilinosWrappers::MPI::Vector>
+      committed_grid_vectors() const;
+
+      /**
+       * Set the committed grid state from the vectors of
+       * committed_grid_vectors() (after setup() on the loaded grid).
+       */
+      void
+      set_committed_grid_vectors(
+        const std::vector<dealii::TrilinosWrappers::MPI::Vector> &vectors);
 
       /** Throw an error instead of a warning when points leave the grid. */
       bool abort_on_lost_points = false;
