@@ -59,10 +59,11 @@ namespace Talus
 
 
     template <int dim>
-    Structure::NewtonStatus
+    unsigned int
     GaussSeidelCoupling<dim>::solve_structure(const double                  t,
                                               const double                  dt,
-                                              const dealii::Vector<double> &F)
+                                              const dealii::Vector<double> &F,
+                                              CoupledStepResult<dim> &result)
     {
       dealii::TimerOutput::Scope scope(timer, "coupling: structure");
       structure.set_interface_forces(F);
@@ -71,7 +72,11 @@ namespace Talus
         structure.prepare_step(t, dt);
       else
         structure.prepare_step(0., 1.);
-      return structure.solve_step();
+      const auto status = structure.solve_step();
+      result.structure_newton += status.iterations;
+      if (!status.converged)
+        throw FieldFailed("the structure did not converge: " + status.failure);
+      return status.iterations;
     }
 
 
@@ -120,14 +125,10 @@ namespace Talus
         }
         if (springs.size() > 0)
           structure.set_interface_springs(springs, x);
-        last_x            = x;
-        const auto status = solve_structure(t, dt, force);
-        result.structure_newton += status.iterations;
-        if (!status.converged)
-          throw FieldFailed("the structure did not converge: " +
-                            status.failure);
-        x_tilde = structure.displacement();
-        f       = force;
+        last_x                 = x;
+        const unsigned int its = solve_structure(t, dt, force, result);
+        x_tilde                = structure.displacement();
+        f                      = force;
         if (debug &&
             dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
           {
@@ -137,7 +138,7 @@ namespace Talus
                       << "  |x~| " << x_tilde.l2_norm() << "  |r| "
                       << r.l2_norm() << "  |F| " << force.l2_norm()
                       << "  MPM Newton " << result.mpm.iterations
-                      << "  structure Newton " << status.iterations << '\n';
+                      << "  structure Newton " << its << '\n';
           }
       };
 
@@ -147,11 +148,7 @@ namespace Talus
           if (parameters.order == CouplingParameters::Order::structure_first)
             {
               // the structure first, with the last step's forces
-              const auto status = solve_structure(t, dt, committed_force);
-              result.structure_newton += status.iterations;
-              if (!status.converged)
-                throw FieldFailed("the structure did not converge: " +
-                                  status.failure);
+              solve_structure(t, dt, committed_force, result);
               x0 = structure.displacement();
             }
           else

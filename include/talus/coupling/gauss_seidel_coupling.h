@@ -146,11 +146,14 @@ namespace Talus
       double
       robin_stiffness(const double dt) const;
 
-      /** The structure's step from @p t to @p t + @p dt with @p F. */
-      Structure::NewtonStatus
+      /** The structure's step from @p t to @p t + @p dt with @p F; adds
+       * its Newton iterations (returned) to @p result, throws when it
+       * does not converge. */
+      unsigned int
       solve_structure(const double                  t,
                       const double                  dt,
-                      const dealii::Vector<double> &F);
+                      const dealii::Vector<double> &F,
+                      CoupledStepResult<dim>       &result);
     };
   } // namespace Coupling
 } // namespace Talus
