@@ -86,8 +86,14 @@ namespace Talus
       const std::string ms = structure_section + "/Membrane";
       prm.enter_subsection("Membrane");
       p.membrane_E = get_positive(prm, ms, "Young's modulus");
-      p.membrane_nu =
-        get_in_open_interval(prm, ms, "Poisson's ratio", -1., 0.5 + 1e-12);
+      // plane stress: nu = 0.5 (an incompressible sheet) is allowed
+      p.membrane_nu = prm.get_double("Poisson's ratio");
+      if (!(p.membrane_nu > -1. && p.membrane_nu <= 0.5))
+        InputFile::reject(ms,
+                          "Poisson's ratio",
+                          prm.get("Poisson's ratio"),
+                          "it must lie in (-1, 0.5] (plane stress: 0.5 is an "
+                          "incompressible sheet)");
       p.orthotropic = prm.get_bool("orthotropic");
       if (p.orthotropic)
         {
