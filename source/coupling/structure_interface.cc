@@ -447,7 +447,7 @@ namespace Talus
         {
           const auto it = point_of_particle.find(entry.first);
           if (it != point_of_particle.end())
-            covered[it->second] = 1.;
+            covered[it->second] = entry.second.norm() > 0. ? 1. : 0.;
         }
       dealii::Utilities::MPI::sum(covered, communicator, covered);
       std::vector<dealii::Tensor<1, dim>> w(transfer.n_points());

@@ -62,8 +62,8 @@ namespace Talus
        * Robin-Neumann stabilisation (Badia, Nobile & Vergara 2008, J.
        * Comput. Phys. 227:7027): the structure is solved with interface
        * springs k_i (x̃_i - x_i) towards the iterate x handed to the MPM,
-       * k_i = k_R sum_p N_i(X_p) w_p over the interface particles with
-       * material in their cell (w_p: their surface measure). The springs
+       * k_i = k_R sum_p N_i(X_p) w_p over the interface particles that
+       * carry a force (w_p: their surface measure). The springs
        * vanish at the converged state (x̃ = x): they change how the
        * iteration converges, not its result. With k_R close to the
        * material's interface stiffness the iteration operator's large

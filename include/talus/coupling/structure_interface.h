@@ -129,7 +129,7 @@ namespace Talus
 
       /**
        * The interface area of each structure DoF covered by the particles
-       * listed in @p reactions (those with material in their cell),
+       * listed in @p reactions that carry a force (nonzero reaction),
        * sum_p N_i(X_p) w_p [m^2 in 3D, m in 2D], summed over all ranks
        * (collective): the lumped weight of Robin interface springs.
        */
