@@ -21,12 +21,13 @@ export OMPI_MCA_rmaps_base_oversubscribe=1
 # The subset: every .cc test (materials/, solver/, coupling/, structure/elements,
 # structure/structure_api, boundaries/external_displacement), every errors/
 # test on one rank, doc/parameters_up_to_date, and one .prm test each of
-# mpm/, boundaries/ and structure/ (seconds in Debug; doc/testing.md).
+# mpm/, boundaries/, structure/ and coupled/ (seconds in Debug; 20 s for
+# the coupled one; doc/testing.md).
 # doc/inputs_parse only parses (71 s in Debug): the Release suite runs it.
 subset='^(materials/|solver/|coupling/|structure/elements\.|structure/structure_api\.'
 subset+='|boundaries/external_displacement\.|errors/|doc/parameters_up_to_date'
 subset+='|mpm/incline_slide_mu01\.debug$|boundaries/incline_rotated_30_mu01\.debug$'
-subset+='|structure/von_mises_truss\.debug$)'
+subset+='|structure/von_mises_truss\.debug$|coupled/block_on_string_rest\.debug$)'
 
 cd "$top/build-debug"
 jobs=$(nproc 2>/dev/null || echo 2)
