@@ -163,16 +163,7 @@ namespace Talus
                 dir, "grid", counter, comm, 5);
               grid_records.emplace_back(time, gname);
             }
-          if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
-            {
-              std::ofstream pvd(dir + "particles.pvd");
-              dealii::DataOutBase::write_pvd_record(pvd, particle_records);
-              if (write_grid)
-                {
-                  std::ofstream gpvd(dir + "grid.pvd");
-                  dealii::DataOutBase::write_pvd_record(gpvd, grid_records);
-                }
-            }
+          write_index(comm);
         }
       else
         {
