@@ -246,6 +246,15 @@ namespace Talus
                                 "', the coupling interface (its surface is "
                                 "the structure mesh '" +
                                 mesh + "')");
+          // the transfer needs a reaction per boundary particle
+          if (boundaries.boundary(b).material_point_contact)
+            InputFile::reject("Boundary particles",
+                              "contact side",
+                              "material points",
+                              "'boundary particles' for boundary '" + name +
+                                "', the coupling interface (with material-"
+                                "point contact the reactions belong to the "
+                                "points, not to the interface's particles)");
           if (std::find(boundary_ids.begin(), boundary_ids.end(), b) !=
               boundary_ids.end())
             InputFile::reject(section,
