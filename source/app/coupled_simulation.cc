@@ -97,6 +97,17 @@ namespace Talus
       "dissipation) over the run, relative to the largest released "
       "gravitational energy of the material, must not exceed it.");
     prm.declare_entry(
+      "expected largest structure displacement",
+      "0",
+      dealii::Patterns::Double(0.),
+      "If > 0: the largest nodal displacement |u| of the structure at the "
+      "end of the run [m] (e.g. the static sag under a block at rest from "
+      "a closed form), checked with 'structure displacement tolerance'.");
+    prm.declare_entry("structure displacement tolerance",
+                      "0.01",
+                      dealii::Patterns::Double(0.),
+                      "Largest |u_max - u_expected| / u_expected [-].");
+    prm.declare_entry(
       "conservation tolerance",
       "1e-10",
       dealii::Patterns::Double(0.),
@@ -213,6 +224,10 @@ namespace Talus
     const double balance_tolerance = prm.get_double("energy balance tolerance");
     const double conservation_tolerance =
       prm.get_double("conservation tolerance");
+    const double expected_displacement =
+      prm.get_double("expected largest structure displacement");
+    const double displacement_tolerance =
+      prm.get_double("structure displacement tolerance");
     prm.leave_subsection();
     prm.leave_subsection();
 
@@ -288,7 +303,8 @@ namespace Talus
       }
 
     const auto    wall_start       = std::chrono::steady_clock::now();
-    unsigned long total_iterations = 0, total_rejected = 0;
+    unsigned long total_iterations = 0, total_rejected = 0, total_restarts = 0;
+    double        max_u       = 0.; // the structure's largest nodal |u| [m]
     double        max_balance = 0., max_released = 0.;
     double        max_conservation = 0.;
     Coupling::CoupledStepResult<dim> result;
@@ -324,6 +340,7 @@ namespace Talus
         coupling.commit_step();
         time_control.accept(dt);
         total_iterations += result.iterations;
+        total_restarts += result.restarts;
 
         const auto lost = mpm.take_losses();
         if (lost.n_points > 0)
@@ -364,7 +381,7 @@ namespace Talus
           std::max(max_conservation,
                    std::abs(result.work_structure - result.work_points) /
                      scale);
-        double max_u = 0.;
+        max_u = 0.;
         for (unsigned int k = 0; k < S.n_nodes(); ++k)
           max_u =
             std::max(max_u,
@@ -409,8 +426,11 @@ namespace Talus
                       << " s  dt = " << std::setprecision(2) << dt
                       << " s  coupling " << result.iterations << "  |r| "
                       << result.status.residual << "  omega "
-                      << result.relaxation << "  Newton MPM "
-                      << result.mpm_newton << " structure "
+                      << result.relaxation
+                      << (result.restarts > 0 ?
+                            "  restarts " + std::to_string(result.restarts) :
+                            std::string())
+                      << "  Newton MPM " << result.mpm_newton << " structure "
                       << result.structure_newton
                       << "  F = " << result.interface_force << std::defaultfloat
                       << "  wall " << std::setprecision(3) << wall << " s\n";
@@ -422,7 +442,11 @@ namespace Talus
       static_cast<double>(total_iterations) / std::max(1u, time_control.step);
     pcout << "Done: " << time_control.step << " coupled steps ("
           << total_rejected << " rejected), " << std::setprecision(3)
-          << mean_iterations << " coupling iterations per step\n"
+          << mean_iterations << " coupling iterations per step"
+          << (total_restarts > 0 ? ", " + std::to_string(total_restarts) +
+                                     " safeguarded accelerator restarts" :
+                                   std::string())
+          << "\n"
           << std::setprecision(8)
           << "  interface force at the end: " << result.interface_force
           << " N\n"
@@ -462,6 +486,17 @@ namespace Talus
               << " (tolerance " << balance_tolerance << ")\n";
         if (!(relative <= balance_tolerance))
           failed.push_back("energy balance");
+      }
+    if (expected_displacement > 0.)
+      {
+        const double error =
+          std::abs(max_u - expected_displacement) / expected_displacement;
+        pcout << "  largest structure displacement " << std::setprecision(6)
+              << max_u << " m (expected " << expected_displacement
+              << " m, relative error " << std::setprecision(3) << error
+              << ", tolerance " << displacement_tolerance << ")\n";
+        if (!(error <= displacement_tolerance))
+          failed.push_back("structure displacement");
       }
     if (!(max_conservation <= conservation_tolerance))
       failed.push_back("interface conservation");

@@ -100,10 +100,29 @@ namespace Talus
       dealii::Vector<double> force;
       accelerator.start_window();
       criterion.start_window();
+      // the last iterate whose evaluation succeeded (for the safeguard)
+      dealii::Vector<double> good_x, good_x_tilde;
       while (true)
         {
           force.reinit(0);
-          fixed_point(result.x, result.x_tilde, force);
+          try
+            {
+              fixed_point(result.x, result.x_tilde, force);
+            }
+          catch (const EvaluationFailed &)
+            {
+              if (good_x.size() == 0 || result.restarts >= 2 ||
+                  result.iterations + 1 >= criterion.maximum_iterations())
+                throw;
+              ++result.restarts;
+              ++result.iterations;
+              accelerator.reset();
+              accelerator.start_window();
+              result.x = accelerator.compute_next(good_x, good_x_tilde);
+              continue;
+            }
+          good_x       = result.x;
+          good_x_tilde = result.x_tilde;
           ++result.iterations;
           IterationRecord record;
           record.status = criterion.check(result.x,

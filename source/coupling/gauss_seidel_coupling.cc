@@ -15,9 +15,9 @@ namespace Talus
     namespace
     {
       /** A field's Newton failed inside a coupling iteration. */
-      struct FieldFailed : std::runtime_error
+      struct FieldFailed : EvaluationFailed
       {
-        using std::runtime_error::runtime_error;
+        using EvaluationFailed::EvaluationFailed;
       };
     } // namespace
 
@@ -85,8 +85,7 @@ namespace Talus
     GaussSeidelCoupling<dim>::solve_step(const double t, const double dt)
     {
       CoupledStepResult<dim> result;
-      step_end                           = t + dt;
-      unsigned int           evaluations = 0;
+      step_end = t + dt;
       dealii::Vector<double> springs, last_x;
       structure.set_interface_springs(dealii::Vector<double>(),
                                       dealii::Vector<double>());
@@ -113,15 +112,20 @@ namespace Talus
           force                = interface.structure_forces(reactions,
                                              committed.size(),
                                              communicator);
-          // Robin springs, fixed for the window from its first MPM solve
-          if (evaluations == 0 && robin_stiffness(dt) > 0.)
+          // Robin springs where this MPM solve transmits force: a contact
+          // interface that opens in an iterate must not be held by them
+          // (with springs fixed from the first solve of the window, an
+          // iterate that pulls the structure away from the material sees
+          // x~ = x up to k/(K + k) and stalls: the rebound of a dropped
+          // block did not converge). At the fixed point x~ = x the springs
+          // carry no force, whatever they are.
+          if (robin_stiffness(dt) > 0.)
             {
               springs = interface.covered_area(reactions,
                                                committed.size(),
                                                communicator);
               springs *= robin_stiffness(dt);
             }
-          ++evaluations;
         }
         if (springs.size() > 0)
           structure.set_interface_springs(springs, x);
@@ -179,6 +183,7 @@ namespace Talus
                              std::function<double()>(defect) :
                              std::function<double()>());
           result.iterations = window.iterations;
+          result.restarts   = window.restarts;
           if (!window.history.empty())
             result.status = window.history.back().status;
           for (const auto &record : window.history)

@@ -246,15 +246,6 @@ namespace Talus
                                 "', the coupling interface (its surface is "
                                 "the structure mesh '" +
                                 mesh + "')");
-          // the transfer needs a reaction per boundary particle
-          if (boundaries.boundary(b).material_point_contact)
-            InputFile::reject("Boundary particles",
-                              "contact side",
-                              "material points",
-                              "'boundary particles' for boundary '" + name +
-                                "', the coupling interface (with material-"
-                                "point contact the reactions belong to the "
-                                "points, not to the interface's particles)");
           if (std::find(boundary_ids.begin(), boundary_ids.end(), b) !=
               boundary_ids.end())
             InputFile::reject(section,
@@ -456,7 +447,8 @@ namespace Talus
         {
           const auto it = point_of_particle.find(entry.first);
           if (it != point_of_particle.end())
-            covered[it->second] = entry.second.norm() > 0. ? 1. : 0.;
+            covered[it->second] =
+              std::max(covered[it->second], entry.second.norm() > 0. ? 1. : 0.);
         }
       dealii::Utilities::MPI::sum(covered, communicator, covered);
       std::vector<dealii::Tensor<1, dim>> w(transfer.n_points());

@@ -587,13 +587,18 @@ namespace Talus
                 local.push_back(props[BP::normal + d]);
               for (unsigned int d = 0; d < dim; ++d)
                 local.push_back(props[BP::reference_position + d]);
+              local.push_back(static_cast<double>(p.get_id()));
             }
-          std::vector<dealii::Point<dim>>     x_b, X_b;
-          std::vector<dealii::Tensor<1, dim>> n_b;
+          std::vector<dealii::Point<dim>>            x_b, X_b;
+          std::vector<dealii::Tensor<1, dim>>        n_b;
+          std::vector<dealii::types::particle_index> id_b;
           for (const auto &part :
                dealii::Utilities::MPI::all_gather(comm, local))
-            for (unsigned int k = 0; k + 3 * dim <= part.size(); k += 3 * dim)
+            for (unsigned int k = 0; k + 3 * dim + 1 <= part.size();
+                 k += 3 * dim + 1)
               {
+                id_b.push_back(static_cast<dealii::types::particle_index>(
+                  part[k + 3 * dim]));
                 dealii::Point<dim>     x, X;
                 dealii::Tensor<1, dim> n;
                 for (unsigned int d = 0; d < dim; ++d)
@@ -648,6 +653,17 @@ namespace Talus
                   for (unsigned int d = 0; d < dim; ++d)
                     g_t[d] = props[points.contact_gap_index(b) + d];
                   g_t -= (g_t * n) * n;
+                  // the surface's own increment in the step (a moving or
+                  // coupled boundary)
+                  dealii::Tensor<1, dim> du_bar;
+                  if (!initializing && desc.moving)
+                    du_bar =
+                      boundary_particles->prescribed_displacement(b,
+                                                                  X_b[j],
+                                                                  time) -
+                      boundary_particles->prescribed_displacement(b,
+                                                                  X_b[j],
+                                                                  time - dt);
                   // out of reach in this step: forget the stick spring
                   dealii::Tensor<1, dim> v;
                   for (unsigned int d = 0; d < dim; ++d)
@@ -655,7 +671,8 @@ namespace Talus
                   const double reach = initializing ?
                                          1e-6 * h :
                                          0.5 * h + 2. * dt * v.norm() +
-                                           dt * dt * gravity_vector.norm();
+                                           dt * dt * gravity_vector.norm() +
+                                           std::max(0., du_bar * n);
                   if (g0 > reach)
                     {
                       for (unsigned int d = 0; d < dim; ++d)
@@ -665,6 +682,7 @@ namespace Talus
                   BoundaryPoint bp;
                   bp.particle          = particle;
                   bp.on_material_point = true;
+                  bp.surface_particle  = id_b[j];
                   bp.boundary          = b;
                   bp.weight =
                     std::pow(props[MP::initial_volume], (dim - 1.) / dim);
@@ -675,16 +693,8 @@ namespace Talus
                   bp.damping_onset = 1e-2 * h;
                   bp.normal        = n;
                   bp.gap_old       = g0 * n + g_t;
-                  bp.du_bar        = 0.;
+                  bp.du_bar        = du_bar;
                   bp.a_bar         = 0.;
-                  if (!initializing && desc.moving)
-                    bp.du_bar =
-                      boundary_particles->prescribed_displacement(b,
-                                                                  X_b[j],
-                                                                  time) -
-                      boundary_particles->prescribed_displacement(b,
-                                                                  X_b[j],
-                                                                  time - dt);
                   if (initializing && desc.moving)
                     {
                       const double eps = 1e-4; // [s], as for the particles
@@ -1028,6 +1038,7 @@ namespace Talus
                         pc.reaction    = -bf.force;
                         pc.normal      = bp.normal;
                         pc.penetration = std::max(0., -(bf.gap * bp.normal));
+                        pc.surface_particle = bp.surface_particle;
                       }
                     point_contact_trial.push_back(pc);
                   }
@@ -1106,6 +1117,11 @@ namespace Talus
       r.reserve(boundary_trial.size());
       for (const auto &t : boundary_trial)
         r.emplace_back(t.particle->get_id(), t.reaction);
+      // material-point contact: each pressed point's reaction on the
+      // boundary particle it touches
+      for (const auto &pc : point_contact_trial)
+        if (pc.active)
+          r.emplace_back(pc.surface_particle, pc.reaction);
       return r;
     }
 

@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,17 @@ namespace Talus
     };
 
 
+    /**
+     * Thrown by a fixed-point operator whose evaluation failed (a field's
+     * Newton iteration did not converge for the interface displacement it
+     * was given); iterate_window() may retry from the last good iterate.
+     */
+    struct EvaluationFailed : std::runtime_error
+    {
+      using std::runtime_error::runtime_error;
+    };
+
+
     /** Outcome of iterate_window(). */
     struct WindowResult
     {
@@ -113,6 +125,12 @@ namespace Talus
       dealii::Vector<double> x_tilde;
 
       std::vector<IterationRecord> history;
+
+      /**
+       * Safeguarded restarts: evaluations at an accelerated iterate that
+       * failed and were replaced by a relaxed step from the last good one.
+       */
+      unsigned int restarts = 0;
     };
 
 
@@ -130,6 +148,15 @@ namespace Talus
      * @p strong false (weak scheme) the window is accepted after one
      * evaluation. A window that is not accepted leaves the accelerator as
      * it was after its last step: call reset() before repeating the step.
+     *
+     * Safeguard: when the evaluation at an accelerated iterate throws
+     * EvaluationFailed (the MPM's Newton fails because the accelerator
+     * extrapolated the interface into the material, typical when contact
+     * switches), the accelerator forgets what it learned (reset()) and
+     * the next iterate is its first, relaxed step from the last iterate
+     * that could be evaluated; at most 2 such restarts per window, then
+     * (or at the first iterate) the exception is passed on and the step
+     * is rejected.
      *
      * With @p equilibrium_defect (a Robin iteration: the structure was
      * solved with springs k (x̃ − x), so x̃ − x is small although the

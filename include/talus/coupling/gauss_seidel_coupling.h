@@ -37,6 +37,8 @@ namespace Talus
       double relaxation = 0.;
       /** Newton iterations summed over the coupling iterations. */
       unsigned int mpm_newton = 0, structure_newton = 0;
+      /** Safeguarded restarts of the accelerator (iterate_window()). */
+      unsigned int restarts = 0;
       /** The MPM's result of the last iteration (the accepted one). */
       MPM::NewtonResult mpm;
       /** Sum of the interface forces on the structure [N]. */

@@ -436,6 +436,13 @@ namespace Talus
          */
         bool on_material_point = false;
         /**
+         * Material-point contact: the id of the boundary particle whose
+         * tangent line (plane) the point touches; the point's reaction is
+         * booked on it (boundary_reactions(), for a coupling interface).
+         */
+        dealii::types::particle_index surface_particle =
+          dealii::numbers::invalid_unsigned_int;
+        /**
          * Material-point contact: the normal dashpot of the contact,
          * eta = 'contact damping', a force eta k (g - g_old) . n n added to
          * the spring's -k g while the point is pressed (0: none).
@@ -508,6 +515,8 @@ namespace Talus
         dealii::Tensor<1, dim>                            reaction;
         dealii::Tensor<1, dim>                            normal;
         double                                            penetration = 0.;
+        dealii::types::particle_index                     surface_particle =
+          dealii::numbers::invalid_unsigned_int;
       };
       std::vector<BoundaryParticleTrial> boundary_trial;
       std::vector<PointContactTrial>     point_contact_trial;
