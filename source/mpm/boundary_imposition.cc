@@ -1097,6 +1097,30 @@ namespace Talus
                                                      pc.normal,
                                                      pc.penetration);
         }
+      // material-point contact: the reactions booked on the boundary
+      // particles the points touch (boundary_reactions()), written into
+      // their `reaction` property wherever they live (their `state` stays
+      // 0: the boundary's resultant counts the points' records)
+      if (dealii::Utilities::MPI::logical_or(!point_contact_trial.empty(),
+                                             grid.mpi_communicator))
+        {
+          std::map<dealii::types::particle_index, dealii::Tensor<1, dim>>
+            booked;
+          for (const auto &part :
+               dealii::Utilities::MPI::all_gather(grid.mpi_communicator,
+                                                  point_contact_reactions()))
+            for (const auto &[id, f] : part)
+              booked[id] += f;
+          for (auto &p : boundary_particles->particle_handler())
+            {
+              const auto it = booked.find(p.get_id());
+              if (it == booked.end())
+                continue;
+              auto props = p.get_properties();
+              for (unsigned int d = 0; d < dim; ++d)
+                props[BP::reaction + d] = it->second[d];
+            }
+        }
       friction_dissipation += boundary_trial_work;
       boundary_trial.clear();
       point_contact_trial.clear();
@@ -1117,12 +1141,24 @@ namespace Talus
       r.reserve(boundary_trial.size());
       for (const auto &t : boundary_trial)
         r.emplace_back(t.particle->get_id(), t.reaction);
-      // material-point contact: each pressed point's reaction on the
-      // boundary particle it touches
+      const auto booked = point_contact_reactions();
+      r.insert(r.end(), booked.begin(), booked.end());
+      return r;
+    }
+
+
+    template <int dim>
+    std::vector<
+      std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>
+    MPMSolver<dim>::point_contact_reactions() const
+    {
+      // each pressed point's reaction on the boundary particle it touches,
+      // summed per particle over this rank's points
+      std::map<dealii::types::particle_index, dealii::Tensor<1, dim>> sum;
       for (const auto &pc : point_contact_trial)
         if (pc.active)
-          r.emplace_back(pc.surface_particle, pc.reaction);
-      return r;
+          sum[pc.surface_particle] += pc.reaction;
+      return {sum.begin(), sum.end()};
     }
 
 
@@ -1132,7 +1168,10 @@ namespace Talus
   template void MPMSolver<dim>::commit_boundary_trial();                       \
   template std::vector<                                                        \
     std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>          \
-                MPMSolver<dim>::boundary_reactions() const;                    \
+  MPMSolver<dim>::boundary_reactions() const;                                  \
+  template std::vector<                                                        \
+    std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>          \
+                MPMSolver<dim>::point_contact_reactions() const;               \
   template void MPMSolver<dim>::initial_acceleration_with_boundaries(          \
     dealii::TrilinosWrappers::MPI::Vector &a);                                 \
   template void MPMSolver<dim>::cache_boundary_particles();                    \

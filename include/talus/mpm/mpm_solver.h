@@ -248,7 +248,10 @@ namespace Talus
        * of the last solve_step() [N], the force each exerts on the
        * boundary (minus the force on the material), for the locally
        * owned boundary particles in cells with material, by particle
-       * index; particles not listed carry none. Trial state: available
+       * index; particles not listed carry none. With material-point
+       * contact the points' reactions, booked on the boundary particles
+       * they touch, which may live on another rank: a particle's reaction
+       * is the sum of its entries over the ranks. Trial state: available
        * after solve_step() and equal to the `reaction` property that
        * commit_step() then writes (the coupling sends them to the
        * structure before the step is committed).
@@ -256,6 +259,15 @@ namespace Talus
       std::vector<
         std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>
       boundary_reactions() const;
+
+      /**
+       * Material-point contact: the reactions of this rank's pressed
+       * points, summed per boundary particle they touch (that particle may
+       * live on another rank); part of boundary_reactions().
+       */
+      std::vector<
+        std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>
+      point_contact_reactions() const;
 
       /**
        * Keep a copy of what commit_step() changes in the solver: the
