@@ -86,6 +86,7 @@ namespace Talus
     {
       CoupledStepResult<dim> result;
       step_end = t + dt;
+      mpm.solver().set_warm_start(false);
       dealii::Vector<double> springs, last_x;
       structure.set_interface_springs(dealii::Vector<double>(),
                                       dealii::Vector<double>());
@@ -103,6 +104,9 @@ namespace Talus
           mpm.prepare_step(t + dt, dt);
           result.mpm = mpm.solve_step();
           result.mpm_newton += result.mpm.iterations;
+          // the next iteration of this window starts from this increment
+          mpm.solver().set_warm_start(parameters.warm_start &&
+                                      result.mpm.converged);
         }
         if (!result.mpm.converged)
           throw FieldFailed("the MPM did not converge: " + result.mpm.failure);

@@ -733,6 +733,8 @@ namespace Talus
       dealii::TimerOutput::Scope scope(timer, "solve (Newton)");
       Assert(prepared, dealii::ExcMessage("prepare_step() first"));
       const NewtonResult result = solve_increment();
+      if (result.converged)
+        last_increment = displacement;
       if (result.converged && boundary_particles != nullptr)
         evaluate_boundary_trial();
       return result;
@@ -750,10 +752,11 @@ namespace Talus
       displacement            = du;
       const double f_ext_norm = external_force.l2_norm();
       double       reference  = 0.;
+      const bool   warm = warm_start && last_increment.size() == du.size();
       const bool   newmark_predictor =
         predictor == "constant acceleration" ||
         (predictor == "automatic" && boundary_particles == nullptr);
-      if (newmark_predictor && !quasi_static)
+      if (warm || (newmark_predictor && !quasi_static))
         {
           // The reference of the convergence test stays the residual at
           // du = 0, as without the predictor.
@@ -777,7 +780,9 @@ namespace Talus
           // a_n are zero at the constrained ones (prepare_step()).
           for (const auto i : grid.locally_owned_dofs)
             if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
-              du(i) = dt * velocity_n(i) + 0.5 * dt * dt * acceleration_n(i);
+              du(i) = warm ?
+                        last_increment(i) :
+                        dt * velocity_n(i) + 0.5 * dt * dt * acceleration_n(i);
           du.compress(dealii::VectorOperation::insert);
           displacement = du;
         }

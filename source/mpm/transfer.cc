@@ -276,6 +276,8 @@ namespace Talus
     {
       dealii::TimerOutput::Scope scope(timer, "commit (G2P, move, sort)");
       Assert(solved, dealii::ExcMessage("solve_step() first"));
+      warm_start = false;
+      last_increment.clear();
       commit_friction_states();
       friction_dissipation += step_impact_dissipation;
       reset_dissipation += step_reset_dissipation;

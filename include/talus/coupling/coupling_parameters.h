@@ -81,6 +81,8 @@ namespace Talus
       bool   robin_elastic   = false; ///< add M / d ('automatic')
       double robin_stiffness = 0.;    ///< k_R [Pa/m] when not 'inertia'
       double robin_depth     = 4.;    ///< d [cells] for 'inertia'
+      /** The MPM's Newton of an iteration starts from the last increment. */
+      bool warm_start = false;
 
       Scheme                 scheme = Scheme::strong;
       Order                  order  = Order::MPM_first;

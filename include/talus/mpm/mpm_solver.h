@@ -261,6 +261,22 @@ namespace Talus
       boundary_reactions() const;
 
       /**
+       * Warm start for an outer iteration that repeats the step (the
+       * coupling's Dirichlet-Neumann iterations): with @p on, the next
+       * solve_step() starts Newton from the increment of the last
+       * converged solve_step() instead of zero (or the Newmark
+       * predictor), at the nodes that are free and carry mass; the
+       * convergence test keeps the residual at zero increment as its
+       * reference. Off by default and after commit_step(); the result
+       * agrees with a cold start to the Newton tolerance, not bitwise.
+       */
+      void
+      set_warm_start(const bool on)
+      {
+        warm_start = on;
+      }
+
+      /**
        * Material-point contact: the reactions of this rank's pressed
        * points, summed per boundary particle they touch (that particle may
        * live on another rank); part of boundary_reactions().
@@ -1036,6 +1052,9 @@ namespace Talus
       /** Set while initialize_acceleration() prepares its step. */
       bool initializing = false;
       bool solved;
+      /** set_warm_start(); the increment of the last converged solve. */
+      bool                                  warm_start = false;
+      dealii::TrilinosWrappers::MPI::Vector last_increment;
     };
   } // namespace MPM
 } // namespace Talus
