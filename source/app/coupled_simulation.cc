@@ -271,6 +271,9 @@ namespace Talus
       S.assemble(structure.displacement(), 1., r, nullptr);
       Energies e;
       e.mpm = d.kinetic_energy + d.strain_energy + d.gravitational_energy;
+      // the penalty springs of the boundaries (the interface's contact)
+      for (const auto &b : d.boundaries)
+        e.mpm += b.spring_energy;
       // the structure's own loads only: the interface force is internal
       // to the coupled system (load_potential() includes -F . u)
       e.structure = structure.kinetic_energy() + S.strain_energy() +

@@ -1169,6 +1169,8 @@ namespace Talus
           r[b].normal_force -= R * n;
           tangential[b] += R - (R * n) * n;
           r[b].penetration = std::max(r[b].penetration, -(g * n));
+          r[b].spring_energy +=
+            0.5 * boundaries[b].beta * props[Properties::weight] * (g * g);
           ++r[b].active;
         }
       for (unsigned int b = 0; b < point_contact.size() && b < r.size(); ++b)
@@ -1179,6 +1181,7 @@ namespace Talus
           r[b].penetration =
             std::max(r[b].penetration, point_contact[b].penetration);
           r[b].active += point_contact[b].active;
+          r[b].spring_energy += point_contact[b].spring_energy;
         }
       const MPI_Comm comm = grid.mpi_communicator;
       for (unsigned int b = 0; b < boundaries.size(); ++b)
@@ -1191,6 +1194,8 @@ namespace Talus
           r[b].penetration =
             dealii::Utilities::MPI::max(r[b].penetration, comm);
           r[b].active = dealii::Utilities::MPI::sum(r[b].active, comm);
+          r[b].spring_energy =
+            dealii::Utilities::MPI::sum(r[b].spring_energy, comm);
         }
       return r;
     }
@@ -1212,7 +1217,8 @@ namespace Talus
       const unsigned int            b,
       const dealii::Tensor<1, dim> &reaction,
       const dealii::Tensor<1, dim> &normal,
-      const double                  penetration)
+      const double                  penetration,
+      const double                  spring_energy)
     {
       if (point_contact.size() != boundaries.size())
         clear_point_contact();
@@ -1222,6 +1228,7 @@ namespace Talus
       point_contact_tangential[b] += reaction - (reaction * normal) * normal;
       point_contact[b].penetration =
         std::max(point_contact[b].penetration, penetration);
+      point_contact[b].spring_energy += spring_energy;
       ++point_contact[b].active;
     }
 

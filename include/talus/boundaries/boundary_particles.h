@@ -162,6 +162,12 @@ namespace Talus
       double                 tangential_force = 0.; ///< |sum R_t| [N]
       double                 penetration      = 0.; ///< max of -g . n [m]
       unsigned int           active           = 0;  ///< particles in contact
+      /**
+       * Elastic energy stored in the penalty springs of the pressed
+       * particles and points, sum of beta w |g|^2 / 2 over them [J] (part of
+       * the energy of the system: a penalty contact is a stiff spring).
+       */
+      double spring_energy = 0.;
 
       /** Read or write with a boost archive (checkpoints). */
       template <class Archive>
@@ -169,6 +175,7 @@ namespace Talus
       serialize(Archive &ar, const unsigned int /*version*/)
       {
         ar &force &normal_force &tangential_force &penetration &active;
+        ar                                                     &spring_energy;
       }
     };
 
@@ -377,13 +384,15 @@ namespace Talus
       /**
        * Record the force @p reaction [N] that one material point in contact
        * exerts on boundary @p b, the boundary's normal @p normal there and
-       * the point's penetration [m] (this rank; resultants() sums).
+       * the point's penetration [m] and the energy of its penalty spring
+       * [J] (this rank; resultants() sums).
        */
       void
       record_point_contact(const unsigned int            b,
                            const dealii::Tensor<1, dim> &reaction,
                            const dealii::Tensor<1, dim> &normal,
-                           const double                  penetration);
+                           const double                  penetration,
+                           const double                  spring_energy = 0.);
 
       /** Boundary particles that left the grid so far (this rank). */
       unsigned int
