@@ -11,6 +11,7 @@
 #include <talus/coupling/gauss_seidel_coupling.h>
 #include <talus/coupling/structure_interface.h>
 #include <talus/io/visualization_output.h>
+#include <talus/mpm/material_points.h>
 #include <talus/mpm/mpm_problem.h>
 #include <talus/structure/structure_problem.h>
 
@@ -68,6 +69,21 @@ namespace Talus
   {
     Coupling::CouplingParameters::declare_parameters(prm);
     prm.enter_subsection("Coupling");
+    prm.declare_entry(
+      "initial structure state",
+      "loaded",
+      dealii::Patterns::Selection("loaded|unloaded"),
+      "The structure's state at t = 0, where the material points start "
+      "stress-free and the boundary particles are made at the deformed "
+      "interface (the MPM sees the interface's motion from then on): "
+      "'loaded', in equilibrium under its pre-stress and its own loads "
+      "(gravity, point loads) before the coupling (a barrier that hangs "
+      "before the material arrives); 'unloaded', under its pre-stress only, "
+      "its own loads acting from the first coupled step on, together with "
+      "the MPM's gravity (one body split into two fields, e.g. "
+      "tests/coupled/split_cantilever: with 'loaded' the material would be "
+      "tied to the face as the structure's weight had already deformed "
+      "it).");
     prm.enter_subsection("Interface");
     Coupling::StructureInterface<dim>::declare_parameters(prm);
     prm.leave_subsection();
@@ -107,6 +123,34 @@ namespace Talus
                       "0.01",
                       dealii::Patterns::Double(0.),
                       "Largest |u_max - u_expected| / u_expected [-].");
+    prm.declare_entry(
+      "probe lower corner",
+      "",
+      dealii::Patterns::Anything(),
+      "Empty, or the lower corner of a box (one coordinate per space "
+      "dimension) [m]: the material points whose initial position lies in "
+      "the box between it and 'probe upper corner' form the probe, whose "
+      "mass-weighted mean displacement at the end of the run is printed "
+      "(e.g. the last column of grid cells of a cantilever: its mean "
+      "deflection).");
+    prm.declare_entry("probe upper corner",
+                      "",
+                      dealii::Patterns::Anything(),
+                      "Upper corner of the probe box [m] (with 'probe lower "
+                      "corner').");
+    prm.declare_entry(
+      "expected probe displacement",
+      "",
+      dealii::Patterns::Anything(),
+      "Empty, or the expected mean displacement of the probe at the end of "
+      "the run, one component per space dimension [m] (e.g. the same mean "
+      "of a monolithic solution): checked with 'probe displacement "
+      "tolerance'.");
+    prm.declare_entry("probe displacement tolerance",
+                      "1e-2",
+                      dealii::Patterns::Double(0.),
+                      "Largest |u - u_expected| / |u_expected| of the "
+                      "probe's mean displacement [-].");
     prm.declare_entry(
       "conservation tolerance",
       "1e-10",
@@ -165,9 +209,14 @@ namespace Talus
     IO::VisualizationOutput<dim> output;
     output.parse_parameters(prm);
 
-    // The structure, in equilibrium under its pre-stress and its loads.
+    // The structure, in equilibrium under its pre-stress and, 'loaded', its
+    // loads.
     const StructureModels::Parameters sp =
       StructureModels::parse_parameters(prm);
+    prm.enter_subsection("Coupling");
+    const bool loaded_initially =
+      prm.get("initial structure state") == "loaded";
+    prm.leave_subsection();
     if (sp.dynamic)
       {
         const auto probe = StructureModels::create_model(sp);
@@ -198,12 +247,15 @@ namespace Talus
         }
       model->before_load_steps(structure.get_structure(),
                                structure.get_static_solver());
-      const auto status = structure.solve_load_step(0., 1.);
-      if (!status.converged)
-        throw ExcSimulationFailed(
-          "the structure's equilibrium under its loads (before the "
-          "coupling) did not converge: " +
-          status.failure);
+      if (loaded_initially)
+        {
+          const auto status = structure.solve_load_step(0., 1.);
+          if (!status.converged)
+            throw ExcSimulationFailed(
+              "the structure's equilibrium under its loads (before the "
+              "coupling) did not converge: " +
+              status.failure);
+        }
       structure.initialize();
     }
 
@@ -228,13 +280,78 @@ namespace Talus
       prm.get_double("expected largest structure displacement");
     const double displacement_tolerance =
       prm.get_double("structure displacement tolerance");
+    const auto probe_lower = optional_vector<dim>(prm, "probe lower corner");
+    const auto probe_upper = optional_vector<dim>(prm, "probe upper corner");
+    const auto expected_probe =
+      optional_vector<dim>(prm, "expected probe displacement");
+    const double probe_tolerance =
+      prm.get_double("probe displacement tolerance");
+    const std::string probe_lower_text = prm.get("probe lower corner");
+    const std::string probe_upper_text = prm.get("probe upper corner");
+    const std::string expected_probe_text =
+      prm.get("expected probe displacement");
     prm.leave_subsection();
     prm.leave_subsection();
+    if (probe_lower.first != probe_upper.first)
+      InputFile::reject(verification_section,
+                        probe_lower.first ? "probe upper corner" :
+                                            "probe lower corner",
+                        "",
+                        "a value: both corners of the probe box or neither");
+    for (unsigned int d = 0; d < dim && probe_lower.first; ++d)
+      if (!(probe_lower.second[d] < probe_upper.second[d]))
+        InputFile::reject(verification_section,
+                          "probe upper corner",
+                          probe_upper_text,
+                          "larger than 'probe lower corner' in every "
+                          "coordinate");
+    if (expected_probe.first && !probe_lower.first)
+      InputFile::reject(verification_section,
+                        "expected probe displacement",
+                        expected_probe_text,
+                        "empty without a probe box ('probe lower corner', "
+                        "'probe upper corner')");
 
     interface.attach(structure.get_structure(), mpm.boundaries());
     mpm.setup();
     output.initialize(communicator);
     interface.setup(mpm.boundaries(), communicator);
+
+    // The probe: mass-weighted mean displacement of the material points
+    // that start in the probe box (collective), and their number.
+    const auto probe = [&]() {
+      using Properties = MPM::MaterialPointProperties<dim>;
+      dealii::Tensor<1, dim> mu;
+      double                 mass = 0., n = 0.;
+      for (const auto &p : mpm.points().particle_handler())
+        {
+          const auto         props = p.get_properties();
+          dealii::Point<dim> X;
+          for (unsigned int d = 0; d < dim; ++d)
+            X[d] = props[Properties::initial_position + d];
+          bool inside = true;
+          for (unsigned int d = 0; d < dim; ++d)
+            inside = inside && X[d] >= probe_lower.second[d] &&
+                     X[d] <= probe_upper.second[d];
+          if (!inside)
+            continue;
+          const double m = props[Properties::mass];
+          mu += m * (p.get_location() - X);
+          mass += m;
+          n += 1.;
+        }
+      mu   = dealii::Utilities::MPI::sum(mu, communicator);
+      mass = dealii::Utilities::MPI::sum(mass, communicator);
+      n    = dealii::Utilities::MPI::sum(n, communicator);
+      return std::make_pair(mass > 0. ? mu / mass : mu,
+                            static_cast<unsigned int>(n));
+    };
+    if (probe_lower.first && probe().second == 0)
+      InputFile::reject(verification_section,
+                        "probe lower corner",
+                        probe_lower_text,
+                        "a probe box that holds material points (this one, "
+                        "up to 'probe upper corner', holds none)");
 
     Coupling::GaussSeidelCoupling<dim> coupling(
       mpm, structure, interface, parameters, timer, communicator);
@@ -243,20 +360,22 @@ namespace Talus
           << dealii::Utilities::MPI::n_mpi_processes(communicator)
           << " MPI rank(s)\n";
     mpm.print_summary(pcout);
-    pcout
-      << "  structure: model '" << sp.model_text << "' ("
-      << model->description() << "), " << structure.get_structure().n_dofs()
-      << " DoFs, " << (structure.is_dynamic() ? "dynamic" : "static") << '\n'
-      << "  interface: mesh '" << interface.mesh_name() << "', "
-      << interface.n_points() << " boundary particles; "
-      << (parameters.scheme == Coupling::CouplingParameters::Scheme::strong ?
-            "strong" :
-            "weak")
-      << " coupling, "
-      << (parameters.order == Coupling::CouplingParameters::Order::MPM_first ?
-            "MPM first" :
-            "structure first")
-      << ", " << coupling.accelerator().name() << '\n';
+    pcout << "  structure: model '" << sp.model_text << "' ("
+          << model->description() << "), " << structure.get_structure().n_dofs()
+          << " DoFs, " << (structure.is_dynamic() ? "dynamic" : "static")
+          << (loaded_initially ? "" : ", unloaded at t = 0") << '\n'
+          << "  interface: mesh '" << interface.mesh_name() << "', "
+          << interface.n_points() << " boundary particles; "
+          << (parameters.scheme ==
+                  Coupling::CouplingParameters::Scheme::strong ?
+                "strong" :
+                "weak")
+          << " coupling, "
+          << (parameters.order ==
+                  Coupling::CouplingParameters::Order::MPM_first ?
+                "MPM first" :
+                "structure first")
+          << ", " << coupling.accelerator().name() << '\n';
 
     coupling.initialize(0.);
 
@@ -479,6 +598,21 @@ namespace Talus
               << force_tolerance << ")\n";
         if (!(error <= force_tolerance))
           failed.push_back("interface force");
+      }
+    if (probe_lower.first)
+      {
+        const auto [u, n] = probe();
+        pcout << "  probe: mean displacement of " << n << " material points "
+              << std::setprecision(6) << u << " m\n";
+        if (expected_probe.first)
+          {
+            const double error = (u - expected_probe.second).norm() /
+                                 std::max(expected_probe.second.norm(), 1e-300);
+            pcout << "  probe displacement error " << std::setprecision(3)
+                  << error << " (tolerance " << probe_tolerance << ")\n";
+            if (!(error <= probe_tolerance))
+              failed.push_back("probe displacement");
+          }
       }
     if (max_mean_iterations > 0. && mean_iterations > max_mean_iterations)
       failed.push_back("mean coupling iterations");

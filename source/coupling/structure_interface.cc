@@ -11,6 +11,7 @@
 #include <deal.II/fe/fe_q.h>
 
 #include <algorithm>
+#include <set>
 #include <sstream>
 #include <tuple>
 
@@ -52,6 +53,14 @@ namespace Talus
         "of the MPM boundaries with 'geometry = external' that the "
         "interface mesh becomes; two of them (one with 'flip normals') let "
         "the material hit both faces of a net.");
+      prm.declare_entry(
+        "structure boundary ids",
+        "",
+        dealii::Patterns::List(dealii::Patterns::Integer(0, 255)),
+        "Only for a continuum solid as 'structure mesh': the boundary ids of "
+        "its faces that form the interface (a generated box has ids 0 to 5 "
+        "on x_min, x_max, y_min, y_max, z_min, z_max, a plane rectangle 0 "
+        "to 3); empty: its whole boundary.");
     }
 
 
@@ -65,6 +74,12 @@ namespace Talus
            dealii::Utilities::split_string_list(prm.get("boundaries")))
         if (!name.empty())
           boundary_names.push_back(name);
+      structure_boundary_ids.clear();
+      for (const auto &id : dealii::Utilities::split_string_list(
+             prm.get("structure boundary ids")))
+        if (!id.empty())
+          structure_boundary_ids.insert(static_cast<dealii::types::boundary_id>(
+            dealii::Utilities::string_to_int(id)));
       if (mesh.empty())
         InputFile::reject(section,
                           "structure mesh",
@@ -125,11 +140,20 @@ namespace Talus
           }
         found = true;
       };
+      const auto reject_ids = [&](const std::string &what) {
+        if (!structure_boundary_ids.empty())
+          InputFile::reject(section,
+                            "structure boundary ids",
+                            ids_text(),
+                            "empty: the interface mesh <" + mesh + "> is " +
+                              what + ", not a continuum solid");
+      };
       for (const auto &m : structure.line_meshes)
         {
           names.push_back(m->name);
           if (m->name == mesh)
             {
+              reject_ids("a line mesh");
               if constexpr (dim == 2)
                 take(m->triangulation);
               else
@@ -146,6 +170,7 @@ namespace Talus
           names.push_back(m->name);
           if (m->name == mesh)
             {
+              reject_ids("a membrane");
               if constexpr (dim == 3)
                 take(m->triangulation);
               else
@@ -171,10 +196,38 @@ namespace Talus
                               std::to_string(dim) + "D");
         else
           {
-            // its boundary faces, as a mesh of their own
+            // the transfer's FE_Q(1) surface has DoFs at the vertices only
+            if (m.fe->degree != 1)
+              InputFile::reject("Structure/Solid",
+                                "degree",
+                                std::to_string(m.fe->degree),
+                                "1 for the solid <" + mesh +
+                                  ">, the coupling interface (the interface "
+                                  "transfer is linear between the vertices "
+                                  "of the solid's faces)");
+            // its boundary faces (those with the listed ids), as a mesh of
+            // their own
+            std::set<dealii::types::boundary_id> present;
+            for (const auto &face : m.triangulation.active_face_iterators())
+              if (face->at_boundary())
+                present.insert(face->boundary_id());
+            for (const auto id : structure_boundary_ids)
+              if (present.count(id) == 0)
+                {
+                  std::string list;
+                  for (const auto p : present)
+                    list += (list.empty() ? "" : ", ") + std::to_string(p);
+                  InputFile::reject(section,
+                                    "structure boundary ids",
+                                    ids_text(),
+                                    "boundary ids of faces of the solid <" +
+                                      mesh + "> (it has: " + list +
+                                      "); there is no face with id " +
+                                      std::to_string(id));
+                }
             dealii::Triangulation<dim - 1, 3> boundary;
-            dealii::GridGenerator::extract_boundary_mesh(m.triangulation,
-                                                         boundary);
+            dealii::GridGenerator::extract_boundary_mesh(
+              m.triangulation, boundary, structure_boundary_ids);
             take(boundary);
           }
       };
@@ -471,6 +524,17 @@ namespace Talus
            ++p)
         points += u[p] * last_point_forces[p];
       return {U * F, points};
+    }
+
+
+    template <int dim>
+    std::string
+    StructureInterface<dim>::ids_text() const
+    {
+      std::string text;
+      for (const auto id : structure_boundary_ids)
+        text += (text.empty() ? "" : ", ") + std::to_string(id);
+      return text;
     }
 
 

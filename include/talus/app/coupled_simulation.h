@@ -20,7 +20,14 @@ namespace Talus
    * residual, relaxation, Newton iterations of both fields, interface
    * force and work, energies of both fields) and the points and the
    * structure for visualization, and checks subsection
-   * `Coupling/Verification`.
+   * `Coupling/Verification` (interface force, mean iterations, energy
+   * balance, conservation, and the probe: the mass-weighted mean
+   * displacement of the material points that start in a box). With
+   * `Coupling/initial structure state = unloaded` the structure starts
+   * under its pre-stress only and takes its own loads in the first step
+   * together with the MPM (one body split into two fields, as
+   * tests/coupled/split_cantilever); `loaded` (default) solves its
+   * equilibrium under them before the coupling.
    */
   template <int dim>
   class CoupledSimulation

@@ -21,6 +21,7 @@
 
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,8 @@ namespace Talus
      * The interface between the barrier structure and the MPM (founding
      * paper, section 4; deal.II step-70): one mesh of the structure (a
      * membrane's Triangulation<2,3> in 3D, a string's line mesh in the
-     * plane z = 0 in 2D, or the boundary of a continuum solid) becomes the
+     * plane z = 0 in 2D, or the boundary of a continuum solid, all of it or
+     * its faces of `structure boundary ids`, of degree 1) becomes the
      * surface of one or more MPM boundaries with `geometry = external`,
      * whose boundary particles are the Gauss points of that surface.
      *
@@ -68,8 +70,9 @@ namespace Talus
     class StructureInterface
     {
     public:
-      /** Declare `structure mesh` and `boundaries` in the current
-       * subsection (the coupling enters `Coupling/Interface`). */
+      /** Declare `structure mesh`, `boundaries` and `structure boundary
+       * ids` in the current subsection (the coupling enters
+       * `Coupling/Interface`). */
       static void
       declare_parameters(dealii::ParameterHandler &prm);
 
@@ -191,6 +194,13 @@ namespace Talus
       std::string               mesh;
       std::vector<std::string>  boundary_names;
       std::vector<unsigned int> boundary_ids;
+      /** `structure boundary ids`: the faces of a solid that form the
+       * interface (empty: its whole boundary). */
+      std::set<dealii::types::boundary_id> structure_boundary_ids;
+
+      /** `structure boundary ids` as a comma-separated list. */
+      std::string
+      ids_text() const;
 
       /** The interface surface in the MPM's space. */
       dealii::Triangulation<dim - 1, dim> surface;

@@ -214,14 +214,35 @@ namespace Talus
                 p.point_load[(c + 2) % 3] == 0.))
             InputFile::reject(ls, "point load", point_load_text, what);
         };
-      require_load_along(p.model == "cantilever" && !p.plane_solid,
-                         2,
-                         "the cantilever needs an end load 0, 0, P with "
-                         "P != 0");
-      require_load_along(p.model == "cantilever" && p.plane_solid,
-                         1,
-                         "the plane cantilever lies in the x-y plane and "
-                         "needs an end load 0, P, 0 with P != 0");
+      // The cantilever: an end load and / or its weight, both along its
+      // height (z, or y for the plane cantilever).
+      if (p.model == "cantilever")
+        {
+          const unsigned int c     = p.plane_solid ? 1 : 2;
+          const auto         along = [c](const Tensor<1, 3> &v) {
+            return v[(c + 1) % 3] == 0. && v[(c + 2) % 3] == 0.;
+          };
+          const std::string axis = p.plane_solid ? "0, P, 0" : "0, 0, P";
+          if (!along(p.point_load) ||
+              (p.point_load[c] == 0. && p.gravity[c] == 0.))
+            InputFile::reject(ls,
+                              "point load",
+                              point_load_text,
+                              std::string(p.plane_solid ?
+                                            "the plane cantilever lies in "
+                                            "the x-y plane and needs" :
+                                            "the cantilever needs") +
+                                " an end load " + axis +
+                                " with P != 0 (or P = 0 and a weight, "
+                                "'gravity' along the height)");
+          if (!along(p.gravity))
+            InputFile::reject(ls,
+                              "gravity",
+                              gravity_text,
+                              std::string("the cantilever's weight acts "
+                                          "along its height: gravity ") +
+                                (p.plane_solid ? "0, g, 0" : "0, 0, g"));
+        }
       require_load_along(p.model == "plastic bar",
                          0,
                          "the plastic bar needs an end load F, 0, 0 with "
@@ -357,7 +378,8 @@ namespace Talus
         "'solid' (a continuum solid of subsection Solid with its supports, "
         "traction and gravity), 'cantilever' (the box of subsection Solid "
         "clamped at x_min, end load 'point load' (0, 0, P) as a shear "
-        "traction on x_max: Timoshenko's tip deflection), 'hanging block' "
+        "traction on x_max and / or its weight, 'gravity' (0, 0, g): "
+        "Timoshenko's tip deflection), 'hanging block' "
         "(the box hanging under gravity on a vertical cable of 'cable "
         "length' tied to the centre of its top face: cable force and "
         "stretch by hand), 'axial bar' (the box on its symmetry planes "

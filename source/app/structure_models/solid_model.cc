@@ -64,6 +64,50 @@ namespace Talus
               const unsigned int);
 
 
+    template <int dim>
+    double
+    region_mean(const Talus::Structure::SolidMeshT<dim> &mesh,
+                const Vector<double>                    &u,
+                const double                             x_min,
+                const unsigned int                       c)
+    {
+      const QGauss<dim>                quadrature(mesh.fe->degree + 1);
+      FEValues<dim, 3>                 fe_values(*mesh.fe,
+                                 quadrature,
+                                 update_values | update_JxW_values);
+      const FEValuesExtractors::Scalar uc(c);
+      Vector<double>                   local(mesh.dof_handler.n_dofs());
+      for (unsigned int i = 0; i < local.size(); ++i)
+        local[i] = u[mesh.offset + i];
+      std::vector<double> values(quadrature.size());
+      double              integral = 0., volume = 0.;
+      for (const auto &cell : mesh.dof_handler.active_cell_iterators())
+        if (cell->center()[0] > x_min)
+          {
+            fe_values.reinit(cell);
+            fe_values[uc].get_function_values(local, values);
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                integral += values[q] * fe_values.JxW(q);
+                volume += fe_values.JxW(q);
+              }
+          }
+      return volume > 0. ? integral / volume : 0.;
+    }
+
+
+    template double
+    region_mean(const Talus::Structure::SolidMeshT<2> &,
+                const Vector<double> &,
+                const double,
+                const unsigned int);
+    template double
+    region_mean(const Talus::Structure::SolidMeshT<3> &,
+                const Vector<double> &,
+                const double,
+                const unsigned int);
+
+
     std::unique_ptr<Model>
     create_solid_model(const Parameters &p)
     {

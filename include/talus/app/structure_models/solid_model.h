@@ -27,6 +27,20 @@ namespace Talus
               const unsigned int                       c);
 
 
+    /**
+     * Mean of displacement component @p c of solid mesh @p mesh over its
+     * cells whose centre lies at x > @p x_min, int u_c dV0 / V0 [m] (the
+     * mean a coupled run measures on the material points of a region).
+     * Instantiated for dim = 2, 3.
+     */
+    template <int dim>
+    double
+    region_mean(const Talus::Structure::SolidMeshT<dim> &mesh,
+                const dealii::Vector<double>            &u,
+                const double                             x_min,
+                const unsigned int                       c);
+
+
     // ------------------------------------------------------------------
     /**
      * A continuum solid alone (subsection Solid): generated box or Gmsh
