@@ -230,7 +230,13 @@ namespace Talus
         return parameters.robin_stiffness;
       const double h = mpm.grid().minimal_cell_diameter / std::sqrt(1. * dim);
       const double d = parameters.robin_depth * h;
-      return mpm.density() * d * mpm.time_integrator().mass_factor(dt) +
+      // no inertia in a quasi-static MPM (rho d / (beta dt^2) would be
+      // 1.6e11 Pa/m at dt = 1e-3 s for no physical reason)
+      const double inertia =
+        mpm.solver().is_quasi_static() ?
+          0. :
+          mpm.density() * d * mpm.time_integrator().mass_factor(dt);
+      return inertia +
              (parameters.robin_elastic ? mpm.model().p_wave_modulus() / d : 0.);
     }
 

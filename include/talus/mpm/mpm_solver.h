@@ -260,6 +260,13 @@ namespace Talus
         std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>
       boundary_reactions() const;
 
+      /** Whether the MPM solves for equilibrium without inertia. */
+      bool
+      is_quasi_static() const
+      {
+        return quasi_static;
+      }
+
       /**
        * Warm start for an outer iteration that repeats the step (the
        * coupling's Dirichlet-Neumann iterations): with @p on, the next
