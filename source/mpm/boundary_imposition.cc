@@ -1039,6 +1039,8 @@ namespace Talus
                         pc.normal      = bp.normal;
                         pc.penetration = std::max(0., -(bf.gap * bp.normal));
                         pc.surface_particle = bp.surface_particle;
+                        pc.spring_energy =
+                          0.5 * bp.beta * bp.weight * (bf.gap * bf.gap);
                       }
                     point_contact_trial.push_back(pc);
                   }
@@ -1095,7 +1097,8 @@ namespace Talus
             boundary_particles->record_point_contact(pc.boundary,
                                                      pc.reaction,
                                                      pc.normal,
-                                                     pc.penetration);
+                                                     pc.penetration,
+                                                     pc.spring_energy);
         }
       // material-point contact: the reactions booked on the boundary
       // particles the points touch (boundary_reactions()), written into

@@ -550,7 +550,9 @@ namespace Talus
         dealii::Tensor<1, dim>                            reaction;
         dealii::Tensor<1, dim>                            normal;
         double                                            penetration = 0.;
-        dealii::types::particle_index                     surface_particle =
+        /** beta w |g|^2 / 2 of the point's penalty spring [J]. */
+        double                        spring_energy = 0.;
+        dealii::types::particle_index surface_particle =
           dealii::numbers::invalid_unsigned_int;
       };
       std::vector<BoundaryParticleTrial> boundary_trial;

@@ -19,6 +19,19 @@ namespace Talus
      * faces with boundary id @p id, int u_c dA0 / A0 (the work-conjugate
      * of a uniform traction along c) [m].
      */
+    /** The DoF values of @p mesh out of the structure's vector @p u. */
+    template <int dim>
+    Vector<double>
+    mesh_dofs(const Talus::Structure::SolidMeshT<dim> &mesh,
+              const Vector<double>                    &u)
+    {
+      Vector<double> local(mesh.dof_handler.n_dofs());
+      for (unsigned int i = 0; i < local.size(); ++i)
+        local[i] = u[mesh.offset + i];
+      return local;
+    }
+
+
     template <int dim>
     double
     face_mean(const Talus::Structure::SolidMeshT<dim> &mesh,
@@ -31,11 +44,9 @@ namespace Talus
                                           quadrature,
                                           update_values | update_JxW_values);
       const FEValuesExtractors::Scalar uc(c);
-      Vector<double>                   local(mesh.dof_handler.n_dofs());
-      for (unsigned int i = 0; i < local.size(); ++i)
-        local[i] = u[mesh.offset + i];
-      std::vector<double> values(quadrature.size());
-      double              integral = 0., area = 0.;
+      const Vector<double>             local = mesh_dofs(mesh, u);
+      std::vector<double>              values(quadrature.size());
+      double                           integral = 0., area = 0.;
       for (const auto &cell : mesh.dof_handler.active_cell_iterators())
         for (const unsigned int f : cell->face_indices())
           if (cell->at_boundary(f) && cell->face(f)->boundary_id() == id)
@@ -76,11 +87,9 @@ namespace Talus
                                  quadrature,
                                  update_values | update_JxW_values);
       const FEValuesExtractors::Scalar uc(c);
-      Vector<double>                   local(mesh.dof_handler.n_dofs());
-      for (unsigned int i = 0; i < local.size(); ++i)
-        local[i] = u[mesh.offset + i];
-      std::vector<double> values(quadrature.size());
-      double              integral = 0., volume = 0.;
+      const Vector<double>             local = mesh_dofs(mesh, u);
+      std::vector<double>              values(quadrature.size());
+      double                           integral = 0., volume = 0.;
       for (const auto &cell : mesh.dof_handler.active_cell_iterators())
         if (cell->center()[0] > x_min)
           {
