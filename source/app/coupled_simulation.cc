@@ -2,6 +2,7 @@
 // (set problem = coupled).
 
 #include <talus/app/coupled_simulation.h>
+#include <talus/app/run_console.h>
 #include <talus/app/simulation.h>
 #include <talus/app/structure_models/factory.h>
 #include <talus/app/structure_models/model.h>
@@ -178,16 +179,11 @@ namespace Talus
   int
   CoupledSimulation<dim>::run(dealii::ParameterHandler &prm)
   {
-    const bool root =
-      dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
-    prm.enter_subsection("Output");
-    const bool test_mode = prm.get_bool("test mode");
-    prm.leave_subsection();
-    dealii::ConditionalOStream pcout(std::cout, root);
-    dealii::TimerOutput        timer(pcout,
-                              test_mode ? dealii::TimerOutput::never :
-                                                 dealii::TimerOutput::summary,
-                              dealii::TimerOutput::wall_times);
+    RunConsole                  console(prm, communicator);
+    const bool                  root      = console.root;
+    const bool                  test_mode = console.test_mode;
+    dealii::ConditionalOStream &pcout     = console.pcout;
+    dealii::TimerOutput        &timer     = console.timer;
 
     // Checkpoints cover the MPM problem only so far: refuse rather than
     // ignore them.

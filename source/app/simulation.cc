@@ -1,3 +1,4 @@
+#include <talus/app/run_console.h>
 #include <talus/app/simulation.h>
 #include <talus/base/input.h>
 #include <talus/base/parsed_functions.h>
@@ -332,19 +333,11 @@ namespace Talus
                        const unsigned int        refinement)
   {
     using Properties = MPM::MaterialPointProperties<dim>;
-    const bool root =
-      dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
-
-    prm.enter_subsection("Output");
-    const bool test_mode = prm.get_bool("test mode");
-    prm.leave_subsection();
-    dealii::ConditionalOStream pcout(std::cout, root);
-    // Rank 0's wall times (no MPI in the destructor, so an error does not
-    // print TimerOutput's warning about skipped communication).
-    dealii::TimerOutput timer(pcout,
-                              test_mode ? dealii::TimerOutput::never :
-                                          dealii::TimerOutput::summary,
-                              dealii::TimerOutput::wall_times);
+    RunConsole                  console(prm, communicator);
+    const bool                  root      = console.root;
+    const bool                  test_mode = console.test_mode;
+    dealii::ConditionalOStream &pcout     = console.pcout;
+    dealii::TimerOutput        &timer     = console.timer;
 
     // Build everything from the file.
     TimeControl time_control;
