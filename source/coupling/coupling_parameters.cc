@@ -36,7 +36,7 @@ namespace Talus
           "'inertia' (rho d / (beta dt^2): the inertia of a layer of "
           "material of depth d = 'Robin depth' cells behind the interface) "
           "or 'automatic' (that inertia plus the layer's stiffness M / d, M "
-          "the p-wave modulus). Without it a heavy material on a light "
+          "the p-wave modulus; no inertia term with a quasi-static MPM). Without it a heavy material on a light "
           "barrier makes the iteration diverge or need many iterations.");
         prm.declare_entry("Robin depth",
                           "4",
