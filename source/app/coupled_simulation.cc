@@ -153,6 +153,13 @@ namespace Talus
                       "Largest |u - u_expected| / |u_expected| of the "
                       "probe's mean displacement [-].");
     prm.declare_entry(
+      "maximum final kinetic energy",
+      "0",
+      dealii::Patterns::Double(0.),
+      "If > 0: the run must end at rest: the kinetic energy of both fields "
+      "at the end, relative to the largest released gravitational energy "
+      "of the material, must not exceed it [-].");
+    prm.declare_entry(
       "conservation tolerance",
       "1e-10",
       dealii::Patterns::Double(0.),
@@ -270,6 +277,8 @@ namespace Talus
     const double max_mean_iterations =
       prm.get_double("maximum mean coupling iterations");
     const double balance_tolerance = prm.get_double("energy balance tolerance");
+    const double max_final_kinetic =
+      prm.get_double("maximum final kinetic energy");
     const double conservation_tolerance =
       prm.get_double("conservation tolerance");
     const double expected_displacement =
@@ -395,7 +404,8 @@ namespace Talus
                     S.load_potential(structure.displacement(), 1.) +
                     S.external_forces * structure.displacement();
       e.dissipation = d.plastic_dissipation + d.friction_dissipation +
-                      d.reset_dissipation + d.transfer_dissipation;
+                      d.reset_dissipation + d.transfer_dissipation +
+                      structure.dissipated_energy();
       return e;
     };
     const auto   initial_diagnostics = mpm.diagnostics();
@@ -425,6 +435,8 @@ namespace Talus
     double        max_u       = 0.; // the structure's largest nodal |u| [m]
     double        max_balance = 0., max_released = 0.;
     double        max_conservation = 0.;
+    double        final_kinetic    = 0.; // both fields, at the end [J]
+    double        final_mass       = initial_diagnostics.mass;
     Coupling::CoupledStepResult<dim> result;
     while (!time_control.finished())
       {
@@ -483,8 +495,10 @@ namespace Talus
                   << "' left the background grid at t = " << time_control.time
                   << " s and no longer act.\n";
 
-        const auto   diagnostics = mpm.diagnostics();
-        const auto   e           = energies(diagnostics);
+        const auto diagnostics = mpm.diagnostics();
+        const auto e           = energies(diagnostics);
+        final_kinetic = diagnostics.kinetic_energy + structure.kinetic_energy();
+        final_mass    = diagnostics.mass;
         const double change =
           e.mpm + e.structure + e.dissipation - initial_total;
         max_balance = std::max(max_balance, std::abs(change));
@@ -576,6 +590,15 @@ namespace Talus
           << (max_conservation < 1e-12 ? std::string("< 1e-12") :
                                          std::to_string(max_conservation))
           << '\n';
+    {
+      // mass of the material points: exact unless points left the grid
+      const double change = std::abs(final_mass - initial_diagnostics.mass) /
+                            std::max(initial_diagnostics.mass, 1e-300);
+      pcout << "  mass of the material points: relative change "
+            << (change < 1e-14 ? std::string("< 1e-14") :
+                                 std::to_string(change))
+            << '\n';
+    }
 
     if (std::getenv("TALUS_DEBUG_COUPLING") && root)
       for (unsigned int k = 0; k < S.n_nodes(); ++k)
@@ -630,6 +653,15 @@ namespace Talus
               << ", tolerance " << displacement_tolerance << ")\n";
         if (!(error <= displacement_tolerance))
           failed.push_back("structure displacement");
+      }
+    if (max_final_kinetic > 0.)
+      {
+        const double relative = final_kinetic / std::max(max_released, 1e-300);
+        pcout << "  kinetic energy at the end / released = "
+              << std::setprecision(3) << relative << " (at most "
+              << max_final_kinetic << ")\n";
+        if (!(relative <= max_final_kinetic))
+          failed.push_back("rest at the end");
       }
     if (!(max_conservation <= conservation_tolerance))
       failed.push_back("interface conservation");

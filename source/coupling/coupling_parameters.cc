@@ -36,8 +36,12 @@ namespace Talus
           "'inertia' (rho d / (beta dt^2): the inertia of a layer of "
           "material of depth d = 'Robin depth' cells behind the interface) "
           "or 'automatic' (that inertia plus the layer's stiffness M / d, M "
-          "the p-wave modulus; no inertia term with a quasi-static MPM). Without it a heavy material on a light "
-          "barrier makes the iteration diverge or need many iterations.");
+          "the p-wave modulus; no inertia term with a quasi-static MPM), "
+          "both in series with the interface boundaries' penalty beta when "
+          "they impose the condition by a penalty alone (k = 1/(1/k_layer "
+          "+ 1/beta): a soft contact penalty is the softest part of the "
+          "material side). Without it a heavy material on a light barrier "
+          "makes the iteration diverge or need many iterations.");
         prm.declare_entry("Robin depth",
                           "4",
                           dealii::Patterns::Double(0.),

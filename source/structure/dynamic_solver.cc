@@ -101,6 +101,8 @@ namespace Talus
       const unsigned int n = structure.n_dofs();
       velocity.reinit(n);
       acceleration.reinit(n);
+      damping_force.reinit(n);
+      damping_work = 0.;
       dealii::Vector<double> r;
       structure.assemble(newton.displacement, 1., r, nullptr);
       const auto &M = structure.lumped_mass();
@@ -142,6 +144,7 @@ namespace Talus
       dt_last                        = dt;
       a_trial.reinit(n);
       v_trial.reinit(n);
+      damping_trial.reinit(n);
 
       const auto extra = [&](const dealii::Vector<double> &u,
                              dealii::Vector<double>       &r,
@@ -165,6 +168,18 @@ namespace Talus
           w[i] = (1. - alpha) * a_trial[i] + alpha * acceleration[i] +
                  mass_damping * v_trial[i];
         mass_vmult(Mw, w);
+        if (mass_damping > 0. || stiffness_damping > 0.)
+          {
+            dealii::Vector<double> Mv(n);
+            if (mass_damping > 0.)
+              mass_vmult(Mv, v_trial);
+            for (unsigned int i = 0; i < n; ++i)
+              damping_trial[i] =
+                constraints.is_constrained(i) ?
+                  0. :
+                  mass_damping * Mv[i] +
+                    (stiffness_damping > 0. ? stiffness_damping * Kv[i] : 0.);
+          }
         const double mass_factor =
           (1. - alpha) / (beta * dt * dt) + mass_damping * gamma / (beta * dt);
         for (unsigned int i = 0; i < n; ++i)
@@ -213,8 +228,14 @@ namespace Talus
     DynamicSolver::commit_step()
     {
       structure.commit_state();
-      velocity     = v_trial;
-      acceleration = a_trial;
+      if (damping_force.size() != damping_trial.size())
+        damping_force.reinit(damping_trial.size());
+      for (unsigned int i = 0; i < damping_trial.size(); ++i)
+        damping_work += (newton.displacement[i] - u_n[i]) * 0.5 *
+                        (damping_force[i] + damping_trial[i]);
+      damping_force = damping_trial;
+      velocity      = v_trial;
+      acceleration  = a_trial;
       for (unsigned int i = 0; i < velocity.size(); ++i)
         if (structure.get_constraints().is_constrained(i))
           velocity[i] = acceleration[i] = 0.;

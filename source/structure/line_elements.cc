@@ -91,6 +91,35 @@ namespace Talus
     }
 
 
+    double
+    LineElement::dissipated_energy(const dealii::Tensor<1, 3> &,
+                                   const dealii::Tensor<1, 3> &,
+                                   const LineState &) const
+    {
+      return 0.;
+    }
+
+
+    double
+    Truss::dissipated_energy(const dealii::Tensor<1, 3> &X0,
+                             const dealii::Tensor<1, 3> &X1,
+                             const LineState            &state) const
+    {
+      const double alpha = state.accumulated;
+      return area * (X1 - X0).norm() *
+             (yield_stress * alpha + 0.5 * hardening * alpha * alpha);
+    }
+
+
+    double
+    Brake::dissipated_energy(const dealii::Tensor<1, 3> &,
+                             const dealii::Tensor<1, 3> &,
+                             const LineState &state) const
+    {
+      return state.accumulated;
+    }
+
+
     void
     Truss::compute(const dealii::Tensor<1, 3> &X0,
                    const dealii::Tensor<1, 3> &X1,

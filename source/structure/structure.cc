@@ -1288,6 +1288,25 @@ namespace Talus
     }
 
 
+    double
+    Structure::dissipated_energy() const
+    {
+      double D = 0.;
+      for (const auto &mesh : line_meshes)
+        if (mesh->element && !mesh->sliding_cable)
+          for (const auto &cell : mesh->dof_handler.active_cell_iterators())
+            {
+              dealii::Tensor<1, 3> X[2];
+              for (unsigned int v = 0; v < 2; ++v)
+                for (unsigned int c = 0; c < 3; ++c)
+                  X[v][c] = cell->vertex(v)[c];
+              D += mesh->element->dissipated_energy(
+                X[0], X[1], mesh->state[cell->active_cell_index()]);
+            }
+      return D;
+    }
+
+
     const dealii::Vector<double> &
     Structure::lumped_mass() const
     {

@@ -53,6 +53,7 @@ namespace Talus
         {
           dynamic_solver.velocity.reinit(structure.n_dofs());
           dynamic_solver.acceleration.reinit(structure.n_dofs());
+          dynamic_solver.damping_force.reinit(structure.n_dofs());
         }
       store(committed);
       committed.time = 0.;
@@ -224,6 +225,14 @@ namespace Talus
 
 
     double
+    StructureProblem::dissipated_energy() const
+    {
+      return structure.dissipated_energy() +
+             (dynamic_solver.enabled ? dynamic_solver.damping_work : 0.);
+    }
+
+
+    double
     StructureProblem::kinetic_energy() const
     {
       return dynamic_solver.kinetic_energy();
@@ -291,6 +300,8 @@ namespace Talus
       state.displacement   = static_solver.displacement;
       state.velocity       = dynamic_solver.velocity;
       state.acceleration   = dynamic_solver.acceleration;
+      state.damping_force  = dynamic_solver.damping_force;
+      state.damping_work   = dynamic_solver.damping_work;
       state.solver_history = static_solver.get_history();
       state.line_states.clear();
       for (const auto &mesh : structure.line_meshes)
@@ -307,9 +318,11 @@ namespace Talus
           structure.line_meshes[m]->trial_state = state.line_states[m];
         }
       static_solver.set_history(state.solver_history);
-      static_solver.displacement  = state.displacement;
-      dynamic_solver.velocity     = state.velocity;
-      dynamic_solver.acceleration = state.acceleration;
+      static_solver.displacement   = state.displacement;
+      dynamic_solver.velocity      = state.velocity;
+      dynamic_solver.acceleration  = state.acceleration;
+      dynamic_solver.damping_force = state.damping_force;
+      dynamic_solver.damping_work  = state.damping_work;
       // The start of the next step (u_n, and the tangent K_n of stiffness
       // damping, which depends on the restored history).
       if (dynamic_solver.enabled)

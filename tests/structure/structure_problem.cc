@@ -8,7 +8,9 @@
 //    solve_step() repeated (also after a solve with other forces) gives
 //    bitwise the same displacement; save_state(), a step with a larger
 //    force + commit_step(), restore_state() gives back the saved stroke and
-//    displacement, and the same step again the same result, bitwise
+//    displacement, and the same step again the same result, bitwise;
+//    dissipated energy D = F_a s + H s^2/2 (StructureProblem::
+//    dissipated_energy()), restored with the state
 //  - dynamic mode (Bossak-Newmark, alpha = 0): a force below F_a applied
 //    suddenly: a spring-mass oscillation, first maximum 2F/k_e at
 //    t = pi sqrt(m/k_e); a force above F_a: the first maximum u_max from the
@@ -164,8 +166,15 @@ namespace
         << " m\n";
     problem.commit_step();
     check("  stroke after commit_step [m]", stroke(problem), (2e3 - F_a) / H);
+    {
+      const double s = (2e3 - F_a) / H;
+      check("  dissipated energy F_a s + H s^2/2 [J]",
+            problem.dissipated_energy(),
+            F_a * s + 0.5 * H * s * s);
+    }
 
     const double s_saved = stroke(problem);
+    const double D_saved = problem.dissipated_energy();
     problem.save_state();
     set_force(problem, 3e3);
     problem.prepare_step(1., 1.);
@@ -174,7 +183,15 @@ namespace
     const Vector<double> u2 = problem.displacement();
     check("  elongation at F = 3 kN [m]", u2[i], (3e3 - F_a) / H + 3e3 / k_e);
     check("  stroke at F = 3 kN [m]", stroke(problem), (3e3 - F_a) / H);
+    {
+      const double s = (3e3 - F_a) / H;
+      check("  dissipated energy at F = 3 kN [J]",
+            problem.dissipated_energy(),
+            F_a * s + 0.5 * H * s * s);
+    }
     problem.restore_state();
+    out << "  restore_state: dissipated energy as saved: "
+        << yes(problem.dissipated_energy() == D_saved) << '\n';
     out << "  restore_state: displacement as saved: "
         << yes(same(u1, problem.displacement()))
         << ", stroke as saved: " << yes(stroke(problem) == s_saved) << ", time "

@@ -75,7 +75,11 @@ namespace Talus
        * layer of material of depth d = 'Robin depth' cells behind the
        * interface, or 'automatic': that inertia plus the stiffness M / d of
        * the layer (M: the material's p-wave modulus), the material's
-       * impedance for smooth and for short-wave interface motions.
+       * impedance for smooth and for short-wave interface motions. Both
+       * are put in series with the smallest penalty beta of the interface
+       * boundaries that impose their condition by a penalty alone (not
+       * Nitsche, augmented Lagrangian or Lagrange multipliers): k_R =
+       * 1/(1/k_layer + 1/beta).
        */
       bool   robin_inertia   = false;
       bool   robin_elastic   = false; ///< add M / d ('automatic')

@@ -76,6 +76,15 @@ namespace Talus
 
       dealii::Vector<double> velocity;
       dealii::Vector<double> acceleration;
+      /** Rayleigh damping force C v of the committed state [N]. */
+      dealii::Vector<double> damping_force;
+      /**
+       * Work of the Rayleigh damping forces up to the committed state [J]:
+       * per step du . (C v_n + C v_n+1) / 2, which closes the discrete
+       * energy balance of the average-acceleration rule (alpha = 0):
+       * kinetic + strain energy change = external work - damping work.
+       */
+      double damping_work = 0.;
 
       bool   enabled           = false;
       double end_time          = 1.;
@@ -89,7 +98,7 @@ namespace Talus
     private:
       Structure                   &structure;
       StaticSolver                &newton;
-      dealii::Vector<double>       u_n, v_trial, a_trial;
+      dealii::Vector<double>       u_n, v_trial, a_trial, damping_trial;
       dealii::SparseMatrix<double> K_n;
       dealii::SparseMatrix<double> M_c; ///< consistent mass
 

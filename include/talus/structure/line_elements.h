@@ -79,6 +79,15 @@ namespace Talus
               LineResponse               &response) const = 0;
 
       /**
+       * Energy dissipated by the element up to the history @p state [J]:
+       * 0 for elastic elements (the default).
+       */
+      virtual double
+      dissipated_energy(const dealii::Tensor<1, 3> &X0,
+                        const dealii::Tensor<1, 3> &X1,
+                        const LineState            &state) const;
+
+      /**
        * Stiffness added to the tangent (never to the forces) of a slack
        * element, as a fraction of the axial stiffness EA/L, so that a net
        * whose cables go slack does not make the Newton matrix singular
@@ -138,6 +147,12 @@ namespace Talus
               const dealii::Tensor<1, 3> &x1,
               const LineState            &old_state,
               LineResponse               &response) const override;
+      /** Plastic work A L (sigma_y alpha + H alpha^2 / 2) [J] (the stress
+       * stays on the yield surface while alpha grows). */
+      double
+      dissipated_energy(const dealii::Tensor<1, 3> &X0,
+                        const dealii::Tensor<1, 3> &X1,
+                        const LineState            &state) const override;
     };
 
 
@@ -207,6 +222,11 @@ namespace Talus
               const dealii::Tensor<1, 3> &x1,
               const LineState            &old_state,
               LineResponse               &response) const override;
+      /** The work F_a s + H s^2 / 2 of the stroke s [J]. */
+      double
+      dissipated_energy(const dealii::Tensor<1, 3> &X0,
+                        const dealii::Tensor<1, 3> &X1,
+                        const LineState            &state) const override;
     };
   } // namespace Structure
 } // namespace Talus

@@ -344,6 +344,12 @@ namespace Talus
       double
       strain_energy() const;
 
+      /** Energy dissipated by the elements up to the committed history
+       * [J]: brake strokes and truss plasticity (LineElement::
+       * dissipated_energy()); not the friction of sliding cables. */
+      double
+      dissipated_energy() const;
+
       /**
        * Lumped mass per DoF [kg] (rho A L/2 per node of a line element,
        * rho t int N_I dA0 for membranes, rho int N_I dV0 for solids),

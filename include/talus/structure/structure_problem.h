@@ -194,6 +194,13 @@ namespace Talus
                             dealii::Vector<double> &direction);
       /** @} */
 
+      /** Energy dissipated up to the committed state [J]: by the
+       * elements (brakes, truss plasticity; Structure::
+       * dissipated_energy()) and by Rayleigh damping (DynamicSolver::
+       * damping_work). */
+      double
+      dissipated_energy() const;
+
       /** Kinetic energy of the committed state (dynamic mode) [J]. */
       double
       kinetic_energy() const;
@@ -224,6 +231,8 @@ namespace Talus
         dealii::Vector<double>              displacement;
         dealii::Vector<double>              velocity;
         dealii::Vector<double>              acceleration;
+        dealii::Vector<double>              damping_force;
+        double                              damping_work = 0.;
         std::vector<std::vector<LineState>> line_states;
         StaticSolver::History               solver_history;
       };
