@@ -112,7 +112,16 @@ namespace Talus
           prm.declare_entry("prestress",
                             prestress,
                             Patterns::Double(),
-                            "PK2 pre-stress [Pa], >= 0.");
+                            "Pre-stress at the reference length (PK2 with "
+                            "Green-Lagrange; engineering: unstretched "
+                            "length L/(1 + prestress/E)) [Pa], >= 0.");
+        prm.declare_entry("strain measure",
+                          "Green-Lagrange",
+                          Patterns::Selection(strain_measure_names),
+                          "Axial law: 'Green-Lagrange' (N = A (E (l^2 - "
+                          "L^2)/(2 L^2) + sigma_0) l/L) or 'engineering' "
+                          "(N = EA (l - l0)/l0, l0 the unstretched length) "
+                          "[-].");
         prm.leave_subsection();
       };
       member("Posts", "2.1e11", "3e-3", "");
@@ -157,20 +166,36 @@ namespace Talus
                               double            &E,
                               double            &A,
                               double            &rho,
-                              double            *prestress) {
+                              double            *prestress,
+                              StrainMeasure     &measure) {
         prm.enter_subsection(name);
-        E   = get_positive(prm, path + "/" + name, "Young's modulus");
-        A   = get_positive(prm, path + "/" + name, "cross-section area");
-        rho = get_non_negative(prm, path + "/" + name, "density");
+        measure = strain_measure_from_string(prm.get("strain measure"));
+        E       = get_positive(prm, path + "/" + name, "Young's modulus");
+        A       = get_positive(prm, path + "/" + name, "cross-section area");
+        rho     = get_non_negative(prm, path + "/" + name, "density");
         if (prestress != nullptr)
           *prestress = get_non_negative(prm, path + "/" + name, "prestress");
         prm.leave_subsection();
       };
-      member("Posts", post_E, post_A, post_density, nullptr);
-      member(
-        "Support cables", cable_E, cable_A, cable_density, &cable_prestress);
-      member("Retaining ropes", rope_E, rope_A, rope_density, &rope_prestress);
-      member("Lateral ropes", lateral_E, lateral_A, lateral_density, nullptr);
+      member("Posts", post_E, post_A, post_density, nullptr, post_strain);
+      member("Support cables",
+             cable_E,
+             cable_A,
+             cable_density,
+             &cable_prestress,
+             cable_strain);
+      member("Retaining ropes",
+             rope_E,
+             rope_A,
+             rope_density,
+             &rope_prestress,
+             rope_strain);
+      member("Lateral ropes",
+             lateral_E,
+             lateral_A,
+             lateral_density,
+             nullptr,
+             lateral_strain);
       prm.leave_subsection();
     }
 
@@ -256,6 +281,7 @@ namespace Talus
       post->youngs_modulus = post_E;
       post->area           = post_A;
       post->density        = post_density;
+      post->strain_measure = post_strain;
       std::vector<std::pair<Point<3>, Point<3>>> post_segments;
       for (unsigned int i = 0; i <= n_fields; ++i)
         post_segments.emplace_back(net_point(i * field_width, 0.),
@@ -269,6 +295,7 @@ namespace Talus
       cable->area           = cable_A;
       cable->prestress      = cable_prestress;
       cable->density        = cable_density;
+      cable->strain_measure = cable_strain;
       const double   y_head = -Hs * std::sin(theta);
       const Point<3> anchor_left(-end_anchor_offset, 0, 0),
         anchor_right(L + end_anchor_offset, 0, 0),
@@ -306,6 +333,7 @@ namespace Talus
       rope->area              = rope_A;
       rope->prestress         = rope_prestress;
       rope->density           = rope_density;
+      rope->strain_measure    = rope_strain;
       auto brake              = std::make_shared<Brake>();
       brake->stiffness        = brake_k;
       brake->activation_force = brake_Fa;
@@ -343,6 +371,7 @@ namespace Talus
         lateral->area           = lateral_A;
         lateral->prestress      = lateral_prestress;
         lateral->density        = lateral_density;
+        lateral->strain_measure = lateral_strain;
         lateral_rope_meshes = {static_cast<unsigned int>(s.line_meshes.size())};
         segments(s.add_line_mesh("lateral_ropes", lateral).triangulation,
                  {{lateral_left, head0}, {lateral_right, net_point(L, Hs)}});

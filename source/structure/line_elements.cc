@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace Talus
 {
@@ -52,6 +53,23 @@ namespace Talus
           response.K(i, i + 3)     = -k_reg;
           response.K(i + 3, i)     = -k_reg;
         }
+    }
+
+
+    void
+    LineElement::add_transverse(const double                k_reg,
+                                const dealii::Tensor<1, 3> &e,
+                                LineResponse               &response)
+    {
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          {
+            const double k = k_reg * ((i == j ? 1. : 0.) - e[i] * e[j]);
+            response.K(i, j) += k;
+            response.K(i + 3, j + 3) += k;
+            response.K(i, j + 3) -= k;
+            response.K(i + 3, j) -= k;
+          }
     }
 
 
@@ -131,12 +149,22 @@ namespace Talus
       double               L, l;
       dealii::Tensor<1, 3> e;
       kinematics(X0, X1, x0, x1, L, l, e);
-      const double eps = (l * l - L * L) / (2. * L * L);
-      r.strain         = eps;
-      r.slack          = false;
-      r.state          = old_state;
+      const bool engineering = strain_measure == StrainMeasure::engineering;
+      // Engineering: the unstretched length l0 and eps = (l - l0)/l0, so
+      // that S = E eps = sigma_0 at l = L.
+      const double l0 =
+        engineering ?
+          L * AxialLaw{strain_measure, youngs_modulus, area, prestress}
+                .unstretched_ratio() :
+          L;
+      const double eps =
+        engineering ? (l - l0) / l0 : (l * l - L * L) / (2. * L * L);
+      r.strain = eps;
+      r.slack  = false;
+      r.state  = old_state;
 
-      double S  = youngs_modulus * (eps - old_state.plastic) + prestress;
+      double S = youngs_modulus * (eps - old_state.plastic) +
+                 (engineering ? 0. : prestress);
       double Et = youngs_modulus;
       if (yield_stress > 0.)
         {
@@ -152,9 +180,16 @@ namespace Talus
               Et = youngs_modulus * hardening / (youngs_modulus + hardening);
             }
         }
+      const double eps_e = eps - r.state.plastic;
+      if (engineering)
+        {
+          r.force  = area * S;
+          r.energy = 0.5 * area * l0 * youngs_modulus * eps_e * eps_e;
+          assemble_axial(e, l, r.force, Et * area / l0, r);
+          return;
+        }
       const double N     = area * S * l / L;
       const double dN_dl = Et * area * l * l / (L * L * L) + area * S / L;
-      const double eps_e = eps - r.state.plastic;
       r.force            = N;
       r.energy =
         area * L * (0.5 * youngs_modulus * eps_e * eps_e + prestress * eps_e);
@@ -187,9 +222,32 @@ namespace Talus
       double               L, l;
       dealii::Tensor<1, 3> e;
       kinematics(X0, X1, x0, x1, L, l, e);
+      r.state = old_state;
+      if (strain_measure == StrainMeasure::engineering)
+        {
+          const AxialLaw law    = this->law();
+          const double   lambda = l / L;
+          const double   N      = law.force(lambda);
+          r.strain              = lambda / law.unstretched_ratio() - 1.;
+          if (N < 0.)
+            {
+              assemble_slack(slack_stiffness_ratio * youngs_modulus * area / L,
+                             r);
+              r.energy = L * law.slack_energy();
+              return;
+            }
+          r.slack  = false;
+          r.force  = N;
+          r.energy = L * law.energy(lambda);
+          assemble_axial(e, l, N, law.stiffness(lambda) / L, r);
+          if (N == 0.)
+            add_transverse(slack_stiffness_ratio * youngs_modulus * area / L,
+                           e,
+                           r);
+          return;
+        }
       const double eps = (l * l - L * L) / (2. * L * L);
       r.strain         = eps;
-      r.state          = old_state;
       const double S   = youngs_modulus * eps + prestress;
       if (S < 0.)
         {
@@ -205,6 +263,15 @@ namespace Talus
       r.energy =
         area * L * (0.5 * youngs_modulus * eps * eps + prestress * eps);
       assemble_axial(e, l, N, dN_dl, r);
+      if (N == 0.)
+        add_transverse(slack_stiffness_ratio * youngs_modulus * area / L, e, r);
+    }
+
+
+    AxialLaw
+    Cable::law() const
+    {
+      return AxialLaw{strain_measure, youngs_modulus, area, prestress};
     }
 
 

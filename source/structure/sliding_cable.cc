@@ -43,9 +43,11 @@ namespace Talus
             {
               // One run through all nodes, every node slipping towards the
               // last one; material lengths L_i = l_i / lambda(N_i).
+              const AxialLaw      law = this->law();
               std::vector<double> L(n_nodes - 1);
               for (unsigned int i = 0; i + 1 < n_nodes; ++i)
-                L[i] = (x[i + 1] - x[i]).norm() / stretch(segment_forces[i]);
+                L[i] =
+                  (x[i + 1] - x[i]).norm() / law.stretch(segment_forces[i]);
               const std::vector<int> slip(n_nodes - 1, +1);
               add_tension_tangent(x, L, segment_forces, slip, K);
             }
@@ -81,10 +83,16 @@ namespace Talus
           e[i] = (x[i + 1] - x[i]) / li[i];
           l += li[i];
         }
-      const double eps = (l * l - L * L) / (2. * L * L);
-      const double S   = youngs_modulus * eps + prestress;
+      // Green-Lagrange: S, N = A S l/L, dN/dl = E A l^2/L^3 + A S/L;
+      // engineering: N and dN/dl of AxialLaw (S: the sign of N only).
+      const bool   engineering = strain_measure == StrainMeasure::engineering;
+      const double eps         = (l * l - L * L) / (2. * L * L);
+      const double S =
+        engineering ? law().force(l / L) : youngs_modulus * eps + prestress;
       if (energy != nullptr)
         *energy =
+          engineering ?
+            L * (S <= 0. ? law().slack_energy() : law().energy(l / L)) :
           S <= 0. ?
             -area * L * prestress * prestress / (2. * youngs_modulus) :
             area * L * (0.5 * youngs_modulus * eps * eps + prestress * eps);
@@ -97,7 +105,7 @@ namespace Talus
               add_to_segment(K, i, d, d, k);
           return 0.;
         }
-      const double N = area * S * l / L;
+      const double N = engineering ? S : area * S * l / L;
 
       std::vector<dealii::Tensor<1, 3>> g(n_nodes);
       for (unsigned int i = 0; i + 1 < n_nodes; ++i)
@@ -106,7 +114,13 @@ namespace Talus
           g[i + 1] += e[i];
         }
       const double k_axial =
-        youngs_modulus * area * l * l / (L * L * L) + area * S / L;
+        engineering ?
+          law().stiffness(l / L) / L :
+          youngs_modulus * area * l * l / (L * L * L) + area * S / L;
+      // Taut at zero force: the regularising stiffness across every
+      // segment (LineElement::slack_stiffness_ratio).
+      const double k_zero =
+        N == 0. ? slack_stiffness_ratio * youngs_modulus * area / L : 0.;
       for (unsigned int a = 0; a < n_nodes; ++a)
         for (unsigned int i = 0; i < 3; ++i)
           {
@@ -120,10 +134,17 @@ namespace Talus
           for (unsigned int j = 0; j < 3; ++j)
             {
               const double k =
-                N / li[s] * ((i == j ? 1. : 0.) - e[s][i] * e[s][j]);
+                (N / li[s] + k_zero) * ((i == j ? 1. : 0.) - e[s][i] * e[s][j]);
               add_to_segment(K, s, i, j, k);
             }
       return N;
+    }
+
+
+    AxialLaw
+    SlidingCable::law() const
+    {
+      return AxialLaw{strain_measure, youngs_modulus, area, prestress};
     }
 
 
@@ -156,22 +177,10 @@ namespace Talus
           c[i] =
             c[i - 1] * std::exp(friction_coefficient * std::acos(cos_theta));
         }
-      const double EA = youngs_modulus * area, As0 = area * prestress;
-      // Stretch of a segment under force N: EA (l^3 - l)/2 + A s0 l = N.
-      const auto stretch = [&](const double N) {
-        double lambda = 1. + N / EA;
-        for (unsigned int k = 0; k < 60; ++k)
-          {
-            const double g =
-              0.5 * EA * (lambda * lambda - 1.) * lambda + As0 * lambda - N;
-            const double dg   = 0.5 * EA * (3. * lambda * lambda - 1.) + As0;
-            const double step = g / dg;
-            lambda -= step;
-            if (std::abs(step) < 1e-15 * lambda)
-              break;
-          }
-        return lambda;
-      };
+      const double   EA = youngs_modulus * area, As0 = area * prestress;
+      const AxialLaw law = this->law();
+      // Stretch of a segment under force N.
+      const auto stretch = [&](const double N) { return law.stretch(N); };
       // Material length in the cable at base tension N0, minus L.
       const auto excess = [&](const double N0) {
         double m = 0.;
@@ -203,26 +212,6 @@ namespace Talus
         }
       return N0;
     }
-    double
-    SlidingCable::stretch(const double N) const
-    {
-      const double EA = youngs_modulus * area, As0 = area * prestress;
-      // EA (lambda^3 - lambda)/2 + A s0 lambda = N, Newton from above.
-      double lambda = std::max(1. + N / EA, 1.);
-      for (unsigned int k = 0; k < 60; ++k)
-        {
-          const double g =
-            0.5 * EA * (lambda * lambda - 1.) * lambda + As0 * lambda - N;
-          const double dg   = 0.5 * EA * (3. * lambda * lambda - 1.) + As0;
-          const double step = g / dg;
-          lambda -= step;
-          if (std::abs(step) < 1e-15 * lambda)
-            break;
-        }
-      return lambda;
-    }
-
-
     double
     SlidingCable::compute(const std::vector<dealii::Tensor<1, 3>> &X,
                           const std::vector<dealii::Tensor<1, 3>> &x,
@@ -277,13 +266,11 @@ namespace Talus
       for (unsigned int k = 1; k < n_seg; ++k)
         mu_theta[k] = friction_coefficient *
                       std::acos(std::max(-1., std::min(1., e[k - 1] * e[k])));
-      const auto tension = [&](const double lambda) {
-        return std::max(0.,
-                        area *
-                          (0.5 * youngs_modulus * (lambda * lambda - 1.) +
-                           prestress) *
-                          lambda);
+      const AxialLaw law     = this->law();
+      const auto     tension = [&](const double lambda) {
+        return std::max(0., law.force(lambda));
       };
+      const auto stretch = [&](const double N) { return law.stretch(N); };
       // Node states: 0 stick, +1 slip with N_k = N_{k-1} exp(mu theta_k)
       // (material moves into segment k), -1 the reverse.
       std::vector<int>    state(n_seg, 0);
@@ -402,18 +389,18 @@ namespace Talus
       const std::vector<int>                  &slip,
       dealii::FullMatrix<double>              &K) const
     {
-      const unsigned int  n_seg = x.size() - 1;
-      const unsigned int  n     = 3 * (n_seg + 1);
-      const double        EA = youngs_modulus * area, As0 = area * prestress;
-      std::vector<double> l(n_seg), lambda(n_seg), w(n_seg);
+      const unsigned int                n_seg = x.size() - 1;
+      const unsigned int                n     = 3 * (n_seg + 1);
+      const AxialLaw                    law   = this->law();
+      std::vector<double>               l(n_seg), lambda(n_seg), w(n_seg);
       std::vector<dealii::Tensor<1, 3>> e(n_seg);
       for (unsigned int i = 0; i < n_seg; ++i)
         {
           l[i]      = (x[i + 1] - x[i]).norm();
           e[i]      = (x[i + 1] - x[i]) / l[i];
           lambda[i] = l[i] / L[i];
-          // dN/dlambda of N = A (E (lambda^2 - 1)/2 + sigma_0) lambda
-          const double dN = 0.5 * EA * (3. * lambda[i] * lambda[i] - 1.) + As0;
+          // dN/dlambda of the axial law
+          const double dN = law.stiffness(lambda[i]);
           // w_i = -dL_i/dN_i at fixed l_i = L_i / (lambda_i dN/dlambda)
           w[i] = L[i] / (lambda[i] * dN);
         }

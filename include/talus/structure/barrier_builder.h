@@ -80,6 +80,12 @@ namespace Talus
       double rope_E = 1.2e11, rope_A = 2e-4, rope_prestress = 1e7,
              rope_density = 7850.;
       double lateral_E = 1.2e11, lateral_A = 2e-4, lateral_density = 7850.;
+      /** Axial laws of the posts, support cables, retaining and lateral
+       * ropes (AxialLaw). */
+      StrainMeasure post_strain    = StrainMeasure::green_lagrange,
+                    cable_strain   = StrainMeasure::green_lagrange,
+                    rope_strain    = StrainMeasure::green_lagrange,
+                    lateral_strain = StrainMeasure::green_lagrange;
       /** Pre-stress of the lateral ropes computed by build() [Pa]. */
       double   lateral_prestress = 0.;
       double   brake_k = 1e6, brake_Fa = 5e4, brake_H = 0., brake_smax = 1.;

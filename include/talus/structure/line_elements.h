@@ -1,6 +1,8 @@
 #ifndef talus_structure_line_elements_h
 #define talus_structure_line_elements_h
 
+#include <talus/structure/axial_law.h>
+
 #include <deal.II/base/tensor.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -23,8 +25,8 @@ namespace Talus
      */
     struct LineState
     {
-      /** Plastic Green-Lagrange strain (Truss) or plastic elongation, the
-       * brake stroke (Brake) [-] or [m]. */
+      /** Plastic strain in the truss's strain measure (Truss) or plastic
+       * elongation, the brake stroke (Brake) [-] or [m]. */
       double plastic = 0.;
       /** Accumulated plastic strain alpha (Truss) [-]; dissipated energy
        * (Brake) [J]. */
@@ -42,9 +44,11 @@ namespace Talus
     {
       LineResponse();
 
-      double                     force  = 0.; ///< axial force N [N]
-      double                     energy = 0.; ///< stored elastic energy [J]
-      double                     strain = 0.; ///< GL strain (l^2-L^2)/(2L^2)
+      double force  = 0.; ///< axial force N [N]
+      double energy = 0.; ///< stored elastic energy [J]
+      /** Strain in the element's measure: Green-Lagrange (l^2-L^2)/(2L^2)
+       * or engineering (l - l0)/l0 [-]. */
+      double                     strain = 0.;
       bool                       slack  = false;
       dealii::Vector<double>     f;
       dealii::FullMatrix<double> K;
@@ -92,7 +96,10 @@ namespace Talus
        * element, as a fraction of the axial stiffness EA/L, so that a net
        * whose cables go slack does not make the Newton matrix singular
        * [-]. The converged state is not affected: the residual contains no
-       * such force.
+       * such force. A cable taut at zero force (l = l0 exactly, N = 0) has
+       * the axial tangent dN/dl of the tension side and this stiffness
+       * across (the geometric stiffness N/l is zero there), so that a
+       * straight stress-free cable does not make the matrix singular.
        */
       double slack_stiffness_ratio = 1e-8;
 
@@ -111,6 +118,13 @@ namespace Talus
       /** f = 0, K = k_reg (I) blocks, for a slack element. */
       static void
       assemble_slack(const double k_reg, LineResponse &response);
+
+      /** Adds k_reg (I - e e^T) blocks to K, for an element taut at zero
+       * force (see slack_stiffness_ratio). */
+      static void
+      add_transverse(const double                k_reg,
+                     const dealii::Tensor<1, 3> &e,
+                     LineResponse               &response);
     };
 
 
@@ -120,6 +134,9 @@ namespace Talus
      *   eps = (l^2 - L^2)/(2 L^2),  S = E (eps - eps_p) + sigma_0,
      *   |S| <= sigma_y + H alpha,  N = A S l / L,  f = N [-e; e],
      *   K = (E_t A l^2/L^3) e e^T + (A S / L) I   (E_t = E or E H/(E+H)).
+     * With strain_measure = engineering: eps = (l - l0)/l0 on the
+     * unstretched length l0 = L/(1 + sigma_0/E), S = E (eps - eps_p) (S =
+     * sigma_0 at l = L), N = A S, K = (E_t A/l0) e e^T + (N/l) (I - e e^T).
      * Works in tension and compression (no buckling). Source: Crisfield
      * (1991) vol. 1 ch. 3; NOTES-structures-coupling.md section 2.1; return
      * mapping of Simo & Hughes (1998) ch. 1.
@@ -133,6 +150,9 @@ namespace Talus
       double density        = 0.; ///< rho [kg/m^3]
       double yield_stress   = 0.; ///< sigma_y [Pa]; 0: elastic
       double hardening      = 0.; ///< H [Pa]
+      /** Axial law (AxialLaw); yield_stress and hardening apply to S of
+       * that measure. */
+      StrainMeasure strain_measure = StrainMeasure::green_lagrange;
 
       std::string
       name() const override;
@@ -157,12 +177,19 @@ namespace Talus
 
 
     /**
-     * Tension-only elastic cable with PK2 pre-stress: the truss law of
-     * Truss without plasticity, and S = E eps + sigma_0 < 0 gives a slack
-     * cable with no force and no stiffness (Kratos CableElement3D2N;
-     * NOTES-structures-coupling.md section 2.1); at S = 0 exactly the taut
-     * tangent is used, so that a stress-free cable starts taut for Newton.
-     * A straight cable in tension has the lateral stiffness A S/L.
+     * Tension-only elastic cable with the axial law N(lambda) of AxialLaw,
+     * lambda = l/L:
+     *   Green-Lagrange (default): the truss law of Truss without
+     *     plasticity, N = A (E (l^2 - L^2)/(2 L^2) + sigma_0) l/L,
+     *   engineering: N = EA (l - l0)/l0, l0 = L/(1 + sigma_0/E) the
+     *     unstretched length, dN/dl = EA/l0, W = EA (l - l0)^2/(2 l0);
+     * f = N [-e; e], K = dN/dl e e^T + (N/l) (I - e e^T) (assemble_axial).
+     * N < 0 gives a slack cable with no force and no stiffness (Kratos
+     * CableElement3D2N; NOTES-structures-coupling.md section 2.1); at N =
+     * 0 exactly the taut tangent is used, so that a stress-free cable
+     * starts taut for Newton, with the regularising stiffness across (see
+     * slack_stiffness_ratio). A straight cable in tension has the lateral
+     * stiffness N/l.
      */
     class Cable : public LineElement
     {
@@ -171,6 +198,8 @@ namespace Talus
       double area           = 0.; ///< A [m^2]
       double prestress      = 0.; ///< sigma_0, PK2 [Pa]
       double density        = 0.; ///< rho [kg/m^3]
+      /** Axial law (AxialLaw). */
+      StrainMeasure strain_measure = StrainMeasure::green_lagrange;
 
       std::string
       name() const override;
@@ -185,6 +214,10 @@ namespace Talus
               const dealii::Tensor<1, 3> &x1,
               const LineState            &old_state,
               LineResponse               &response) const override;
+
+      /** The axial law of this cable. */
+      AxialLaw
+      law() const;
     };
 
 
@@ -196,9 +229,10 @@ namespace Talus
      * and stroke limit s_max, after which the brake is blocked and behaves
      * elastically with k_e. Dissipated energy D = F_a s + H s^2 / 2 (summed
      * increment by increment). Slack (d < s): N = 0 (at d = s the elastic
-     * tangent is used, so that a stress-free brake starts taut). Return
-     * mapping as in
-     * NOTES-structures-coupling.md section 2.4.
+     * tangent is used, so that a stress-free brake starts taut). The law
+     * is linear in the elongation (an engineering law on the length L
+     * of the element); it has no strain measure to choose. Return mapping
+     * as in NOTES-structures-coupling.md section 2.4.
      */
     class Brake : public LineElement
     {

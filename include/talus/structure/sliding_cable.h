@@ -1,6 +1,8 @@
 #ifndef talus_structure_sliding_cable_h
 #define talus_structure_sliding_cable_h
 
+#include <talus/structure/axial_law.h>
+
 #include <deal.II/base/tensor.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -21,7 +23,10 @@ namespace Talus
      *   f = N g,  g_0 = -e_0,  g_k = e_{k-1} - e_k,  g_n = e_{n-1},
      *   K = (E A l^2/L^3 + A S/L) g g^T
      *       + N sum_i (I - e_i e_i^T)/l_i [[1,-1],[-1,1]] on segment i.
-     * Tension only: S < 0 gives no force (slack). Source: Kratos
+     * With strain_measure = engineering the law of the whole cable is
+     * N = EA (l - l0)/l0, l0 = L/(1 + sigma_0/E), and E A l^2/L^3 + A S/L
+     * above becomes dN/dl = EA/l0 (AxialLaw; per segment with friction).
+     * Tension only: N < 0 gives no force (slack). Source: Kratos
      * SlidingCableElement3D (K. B. Sautter); NOTES-structures-coupling.md
      * section 2.2. The interior nodes are the shackles; they slide freely
      * along the cable.
@@ -34,6 +39,8 @@ namespace Talus
       double prestress             = 0.;   ///< sigma_0, PK2 [Pa]
       double density               = 0.;   ///< rho [kg/m^3]
       double slack_stiffness_ratio = 1e-8; ///< as LineElement [-]
+      /** Axial law (AxialLaw). */
+      StrainMeasure strain_measure = StrainMeasure::green_lagrange;
       /**
        * Capstan (Euler-Eytelwein) friction coefficient mu at the interior
        * nodes [-]; 0: frictionless. With mu > 0 the cable is assumed to
@@ -41,9 +48,8 @@ namespace Talus
        * segment tensions are N_i = N_0 prod_{k<=i} exp(mu theta_k), theta_k
        * the deviation angle at node k, and N_0 follows from the length of
        * cable material, sum_i l_i / lambda(N_i) = L, with lambda(N) the
-       * stretch of the law N = A (E (lambda^2 - 1)/2 + sigma_0) lambda
-       * (per segment). The tangent is the analytic derivative of this
-       * map (add_tension_tangent()).
+       * stretch of the axial law (AxialLaw::stretch(), per segment). The
+       * tangent is the analytic derivative of this map (add_tension_tangent()).
        * With stick_slip, the law with stick below (history dependent).
        */
       double friction_coefficient = 0.;
@@ -55,8 +61,8 @@ namespace Talus
        * material passes it) while the capstan inequality holds,
        *   exp(-mu theta_k) <= N_k / N_{k-1} <= exp(mu theta_k),
        * and slips at the limit otherwise, material moving towards the
-       * higher tension, N_i = A (E (lambda_i^2 - 1)/2 + sigma_0)
-       * lambda_i, lambda_i = l_i / L_i (tension only). Return map: active
+       * higher tension, N_i = N(lambda_i) of the axial law (AxialLaw),
+       * lambda_i = l_i / L_i (tension only). Return map: active
        * set over the nodes; a run of segments joined by slipping nodes
        * shares its material, N_i = N_a prod exp(+-mu theta), N_a from
        * sum l_i / lambda(N_i) = sum L_i^old (bisection); a slipping node
@@ -82,6 +88,10 @@ namespace Talus
               dealii::Vector<double>                  &f,
               dealii::FullMatrix<double>              &K,
               double                                  *energy = nullptr) const;
+
+      /** The axial law of this cable. */
+      AxialLaw
+      law() const;
 
       /**
        * As compute() with the stick-slip law (stick_slip, friction > 0):
@@ -130,10 +140,6 @@ namespace Talus
                           const std::vector<double>               &N,
                           const std::vector<int>                  &slip,
                           dealii::FullMatrix<double>              &K) const;
-
-      /** Stretch lambda of a segment under tension N >= 0 [-]. */
-      double
-      stretch(const double N) const;
     };
   } // namespace Structure
 } // namespace Talus

@@ -43,6 +43,8 @@ namespace Talus
         return create_plane_string(p);
       if (p.model == "brake")
         return create_brake_test(p);
+      if (p.model == "midspan cable")
+        return create_midspan_cable(p);
       return create_line_from_file(p);
     }
   } // namespace StructureModels

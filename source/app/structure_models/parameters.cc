@@ -72,8 +72,18 @@ namespace Talus
                           prm.get("elements per member"),
                           "a member needs at least one element (two nodes)");
       p.slack_ratio = get_positive(prm, lm, "slack stiffness ratio");
-      p.friction    = get_non_negative(prm, lm, "friction coefficient");
-      p.stick_slip  = prm.get("friction law") == "stick-slip";
+      p.strain_measure =
+        Talus::Structure::strain_measure_from_string(prm.get("strain measure"));
+      if (p.strain_measure == Talus::Structure::StrainMeasure::engineering &&
+          !(p.prestress > -p.E))
+        InputFile::reject(lm,
+                          "prestress",
+                          prm.get("prestress"),
+                          "with 'strain measure = engineering' the "
+                          "unstretched length L/(1 + prestress/E) must be "
+                          "positive: prestress > -E");
+      p.friction   = get_non_negative(prm, lm, "friction coefficient");
+      p.stick_slip = prm.get("friction law") == "stick-slip";
       if (p.stick_slip && !(p.friction > 0.))
         InputFile::reject(lm,
                           "friction law",
@@ -247,6 +257,29 @@ namespace Talus
                          0,
                          "the plastic bar needs an end load F, 0, 0 with "
                          "F != 0");
+      require_load_along(p.model == "midspan cable",
+                         2,
+                         "the midspan cable needs a load 0, 0, -P with "
+                         "P > 0");
+      if (p.model == "midspan cable" && !(p.point_load[2] < 0.))
+        InputFile::reject(ls,
+                          "point load",
+                          point_load_text,
+                          "the midspan cable needs a load 0, 0, -P with "
+                          "P > 0");
+      // The closed forms of these models are written for the
+      // Green-Lagrange law of the line members.
+      if (p.strain_measure == Talus::Structure::StrainMeasure::engineering &&
+          p.model != "midspan cable" && p.model != "sliding ring" &&
+          p.model != "barrier" && p.model != "mesh file" &&
+          p.model != "plane string")
+        InputFile::reject(lm,
+                          "strain measure",
+                          "engineering",
+                          "the closed form of model '" + p.model_text +
+                            "' is written for the Green-Lagrange law (the "
+                            "engineering law is verified by the models "
+                            "'midspan cable' and 'sliding ring')");
       require_load_along(p.model == "axial bar",
                          0,
                          "the axial bar needs an end load F, 0, 0 with "
@@ -353,7 +386,7 @@ namespace Talus
                             "solid|cantilever|hanging block|axial bar|"
                             "plane solid|plane cantilever|plane axial bar|"
                             "plane hanging block|plane string|"
-                            "stretched membrane|plastic bar"),
+                            "stretched membrane|plastic bar|midspan cable"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
@@ -400,7 +433,10 @@ namespace Talus
         "and residual elongation in closed form), 'plane string' (a "
         "pre-tensioned straight string of a 2D problem: 'span' along x "
         "centred at 'origin', both ends fixed, mesh name 'string'; the "
-        "barrier of the coupled 2D cases). "
+        "barrier of the coupled 2D cases), 'midspan cable' (a straight "
+        "cable of 'span' along x between two anchors, its middle loaded by "
+        "'point load' (0, 0, -P), started straight: the two-bar truss in "
+        "closed form for either 'strain measure'). "
         "Each model with a closed "
         "form reports and checks it.");
 
@@ -422,7 +458,10 @@ namespace Talus
       prm.declare_entry("prestress",
                         "0",
                         Patterns::Double(),
-                        "PK2 pre-stress sigma_0 added to E eps [Pa].");
+                        "Pre-stress sigma_0, the axial stress at the "
+                        "reference length L (Green-Lagrange: PK2, added to "
+                        "E eps; engineering: unstretched length l0 = L/(1 + "
+                        "sigma_0/E)) [Pa].");
       prm.declare_entry("density",
                         "0",
                         Patterns::Double(),
@@ -462,6 +501,16 @@ namespace Talus
                         "Stiffness of a slack cable or brake in the Newton "
                         "matrix only (never in the forces), as a fraction "
                         "of EA/L (brake: of k_e) [-], > 0.");
+      prm.declare_entry(
+        "strain measure",
+        "Green-Lagrange",
+        Patterns::Selection(Talus::Structure::strain_measure_names),
+        "Axial law of the cables, sliding cables and trusses: "
+        "'Green-Lagrange' (S = E (l^2 - L^2)/(2 L^2) + sigma_0, N = A S "
+        "l/L) or 'engineering' (N = EA (l - l0)/l0, l0 = L/(1 + "
+        "sigma_0/E) the unstretched length, dN/dl = EA/l0: steel ropes as "
+        "specified by EA) [-]. At 2 % strain the two forces differ by "
+        "3 %.");
       prm.leave_subsection();
 
       prm.enter_subsection("Membrane");
@@ -716,7 +765,8 @@ namespace Talus
                         "0",
                         Patterns::Double(0),
                         "Model 'mesh file': if > 0, the largest nodal "
-                        "displacement is compared with this value [m].");
+                        "displacement is compared with this value; model "
+                        "'midspan cable': the sag [m].");
       prm.declare_entry("number of levels",
                         "1",
                         Patterns::Integer(1, 8),

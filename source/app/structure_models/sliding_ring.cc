@@ -49,7 +49,8 @@ namespace Talus
        * at the ring (any direction in the x-z plane). The ring lies on the
        * ellipse with foci A, B and l = |x - A| + |x - B|, where its normal
        * is parallel to P; one tension T = EA lambda (lambda^2 - 1)/2,
-       * lambda = l/L_u, on both sides, and T |e_A + e_B| = |P|.
+       * lambda = l/L_u, on both sides (engineering law: T = EA (lambda -
+       * 1), AxialLaw), and T |e_A + e_B| = |P|.
        */
       class SlidingRing : public Model
       {
@@ -116,8 +117,15 @@ namespace Talus
                             0,
                             beta * beta * d[2] * t);
           };
-          const auto tension = [&](const double l) {
+          const Talus::Structure::AxialLaw law{p.strain_measure,
+                                               p.E,
+                                               p.A,
+                                               p.prestress};
+          const auto                       tension = [&](const double l) {
             const double lambda = l / p.unstretched_length;
+            if (p.strain_measure ==
+                Talus::Structure::StrainMeasure::engineering)
+              return law.force(lambda);
             return EA * lambda * (lambda * lambda - 1.) / 2. +
                    p.prestress * p.A * lambda;
           };

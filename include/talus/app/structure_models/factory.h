@@ -70,6 +70,9 @@ namespace Talus
     create_brake_test(const Parameters &p);
 
     std::unique_ptr<Model>
+    create_midspan_cable(const Parameters &p);
+
+    std::unique_ptr<Model>
     create_line_from_file(const Parameters &p);
     /** @} */
   } // namespace StructureModels

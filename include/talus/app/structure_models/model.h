@@ -72,6 +72,9 @@ namespace Talus
       double       yield_stress = 0., hardening = 0.;
       unsigned int elements    = 1;
       double       slack_ratio = 1e-8;
+      /** Axial law of cables, sliding cables and trusses. */
+      Talus::Structure::StrainMeasure strain_measure =
+        Talus::Structure::StrainMeasure::green_lagrange;
       // Membrane.
       double membrane_E = 0., membrane_nu = 0., membrane_E2 = 0.,
              membrane_G = 0., thickness = 0., membrane_density = 0.;
@@ -250,6 +253,7 @@ namespace Talus
         e->prestress             = p.prestress;
         e->density               = p.density;
         e->slack_stiffness_ratio = p.slack_ratio;
+        e->strain_measure        = p.strain_measure;
         return e;
       }
 
