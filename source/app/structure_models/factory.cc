@@ -41,6 +41,8 @@ namespace Talus
         return create_sliding_ring(p);
       if (p.model == "plane string")
         return create_plane_string(p);
+      if (p.model == "plane barrier")
+        return create_plane_barrier(p);
       if (p.model == "brake")
         return create_brake_test(p);
       if (p.model == "midspan cable")

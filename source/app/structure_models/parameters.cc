@@ -151,6 +151,60 @@ namespace Talus
                           "'axial bar' generate their box (leave 'mesh "
                           "file' empty)");
 
+      {
+        const std::string ps = structure_section + "/Plane barrier";
+        prm.enter_subsection("Plane barrier");
+        const auto point = [&](const std::string &entry) {
+          const auto v = Utilities::string_to_double(
+            Utilities::split_string_list(prm.get(entry)));
+          if (v.size() != 2)
+            InputFile::reject(ps,
+                              entry,
+                              prm.get(entry),
+                              "it must have two components x, y (a point "
+                              "of the 2D problem)");
+          return Tensor<1, 3>({v[0], v[1], 0.});
+        };
+        p.post_base       = point("post base");
+        p.post_top        = point("post top");
+        p.net_bottom      = point("net bottom");
+        p.rope_anchor     = point("rope anchor");
+        p.post_EA         = get_positive(prm, ps, "post EA");
+        p.post_mass       = get_non_negative(prm, ps, "post mass");
+        p.rope_EA         = get_positive(prm, ps, "rope EA");
+        p.rope_mass       = get_non_negative(prm, ps, "rope mass");
+        p.rope_pretension = get_non_negative(prm, ps, "rope pretension");
+        prm.leave_subsection();
+        if (p.model == "plane barrier")
+          {
+            const Tensor<1, 3> post = p.post_top - p.post_base,
+                               net  = p.post_top - p.net_bottom,
+                               rope = p.post_top - p.rope_anchor;
+            if (!(post.norm() > 0.) || !(net.norm() > 0.) ||
+                !(rope.norm() > 0.))
+              InputFile::reject(ps,
+                                "post top",
+                                prm.get("post top"),
+                                "the post, the net and the rope must have a "
+                                "length (post top differs from post base, "
+                                "net bottom and rope anchor)");
+            // The post head is held by three members: the net has to pull
+            // it downstream (away from the rope), or the post and the net
+            // are a mechanism.
+            const double cross_post_net = post[0] * net[1] - post[1] * net[0];
+            if (std::abs(cross_post_net) < 1e-3 * post.norm() * net.norm())
+              InputFile::reject(ps,
+                                "net bottom",
+                                prm.get("net bottom"),
+                                "the net must not lie along the post: a "
+                                "post hinged at its foot and a net along it "
+                                "hold the post head in no direction across "
+                                "them. Put the net bottom downstream of the "
+                                "post base (the net leaning against the "
+                                "retaining rope)");
+          }
+      }
+
       const std::string gs = structure_section + "/Geometry";
       prm.enter_subsection("Geometry");
       p.half_span          = get_positive(prm, gs, "half span");
@@ -272,7 +326,7 @@ namespace Talus
       if (p.strain_measure == Talus::Structure::StrainMeasure::engineering &&
           p.model != "midspan cable" && p.model != "sliding ring" &&
           p.model != "barrier" && p.model != "mesh file" &&
-          p.model != "plane string")
+          p.model != "plane string" && p.model != "plane barrier")
         InputFile::reject(lm,
                           "strain measure",
                           "engineering",
@@ -340,13 +394,14 @@ namespace Talus
       prm.leave_subsection();
       if (p.dynamic && p.model != "square membrane" && p.model != "barrier" &&
           p.model != "vibrating string" && p.model != "solid" &&
-          p.model != "axial bar" && p.model != "plane string")
+          p.model != "axial bar" && p.model != "plane string" &&
+          p.model != "plane barrier")
         InputFile::reject(structure_section + "/Dynamics",
                           "dynamic",
                           "true",
                           "only models 'square membrane', 'vibrating "
-                          "string', 'solid', 'axial bar', 'plane string' and "
-                          "'barrier' run in time so far");
+                          "string', 'solid', 'axial bar', 'plane string', "
+                          "'plane barrier' and 'barrier' run in time so far");
       if (!p.dynamic && p.model == "vibrating string")
         InputFile::reject(structure_section + "/Dynamics",
                           "dynamic",
@@ -386,7 +441,8 @@ namespace Talus
                             "solid|cantilever|hanging block|axial bar|"
                             "plane solid|plane cantilever|plane axial bar|"
                             "plane hanging block|plane string|"
-                            "stretched membrane|plastic bar|midspan cable"),
+                            "stretched membrane|plastic bar|midspan cable|"
+                            "plane barrier"),
         "Structural model built from the subsections below (used with "
         "'set problem = structure'): 'von Mises truss' (two bars, apex "
         "pushed down by 'prescribed displacement'), 'catenary' (cable "
@@ -427,6 +483,11 @@ namespace Talus
         "hangs on a 2D string (Triangulation<1,2>) under gravity 0, -g, 0), "
         "'stretched membrane' (square membrane, orthotropic or not, under "
         "the homogeneous biaxial stretch or uniaxial stress of 'stretch'), "
+        "'plane barrier' (the 2D analogue of a flexible barrier, per "
+        "metre of width, subsection Plane barrier: a net of 'Line members' "
+        "from 'net bottom' to the top of a post hinged at 'post base', the "
+        "post head held uphill by a retaining rope with a brake of "
+        "subsection Brake at its anchor), "
         "'plastic bar' (a straight truss of 'span' along x, fixed at x = 0, "
         "its end loaded by the x component of 'point load' along 'load "
         "path': elasto-plastic with linear hardening, loading, unloading "
@@ -615,6 +676,62 @@ namespace Talus
                         "1",
                         Patterns::Double(),
                         "Reference length of the brake element [m], > 0.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Plane barrier");
+      prm.declare_entry("post base",
+                        "0, 0",
+                        Patterns::Anything(),
+                        "Model 'plane barrier': foot of the post, hinged "
+                        "(x, y of the 2D problem) [m].");
+      prm.declare_entry("post top",
+                        "0, 3",
+                        Patterns::Anything(),
+                        "Head of the post (x, y) [m]: the net's top and the "
+                        "retaining rope end there.");
+      prm.declare_entry("net bottom",
+                        "0, 0",
+                        Patterns::Anything(),
+                        "Lower end of the net, fixed (the bottom support "
+                        "rope in the ground; x, y) [m]. The net is "
+                        "'elements per member' elements of subsection Line "
+                        "members from here to the post top.");
+      prm.declare_entry("rope anchor",
+                        "-6, 0",
+                        Patterns::Anything(),
+                        "Uphill anchor of the retaining rope (x, y) [m]; the "
+                        "brake of subsection Brake (its 'length') is the "
+                        "last piece of the rope before the anchor.");
+      prm.declare_entry("post EA",
+                        "3.3e8",
+                        Patterns::Double(),
+                        "Axial stiffness of the posts per metre of barrier "
+                        "width [N/m], > 0 (a truss hinged at both ends; "
+                        "e.g. an HEB 200, E A = 1.6e9 N, every 5 m).");
+      prm.declare_entry("post mass",
+                        "12",
+                        Patterns::Double(),
+                        "Mass of the posts per metre of post length and "
+                        "metre of barrier width [kg/m^2], >= 0 (61 kg/m "
+                        "every 5 m).");
+      prm.declare_entry("rope EA",
+                        "1.1e7",
+                        Patterns::Double(),
+                        "Axial stiffness of the retaining ropes per metre of "
+                        "barrier width [N/m], > 0 (two ropes of 22 mm, E A "
+                        "= 2.8e7 N each, every 5 m).");
+      prm.declare_entry("rope mass",
+                        "0.8",
+                        Patterns::Double(),
+                        "Mass of the retaining ropes per metre of rope and "
+                        "metre of barrier width [kg/m^2], >= 0.");
+      prm.declare_entry("rope pretension",
+                        "0",
+                        Patterns::Double(),
+                        "Pre-stress force of the retaining ropes, per metre "
+                        "of barrier width [N/m], >= 0 (below the brake's "
+                        "activation force); the equilibrium before the "
+                        "impact follows from it and the net's prestress.");
       prm.leave_subsection();
 
       prm.enter_subsection("Geometry");

@@ -57,6 +57,11 @@ namespace Talus
     std::unique_ptr<Model>
     create_plane_string(const Parameters &p);
 
+    /** Model 'plane barrier': net, post and retaining rope with a brake
+     * in a longitudinal section of a 2D problem. */
+    std::unique_ptr<Model>
+    create_plane_barrier(const Parameters &p);
+
     std::unique_ptr<Model>
     create_circular_membrane(const Parameters &p);
 

@@ -112,6 +112,12 @@ namespace Talus
       bool   stick_slip = false;
       double spring_EA = 0., spring_length = 1.;
       Talus::Structure::BarrierBuilder barrier;
+      /** Model 'plane barrier' (subsection Plane barrier): points in the
+       * plane of the 2D problem (z = 0) [m], axial stiffnesses [N] and
+       * masses [kg/m] per metre of barrier width. */
+      dealii::Tensor<1, 3> post_base, post_top, net_bottom, rope_anchor;
+      double post_EA = 0., post_mass = 0., rope_EA = 0., rope_mass = 0.,
+             rope_pretension = 0.;
       // Continuum solid.
       Talus::Structure::ContinuumSolid<3> solid;
       Talus::Structure::SolidGeometry     solid_geometry;
