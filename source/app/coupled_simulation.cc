@@ -196,6 +196,19 @@ namespace Talus
                           "0 (false): checkpoints exist only for 'problem = "
                           "mpm' so far, not for 'problem = coupled'");
     prm.leave_subsection();
+    // So does the load balancing: the coupling's interface data are not
+    // carried through a repartition yet.
+    prm.enter_subsection("Load balancing");
+    for (const std::string entry :
+         {"repartition every steps", "imbalance threshold"})
+      if (prm.get_double(entry) != 0.)
+        InputFile::reject("Load balancing",
+                          entry,
+                          prm.get(entry),
+                          "0: load balancing (repartitioning the grid between "
+                          "the MPI ranks) exists only for 'problem = mpm' so "
+                          "far, not for 'problem = coupled'");
+    prm.leave_subsection();
 
     // The MPM.
     TimeControl time_control;
