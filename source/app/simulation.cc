@@ -513,15 +513,8 @@ namespace Talus
     double       imbalance_sum = 0., imbalance_max = 0., imbalance_last = 1.;
     unsigned int imbalance_steps = 0, n_repartitions = 0;
     const auto   balance_load = [&]() {
-      const auto r = problem.balance_load(time_control.step);
-      n_repartitions += r.repartitioned ? 1 : 0;
-      if (r.repartitioned)
-        pcout << "  load balancing at step " << time_control.step
-              << ": repartitioned, imbalance of the material points (largest "
-                   "rank / mean) "
-              << std::setprecision(4) << r.imbalance_before << " -> "
-              << r.imbalance_after << std::defaultfloat << " (points per rank "
-              << r.min_points << " to " << r.max_points << ")\n";
+      n_repartitions +=
+        problem.balance_load(time_control.step, pcout).repartitioned ? 1 : 0;
     };
 
     // Errors against the exact solution at the current state.

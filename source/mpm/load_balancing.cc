@@ -27,8 +27,8 @@ namespace Talus
           "accepted time steps [-]; 0: not by steps. The committed state "
           "(material points, boundary particles, the grid velocity and the "
           "stuck friction nodes) is carried to the new partition; the "
-          "run's log reports the imbalance before and after. Only for "
-          "'problem = mpm'.");
+          "run's log reports the imbalance before and after (problems "
+          "mpm and coupled).");
         prm.declare_entry(
           "imbalance threshold",
           "0",

@@ -379,7 +379,8 @@ namespace Talus
 
     template <int dim>
     RepartitionRecord
-    MPMProblem<dim>::balance_load(const unsigned int step)
+    MPMProblem<dim>::balance_load(const unsigned int                step,
+                                  const dealii::ConditionalOStream &log)
     {
       RepartitionRecord record;
       if (!balancing.enabled())
@@ -399,6 +400,12 @@ namespace Talus
       const unsigned long long local = handler.n_locally_owned_particles();
       record.max_points = dealii::Utilities::MPI::max(local, communicator);
       record.min_points = dealii::Utilities::MPI::min(local, communicator);
+      log << "  load balancing at step " << step
+          << ": repartitioned, imbalance of the material points (largest "
+             "rank / mean) "
+          << std::setprecision(4) << record.imbalance_before << " -> "
+          << record.imbalance_after << std::defaultfloat << " (points per rank "
+          << record.min_points << " to " << record.max_points << ")\n";
       return record;
     }
 

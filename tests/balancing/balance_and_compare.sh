@@ -9,6 +9,10 @@
 #           (also after every later repartition), and
 #           the results agree with the run without load balancing to 1e-6
 #           (compare_runs.py of tests/checkpoint: CSV rows and points)
+#   coupled1, coupled2  the coupled problem (INPUT
+#           tests/coupled/block_on_string_rest.prm, load balancing added
+#           here) on 1 rank: output and coupling.csv bitwise identical; on 2
+#           ranks: the output agrees to the coupling tolerance
 #   ranks1  1 rank: the repartitions carry the state through
 #           Triangulation::repartition(); the CSV and the points must be
 #           bitwise identical to the run without
@@ -74,6 +78,52 @@ PY
          <(sed -n '/^Summary/,$p' balanced/log.txt) ||
       fail "the summaries differ"
     echo "1 rank: time series, points and summary bitwise identical"
+    ;;
+  coupled2)
+    # the coupled problem (INPUT: tests/coupled/block_on_string_rest.prm,
+    # load balancing added here): 2 ranks; the coupling converges to its
+    # interface tolerance, and the partition changes the MPM's sums at
+    # round-off, so the runs agree to the coupling tolerance: the test-mode
+    # output without the load balancing lines to 1e-5 relative or absolute
+    # (numdiff), the same steps and rejections, the coupling iterations
+    # per step within 5 %
+    printf 'subsection Load balancing\n  set repartition every steps = 10\n  set imbalance threshold = 1.1\nend\n' \
+      >> balanced.prm
+    run plain 2
+    run balanced 2
+    grep "load balancing" balanced/log.txt ||
+      fail "the coupled run with load balancing did not repartition"
+    grep -q "load balancing at step 0: repartitioned" balanced/log.txt ||
+      fail "no repartition at the start"
+    grep -v "load balancing at" balanced/log.txt | grep -v "^Done:" \
+      > balanced/summary.txt
+    grep -v "^Done:" plain/log.txt > plain/summary.txt
+    diff plain/summary.txt balanced/summary.txt
+    numdiff -q -r 1e-5 -a 1e-5 plain/summary.txt balanced/summary.txt ||
+      fail "the coupled runs with and without load balancing differ"
+    a=$(grep "^Done:" plain/log.txt); b=$(grep "^Done:" balanced/log.txt)
+    echo "without: $a"; echo "with:    $b"
+    [ "${a%%),*}" = "${b%%),*}" ] || fail "other steps or rejections"
+    python3 -c "import re, sys; f = lambda s: float(re.search(r'([0-9.]+) coupling iterations', s).group(1)); sys.exit(0 if abs(f('$a') - f('$b')) <= 0.05 * f('$a') else 1)" ||
+      fail "the coupling iterations per step differ by more than 5 %"
+    echo "coupled, 2 ranks: same output within 1e-5, iterations within 5 %"
+    ;;
+  coupled1)
+    # the coupled problem on 1 rank, repartitioned every 10 steps: the
+    # output (without the load balancing lines) and coupling.csv bitwise
+    # those of the run without
+    printf 'subsection Load balancing\n  set repartition every steps = 10\nend\n' \
+      >> balanced.prm
+    run plain 1
+    run balanced 1
+    grep -q "load balancing at step 10: repartitioned" balanced/log.txt ||
+      fail "the coupled run with load balancing did not repartition"
+    diff plain/log.txt <(grep -v "load balancing at" balanced/log.txt) ||
+      fail "the outputs differ"
+    cmp plain/output-block_on_string_rest/coupling.csv \
+        balanced/output-block_on_string_rest/coupling.csv ||
+      fail "coupling.csv differs"
+    echo "coupled, 1 rank: output and coupling.csv bitwise identical"
     ;;
   *) fail "unknown mode $mode" ;;
 esac

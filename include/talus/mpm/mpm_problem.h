@@ -202,11 +202,14 @@ namespace Talus
       /**
        * The load-balancing check after step @p step (0: the start): the
        * imbalance of the material points and, when LoadBalancing::due(),
-       * repartition(). Does nothing (and reports no repartition) when
-       * load balancing is off. Between steps only. Collective.
+       * repartition(), reported on @p log (the step, the imbalance before
+       * and after, the points per rank). Does nothing (and reports no
+       * repartition) when load balancing is off. Between steps only.
+       * Collective.
        */
       RepartitionRecord
-      balance_load(const unsigned int step);
+      balance_load(const unsigned int                step,
+                   const dealii::ConditionalOStream &log);
 
       /** The parameters of subsection `Load balancing`. */
       const LoadBalancing<dim> &
