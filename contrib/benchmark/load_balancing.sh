@@ -4,7 +4,8 @@
 # partition (cells balanced) and on 2 ranks with load balancing (subsection
 # Load balancing: imbalance threshold 1.1, the default weights), back to
 # back, REPEAT times each; prints a Markdown table with the wall time, the
-# steps and the imbalance of the material points.
+# steps, the imbalance of the material points and the 1-minute load
+# average before each run (other jobs on the machine).
 #   usage: bash contrib/benchmark/load_balancing.sh [talus] [input] [end time] [repeat]
 # Defaults: build/talus, benchmarks/granular_collapse/bui2008_10mm.prm,
 # 0.5 s (the deposit measurement is switched off: a shortened run has no
@@ -31,12 +32,13 @@ cp plain.prm balanced.prm
 printf 'subsection Load balancing\n  set imbalance threshold = 1.1\nend\n' \
   >> balanced.prm
 
-echo "| run | ranks | wall time [s] | steps | Newton per step | imbalance (mean / largest / end) | repartitions |"
-echo "|---|---|---|---|---|---|---|"
+echo "| run | ranks | wall time [s] | steps | Newton per step | imbalance (mean / largest / end) | repartitions | load before |"
+echo "|---|---|---|---|---|---|---|---|"
 for r in $(seq "$repeat"); do
   for c in "1 plain" "2 plain" "2 balanced"; do
     set -- $c
     log="$2-np$1-$r.log"
+    load=$(cut -d' ' -f1 /proc/loadavg)   # other jobs on the machine
     start=$(date +%s.%N)
     mpirun -np "$1" "$talus" "$2.prm" > "$log" 2>&1 ||
       { tail "$log"; echo "run $2 on $1 rank(s) failed"; exit 1; }
@@ -48,6 +50,6 @@ for r in $(seq "$repeat"); do
     imb=$(grep "imbalance of the material points (largest rank / mean) at the start" "$log" |
           sed 's/.*mean \([0-9.]*\), largest \([0-9.]*\), at the end \([0-9.]*\); \([0-9]*\) rep.*/\1 \/ \2 \/ \3|\4/' || true)
     [ -n "$imb" ] || imb="1 / 1 / 1|0"
-    echo "| $2 ($r) | $1 | $wall | $steps | $newton | ${imb%|*} | ${imb#*|} |"
+    echo "| $2 ($r) | $1 | $wall | $steps | $newton | ${imb%|*} | ${imb#*|} | $load |"
   done
 done
