@@ -203,7 +203,6 @@ namespace Talus
                           "0 (false): checkpoints exist only for 'problem = "
                           "mpm' so far, not for 'problem = coupled'");
     prm.leave_subsection();
-
     // The MPM.
     TimeControl time_control;
     time_control.parse_parameters(prm);
@@ -383,6 +382,10 @@ namespace Talus
           << ", " << coupling.accelerator().name() << '\n';
 
     coupling.initialize(0.);
+    // Load balancing of the MPM (subsection Load balancing) between
+    // committed steps: the interface is keyed by the boundary particles'
+    // ids and reference positions, which a repartition carries.
+    mpm.balance_load(time_control.step, pcout);
 
     // Energies of both fields at the committed state.
     auto &S = structure.get_structure();
@@ -469,6 +472,8 @@ namespace Talus
         const double dt = time_control.next_step();
         coupling.commit_step();
         time_control.accept(dt);
+        if (!time_control.finished())
+          mpm.balance_load(time_control.step, pcout);
         total_iterations += result.iterations;
         total_restarts += result.restarts;
 

@@ -12,6 +12,7 @@
 #include <talus/materials/constitutive_model.h>
 #include <talus/mpm/background_grid.h>
 #include <talus/mpm/initial_stress.h>
+#include <talus/mpm/load_balancing.h>
 #include <talus/mpm/material_points.h>
 #include <talus/mpm/mpm_problem.h>
 
@@ -504,6 +505,18 @@ namespace Talus
         deposit.initialize(points, output.directory());
       }
 
+    // Load balancing between steps (subsection Load balancing): the
+    // committed state only, never inside a step.
+    // (the imbalance over the run for the log: several ranks, no test mode)
+    const bool track_imbalance =
+      !test_mode && dealii::Utilities::MPI::n_mpi_processes(communicator) > 1;
+    double       imbalance_sum = 0., imbalance_max = 0., imbalance_last = 1.;
+    unsigned int imbalance_steps = 0, n_repartitions = 0;
+    const auto   balance_load = [&]() {
+      n_repartitions +=
+        problem.balance_load(time_control.step, pcout).repartitioned ? 1 : 0;
+    };
+
     // Errors against the exact solution at the current state.
     std::vector<VerificationErrors> errors;
     std::size_t                     next_report = 0;
@@ -711,8 +724,19 @@ namespace Talus
         pcout << "  resumed from " << resume_path << " at step "
               << time_control.step << ", t = " << time_control.time << " s\n";
       }
+    balance_load();
     while (!time_control.finished())
       {
+        // the partition this step runs on
+        if (track_imbalance)
+          {
+            imbalance_last =
+              MPM::LoadBalancing<dim>::imbalance(points.particle_handler(),
+                                                 communicator);
+            imbalance_sum += imbalance_last;
+            imbalance_max = std::max(imbalance_max, imbalance_last);
+            ++imbalance_steps;
+          }
         const double      step  = time_control.next_step();
         const double      t_new = time_control.time + step;
         MPM::NewtonResult result;
@@ -898,6 +922,8 @@ namespace Talus
             ++next_report;
           }
 
+        if (!time_control.finished())
+          balance_load();
         if (checkpointing.enabled() && !time_control.finished() &&
             checkpointing.due(time_control.step, communicator))
           write_checkpoint("scheduled");
@@ -1015,6 +1041,13 @@ namespace Talus
                   std::string())
             << "wall time " << format_seconds(wall_seconds()) << "\n"
             << "Output in " << output.directory() << "/\n";
+    if (track_imbalance && imbalance_steps > 0)
+      pcout << "  imbalance of the material points (largest rank / mean) "
+               "at the start of the steps: mean "
+            << std::setprecision(4) << imbalance_sum / imbalance_steps
+            << ", largest " << imbalance_max << ", at the end "
+            << imbalance_last << std::defaultfloat << "; " << n_repartitions
+            << " repartition(s)\n";
     if (compare)
       for (const auto &e : errors)
         {

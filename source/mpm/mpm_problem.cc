@@ -1,7 +1,6 @@
 #include <talus/base/input.h>
 #include <talus/mpm/mpm_problem.h>
-
-#include <deal.II/distributed/solution_transfer.h>
+#include <talus/mpm/state_transfer.h>
 
 #include <boost/archive/archive_exception.hpp>
 #include <boost/archive/binary_iarchive.hpp>
@@ -39,6 +38,7 @@ namespace Talus
       Materials::declare_parameters(prm);
       MPMSolver<dim>::declare_parameters(prm);
       Boundaries::BoundaryParticles<dim>::declare_parameters(prm, n_boundaries);
+      LoadBalancing<dim>::declare_parameters(prm);
     }
 
 
@@ -79,6 +79,7 @@ namespace Talus
       boundary_particles =
         std::make_unique<Boundaries::BoundaryParticles<dim>>(*background_grid);
       boundary_particles->parse_parameters(prm);
+      balancing.parse_parameters(prm);
     }
 
 
@@ -158,6 +159,7 @@ namespace Talus
       material_points->save_state();
       boundary_particles->save_state();
       mpm_solver->save_state();
+      saved_state_valid = true;
     }
 
 
@@ -165,6 +167,11 @@ namespace Talus
     void
     MPMProblem<dim>::restore_state()
     {
+      AssertThrow(saved_state_valid,
+                  dealii::ExcMessage(
+                    "MPMProblem::restore_state() without a save_state() on "
+                    "the present partition of the grid (repartition() "
+                    "discards the copy)"));
       material_points->restore_state();
       boundary_particles->restore_state();
       mpm_solver->restore_state();
@@ -228,17 +235,13 @@ namespace Talus
         id.grid_box.push_back(grid.upper_corner[d]);
 
       // The grid vectors must live until the triangulation is saved.
-      const auto vectors = mpm_solver->committed_grid_vectors();
-      std::vector<const dealii::TrilinosWrappers::MPI::Vector *> pointers;
-      for (const auto &v : vectors)
-        pointers.push_back(&v);
-      dealii::parallel::distributed::
-        SolutionTransfer<dim, dealii::TrilinosWrappers::MPI::Vector>
-          transfer(grid.dof_handler);
-      // the order of registration is the order of deserialization
-      material_points->particle_handler().prepare_for_serialization();
-      boundary_particles->particle_handler().prepare_for_serialization();
-      transfer.prepare_for_serialization(pointers);
+      CommittedStateTransfer<dim> transfer(
+        grid,
+        *material_points,
+        *boundary_particles,
+        *mpm_solver,
+        CommittedStateTransfer<dim>::Mode::serialization);
+      transfer.prepare();
       grid.triangulation.save(directory + "/mpm_grid");
 
       if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -318,22 +321,17 @@ namespace Talus
           reject("it was written for another background grid (bounding box) "
                  "than subsection <Background grid> describes.");
 
-      // The grid with the particles and the grid vectors on it.
+      // The grid with the particles and the grid vectors on it, and
+      // everything that depends on the partition of the grid.
       grid.triangulation.load(directory + "/mpm_grid");
-      grid.setup_dofs();
-      material_points->particle_handler().deserialize();
-      boundary_particles->particle_handler().deserialize();
-      std::vector<dealii::TrilinosWrappers::MPI::Vector>   owned(2);
-      std::vector<dealii::TrilinosWrappers::MPI::Vector *> pointers;
-      for (auto &v : owned)
-        {
-          v.reinit(grid.locally_owned_dofs, communicator);
-          pointers.push_back(&v);
-        }
-      dealii::parallel::distributed::
-        SolutionTransfer<dim, dealii::TrilinosWrappers::MPI::Vector>
-          transfer(grid.dof_handler);
-      transfer.deserialize(pointers);
+      CommittedStateTransfer<dim>(
+        grid,
+        *material_points,
+        *boundary_particles,
+        *mpm_solver,
+        CommittedStateTransfer<dim>::Mode::serialization)
+        .unpack();
+      saved_state_valid = false;
 
       if (material_points->n_global_points() != id.n_points ||
           boundary_particles->particle_handler().n_global_particles() !=
@@ -346,18 +344,69 @@ namespace Talus
                " boundary particles after loading, its state file says " +
                std::to_string(id.n_points) + " and " +
                std::to_string(id.n_boundary_particles) + ".");
+    }
 
-      // Everything that depends on the partition of the grid.
-      mpm_solver->setup();
-      std::vector<dealii::TrilinosWrappers::MPI::Vector> ghosted(2);
-      for (unsigned int i = 0; i < 2; ++i)
-        {
-          ghosted[i].reinit(grid.locally_owned_dofs,
-                            grid.locally_relevant_dofs,
-                            communicator);
-          ghosted[i] = owned[i];
-        }
-      mpm_solver->set_committed_grid_vectors(ghosted);
+
+    template <int dim>
+    void
+    MPMProblem<dim>::repartition()
+    {
+      auto &grid = *background_grid;
+      // the weights only for this call: nothing else repartitions the grid
+      const boost::signals2::scoped_connection weight =
+        grid.triangulation.signals.weight.connect(
+          [&](const typename dealii::parallel::distributed::Triangulation<
+                dim>::cell_iterator                                &cell,
+              const typename dealii::Triangulation<dim>::CellStatus status) {
+            return balancing.cell_weight(
+              cell,
+              status,
+              material_points->particle_handler(),
+              boundary_particles->particle_handler());
+          });
+      CommittedStateTransfer<dim> transfer(
+        grid,
+        *material_points,
+        *boundary_particles,
+        *mpm_solver,
+        CommittedStateTransfer<dim>::Mode::repartition);
+      transfer.prepare();
+      grid.triangulation.repartition();
+      transfer.unpack();
+      saved_state_valid = false;
+    }
+
+
+    template <int dim>
+    RepartitionRecord
+    MPMProblem<dim>::balance_load(const unsigned int                step,
+                                  const dealii::ConditionalOStream &log)
+    {
+      RepartitionRecord record;
+      if (!balancing.enabled())
+        return record;
+      const auto &handler = material_points->particle_handler();
+      record.imbalance_before =
+        LoadBalancing<dim>::imbalance(handler, communicator);
+      record.imbalance_after = record.imbalance_before;
+      if (!balancing.due(step, record.imbalance_before))
+        return record;
+      dealii::TimerOutput::Scope scope(timer, "load balancing");
+      repartition();
+      record.repartitioned = true;
+      record.imbalance_after =
+        LoadBalancing<dim>::imbalance(handler, communicator);
+      balancing.record_repartition(record.imbalance_after);
+      const unsigned long long local = handler.n_locally_owned_particles();
+      record.max_points = dealii::Utilities::MPI::max(local, communicator);
+      record.min_points = dealii::Utilities::MPI::min(local, communicator);
+      log << "  load balancing at step " << step
+          << ": repartitioned, imbalance of the material points (largest "
+             "rank / mean) "
+          << std::setprecision(4) << record.imbalance_before << " -> "
+          << record.imbalance_after << std::defaultfloat << " (points per rank "
+          << record.min_points << " to " << record.max_points << ")\n";
+      return record;
     }
 
 

@@ -6,6 +6,7 @@
 #include <talus/materials/constitutive_model.h>
 #include <talus/mpm/background_grid.h>
 #include <talus/mpm/initial_stress.h>
+#include <talus/mpm/load_balancing.h>
 #include <talus/mpm/material_points.h>
 #include <talus/mpm/mpm_solver.h>
 
@@ -35,6 +36,25 @@ namespace Talus
       /** Bounding box of the lost points' last positions [m]. */
       std::pair<dealii::Point<dim>, dealii::Point<dim>> region;
       std::vector<unsigned int> boundary_particles; ///< per boundary
+    };
+
+    /**
+     * What a load-balancing check between two steps did
+     * (MPMProblem::balance_load()).
+     */
+    struct RepartitionRecord
+    {
+      /** Whether the grid was repartitioned. */
+      bool repartitioned = false;
+      /**
+       * Imbalance of the material points before and after (the largest
+       * rank's points over the mean; LoadBalancing::imbalance()) [-].
+       */
+      double imbalance_before = 1.;
+      double imbalance_after  = 1.;
+      /** Largest and smallest number of points on a rank, after. */
+      unsigned long long max_points = 0;
+      unsigned long long min_points = 0;
     };
 
     /**
@@ -165,6 +185,39 @@ namespace Talus
       void
       load_checkpoint(const std::string &directory);
 
+      /**
+       * Repartition the background grid between the ranks with the cell
+       * weights of subsection `Load balancing`
+       * (LoadBalancing::cell_weight(), connected to the triangulation's
+       * signal `weight` for this call only), carrying the committed state
+       * (CommittedStateTransfer: both particle handlers, the committed
+       * grid velocity and stuck friction nodes) and rebuilding the
+       * solver's partition-dependent data. Call it between steps only
+       * (after commit_step() or initialize()); a copy of save_state() is
+       * discarded (restore_state() then throws). Collective.
+       */
+      void
+      repartition();
+
+      /**
+       * The load-balancing check after step @p step (0: the start): the
+       * imbalance of the material points and, when LoadBalancing::due(),
+       * repartition(), reported on @p log (the step, the imbalance before
+       * and after, the points per rank). Does nothing (and reports no
+       * repartition) when load balancing is off. Between steps only.
+       * Collective.
+       */
+      RepartitionRecord
+      balance_load(const unsigned int                step,
+                   const dealii::ConditionalOStream &log);
+
+      /** The parameters of subsection `Load balancing`. */
+      const LoadBalancing<dim> &
+      load_balancing() const
+      {
+        return balancing;
+      }
+
       /** Integrals over all points (all ranks). */
       Diagnostics<dim>
       diagnostics() const
@@ -271,6 +324,9 @@ namespace Talus
       InitialStress<dim>                                  initial_stress_field;
       std::unique_ptr<MPMSolver<dim>>                     mpm_solver;
       std::unique_ptr<Boundaries::BoundaryParticles<dim>> boundary_particles;
+      LoadBalancing<dim>                                  balancing;
+      /** Whether save_state() holds a copy on the present partition. */
+      bool saved_state_valid = false;
     };
   } // namespace MPM
 } // namespace Talus
