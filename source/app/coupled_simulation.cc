@@ -11,6 +11,7 @@
 #include <talus/coupling/coupling_parameters.h>
 #include <talus/coupling/gauss_seidel_coupling.h>
 #include <talus/coupling/structure_interface.h>
+#include <talus/io/structure_time_series.h>
 #include <talus/io/visualization_output.h>
 #include <talus/mpm/material_points.h>
 #include <talus/mpm/mpm_problem.h>
@@ -432,6 +433,13 @@ namespace Talus
                "penetration,mass\n";
         csv << std::setprecision(12);
       }
+    // the barrier's member forces, brake strokes and dissipation
+    IO::StructureTimeSeries barrier_series;
+    barrier_series.open(output.directory() + "/structure.csv", S, root);
+    barrier_series.write(0.,
+                         S,
+                         structure.displacement(),
+                         structure.dissipated_energy());
 
     const auto    wall_start       = std::chrono::steady_clock::now();
     unsigned long total_iterations = 0, total_rejected = 0, total_restarts = 0;
@@ -539,6 +547,11 @@ namespace Talus
                 << ',' << change << ',' << max_u << ',' << penetration << ','
                 << diagnostics.mass << '\n';
           }
+        // S was assembled at the committed state by energies()
+        barrier_series.write(time_control.time,
+                             S,
+                             structure.displacement(),
+                             structure.dissipated_energy());
         if (output.due(time_control.time) || time_control.finished())
           {
             dealii::TimerOutput::Scope s(timer, "output");

@@ -1,0 +1,49 @@
+#ifndef talus_io_structure_time_series_h
+#define talus_io_structure_time_series_h
+
+#include <talus/structure/structure.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <fstream>
+#include <string>
+
+namespace Talus
+{
+  namespace IO
+  {
+    /**
+     * The barrier's time series, what an engineer reads off a coupled run:
+     * `structure.csv`, one row per step (rank 0): time; for every line
+     * mesh (net cables, posts, ropes, brakes) the axial force of largest
+     * magnitude, signed (tension positive) [N]; for every brake mesh also
+     * the largest stroke [m]; the energy the structure has dissipated
+     * (brakes, truss plasticity, Rayleigh damping;
+     * Structure::StructureProblem::dissipated_energy()) [J]; the largest
+     * nodal displacement [m]. In a 2D problem forces are per metre of
+     * width. The forces are those of the structure's last assembly: call
+     * write() after Structure::assemble() at the committed state.
+     */
+    class StructureTimeSeries
+    {
+    public:
+      /** Open @p filename and write the header (only if @p root). */
+      void
+      open(const std::string                 &filename,
+           const Talus::Structure::Structure &structure,
+           const bool                         root);
+
+      /** One row. */
+      void
+      write(const double                       time,
+            const Talus::Structure::Structure &structure,
+            const dealii::Vector<double>      &displacement,
+            const double                       dissipated_energy);
+
+    private:
+      std::ofstream file;
+    };
+  } // namespace IO
+} // namespace Talus
+
+#endif
