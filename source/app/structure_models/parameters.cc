@@ -174,7 +174,6 @@ namespace Talus
         p.rope_EA         = get_positive(prm, ps, "rope EA");
         p.rope_mass       = get_non_negative(prm, ps, "rope mass");
         p.rope_pretension = get_non_negative(prm, ps, "rope pretension");
-        prm.leave_subsection();
         if (p.model == "plane barrier")
           {
             const Tensor<1, 3> post = p.post_top - p.post_base,
@@ -203,6 +202,7 @@ namespace Talus
                                 "post base (the net leaning against the "
                                 "retaining rope)");
           }
+        prm.leave_subsection();
       }
 
       const std::string gs = structure_section + "/Geometry";
