@@ -67,12 +67,7 @@ namespace Talus
         void
         build(Structure &s, const unsigned int) override
         {
-          auto brake              = std::make_shared<Talus::Structure::Brake>();
-          brake->stiffness        = p.brake_k;
-          brake->activation_force = p.brake_Fa;
-          brake->hardening        = p.brake_H;
-          brake->stroke_limit     = p.brake_smax;
-          brake->slack_stiffness_ratio = p.slack_ratio;
+          const auto     brake = brake_element();
           const Point<3> a(0, 0, 0), b(p.brake_length, 0, 0),
             c(p.brake_length + p.cable_length, 0, 0);
           make_line(s.add_line_mesh("brake", brake).triangulation, a, b, 1);

@@ -51,20 +51,33 @@ namespace Talus
     }
 
 
+    template <int spacedim>
     void
-    make_line(Triangulation<1, 3> &tria,
-              const Point<3>      &a,
-              const Point<3>      &b,
-              const unsigned int   n)
+    make_line(Triangulation<1, spacedim> &tria,
+              const Point<spacedim>      &a,
+              const Point<spacedim>      &b,
+              const unsigned int          n)
     {
-      std::vector<Point<3>>    vertices(n + 1);
-      std::vector<CellData<1>> cells(n);
+      std::vector<Point<spacedim>> vertices(n + 1);
+      std::vector<CellData<1>>     cells(n);
       for (unsigned int i = 0; i <= n; ++i)
         vertices[i] = a + (b - a) * (static_cast<double>(i) / n);
       for (unsigned int i = 0; i < n; ++i)
         cells[i].vertices = {i, i + 1};
       tria.create_triangulation(vertices, cells, SubCellData());
     }
+
+
+    template void
+    make_line(Triangulation<1, 2> &,
+              const Point<2> &,
+              const Point<2> &,
+              const unsigned int);
+    template void
+    make_line(Triangulation<1, 3> &,
+              const Point<3> &,
+              const Point<3> &,
+              const unsigned int);
 
 
     void

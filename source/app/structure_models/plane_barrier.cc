@@ -8,7 +8,6 @@
 #include <talus/structure/structure.h>
 
 #include <deal.II/grid/tria.h>
-#include <deal.II/grid/tria_description.h>
 
 #include <array>
 #include <memory>
@@ -73,10 +72,10 @@ namespace Talus
           const Point<2>     joint  = anchor + p.brake_length * along;
           const unsigned int n_net  = p.elements << level;
           const unsigned int n_rope = 1;
-          line(net, bottom, top, n_net);
-          line(post, base, top, 1);
-          line(rope, top, joint, n_rope);
-          line(brake, joint, anchor, 1);
+          make_line(net.triangulation, bottom, top, n_net);
+          make_line(post.triangulation, base, top, 1);
+          make_line(rope.triangulation, top, joint, n_rope);
+          make_line(brake.triangulation, joint, anchor, 1);
 
           auto post_element = std::make_shared<Talus::Structure::Truss>();
           post_element->youngs_modulus        = p.post_EA;
@@ -90,18 +89,12 @@ namespace Talus
           rope_element->prestress             = p.rope_pretension;
           rope_element->slack_stiffness_ratio = p.slack_ratio;
           rope_element->strain_measure        = p.strain_measure;
-          auto brake_element = std::make_shared<Talus::Structure::Brake>();
-          brake_element->stiffness             = p.brake_k;
-          brake_element->activation_force      = p.brake_Fa;
-          brake_element->hardening             = p.brake_H;
-          brake_element->stroke_limit          = p.brake_smax;
-          brake_element->slack_stiffness_ratio = p.slack_ratio;
 
           s.gravity = p.gravity;
           net.add_to(s, "net", line_element());
           post.add_to(s, "post", post_element);
           rope.add_to(s, "rope", rope_element);
-          brake.add_to(s, "brake", brake_element);
+          brake.add_to(s, "brake", brake_element());
           s.setup_dofs();
           for (auto *string : {&net, &post, &rope, &brake})
             string->setup(s);
@@ -144,22 +137,6 @@ namespace Talus
         point(const Tensor<1, 3> &x)
         {
           return Point<2>(x[0], x[1]);
-        }
-
-        /** Fill @p string with @p n elements from @p a to @p b. */
-        static void
-        line(Talus::Structure::PlaneString &string,
-             const Point<2>                &a,
-             const Point<2>                &b,
-             const unsigned int             n)
-        {
-          std::vector<Point<2>>    x(n + 1);
-          std::vector<CellData<1>> cells(n);
-          for (unsigned int i = 0; i <= n; ++i)
-            x[i] = a + (b - a) * (static_cast<double>(i) / n);
-          for (unsigned int i = 0; i < n; ++i)
-            cells[i].vertices = {i, i + 1};
-          string.triangulation.create_triangulation(x, cells, SubCellData());
         }
       };
     } // namespace

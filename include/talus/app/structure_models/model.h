@@ -274,6 +274,19 @@ namespace Talus
         return t;
       }
 
+      /** A brake of subsection Brake. */
+      std::shared_ptr<Talus::Structure::Brake>
+      brake_element() const
+      {
+        auto brake              = std::make_shared<Talus::Structure::Brake>();
+        brake->stiffness        = p.brake_k;
+        brake->activation_force = p.brake_Fa;
+        brake->hardening        = p.brake_H;
+        brake->stroke_limit     = p.brake_smax;
+        brake->slack_stiffness_ratio = p.slack_ratio;
+        return brake;
+      }
+
       /** A sliding cable with the line parameters of the file. */
       std::shared_ptr<Talus::Structure::SlidingCable>
       sliding_cable() const
@@ -310,12 +323,14 @@ namespace Talus
     };
 
 
-    /** A straight line mesh from a to b with n cells. */
+    /** A straight line mesh from a to b with n cells (in space, or in
+     * the plane of a 2D problem). */
+    template <int spacedim>
     void
-    make_line(dealii::Triangulation<1, 3> &tria,
-              const dealii::Point<3>      &a,
-              const dealii::Point<3>      &b,
-              const unsigned int           n);
+    make_line(dealii::Triangulation<1, spacedim> &tria,
+              const dealii::Point<spacedim>      &a,
+              const dealii::Point<spacedim>      &b,
+              const unsigned int                  n);
 
     /** A line mesh through the points @p x in this order. */
     void
