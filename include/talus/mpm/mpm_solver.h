@@ -188,18 +188,17 @@ namespace Talus
        * iterations of one step after the first, see doc/coupling.md):
        * keeps the P2G of the points (cells, shape data, nodal mass,
        * velocity, acceleration and external forces), which depends on the
-       * committed state, t and dt only, and the sparsity pattern and
-       * matrix if the cells of the boundary particles and the ghost
-       * penalty faces are those of the last pattern; redoes the
-       * boundary particles, ghost penalty, impact friction, friction
-       * states, constraints and the reset of the constrained grid
-       * velocities. The following solve_step() is bitwise that after
-       * prepare_step() with the same t and dt. Nothing but the boundaries'
-       * prescribed displacement may have changed since that
-       * prepare_step() (no commit_step(), restore_state(), setup() or
-       * change of the points); after any of those, and if nothing was
-       * prepared since, this is the full prepare_step() of the last t and
-       * dt.
+       * committed state, t and dt only, and the contact surfaces gathered
+       * for material-point contact; redoes the boundary particles and the
+       * points in reach of a contact surface, ghost penalty, sparsity
+       * pattern (kept if unchanged), impact friction, friction states,
+       * constraints and the reset of the constrained grid velocities. The
+       * following solve_step() is bitwise that after prepare_step() with
+       * the same t and dt. Nothing but the boundaries' prescribed
+       * displacement may have changed since that prepare_step() (no
+       * change of the points or boundary particles); after commit_step(),
+       * restore_state(), setup() or attach_boundary_particles() this is
+       * the full prepare_step() of the last t and dt.
        */
       void
       update_boundary_displacement();
