@@ -94,6 +94,9 @@ namespace Talus
       const bool strong =
         parameters.scheme == CouplingParameters::Scheme::strong;
       static const bool debug = std::getenv("TALUS_DEBUG_COUPLING") != nullptr;
+      // whether this window's MPM step was prepared (by the first
+      // evaluation of H)
+      bool mpm_prepared = false;
 
       // The fixed-point operator x -> x̃ of the Dirichlet-Neumann iteration.
       const auto H = [&](const dealii::Vector<double> &x,
@@ -102,8 +105,15 @@ namespace Talus
         {
           dealii::TimerOutput::Scope scope(timer, "coupling: MPM");
           interface.set_step_displacement(committed, x, t, t + dt);
-          mpm.prepare_step(t + dt, dt);
-          result.mpm = mpm.solve_step();
+          // within the window only the interface moves: the P2G (and the
+          // pattern, where the boundary cells stay) of the first iteration
+          // is kept, with bitwise the same result (doc/coupling.md)
+          if (mpm_prepared)
+            mpm.update_boundary_displacement();
+          else
+            mpm.prepare_step(t + dt, dt);
+          mpm_prepared = true;
+          result.mpm   = mpm.solve_step();
           result.mpm_newton += result.mpm.iterations;
           // the next iteration of this window starts from this increment
           mpm.solver().set_warm_start(parameters.warm_start &&

@@ -574,43 +574,53 @@ namespace Talus
                         "MaterialPoints::set_contact_slots() must reserve "
                         "contact data for every boundary before generate()"));
           // every rank gets the whole surface of the boundary: positions,
-          // normals and reference positions of its particles
-          std::vector<double> local;
-          for (const auto &p : boundary_particles->particle_handler())
+          // normals and reference positions of its particles (gathered
+          // once per step: the particles move only in commit_step())
+          if (contact_surfaces.size() != boundary_particles->n_boundaries())
+            contact_surfaces.assign(boundary_particles->n_boundaries(), {});
+          ContactSurface &surface = contact_surfaces[b];
+          if (!updating_boundaries)
             {
-              const auto props = p.get_properties();
-              if (static_cast<unsigned int>(props[BP::boundary]) != b)
-                continue;
-              for (unsigned int d = 0; d < dim; ++d)
-                local.push_back(p.get_location()[d]);
-              for (unsigned int d = 0; d < dim; ++d)
-                local.push_back(props[BP::normal + d]);
-              for (unsigned int d = 0; d < dim; ++d)
-                local.push_back(props[BP::reference_position + d]);
-              local.push_back(static_cast<double>(p.get_id()));
-            }
-          std::vector<dealii::Point<dim>>            x_b, X_b;
-          std::vector<dealii::Tensor<1, dim>>        n_b;
-          std::vector<dealii::types::particle_index> id_b;
-          for (const auto &part :
-               dealii::Utilities::MPI::all_gather(comm, local))
-            for (unsigned int k = 0; k + 3 * dim + 1 <= part.size();
-                 k += 3 * dim + 1)
-              {
-                id_b.push_back(static_cast<dealii::types::particle_index>(
-                  part[k + 3 * dim]));
-                dealii::Point<dim>     x, X;
-                dealii::Tensor<1, dim> n;
-                for (unsigned int d = 0; d < dim; ++d)
+              std::vector<double> local;
+              for (const auto &p : boundary_particles->particle_handler())
+                {
+                  const auto props = p.get_properties();
+                  if (static_cast<unsigned int>(props[BP::boundary]) != b)
+                    continue;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    local.push_back(p.get_location()[d]);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    local.push_back(props[BP::normal + d]);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    local.push_back(props[BP::reference_position + d]);
+                  local.push_back(static_cast<double>(p.get_id()));
+                }
+              surface = ContactSurface();
+              for (const auto &part :
+                   dealii::Utilities::MPI::all_gather(comm, local))
+                for (unsigned int k = 0; k + 3 * dim + 1 <= part.size();
+                     k += 3 * dim + 1)
                   {
-                    x[d] = part[k + d];
-                    n[d] = part[k + dim + d];
-                    X[d] = part[k + 2 * dim + d];
+                    surface.id.push_back(
+                      static_cast<dealii::types::particle_index>(
+                        part[k + 3 * dim]));
+                    dealii::Point<dim>     x, X;
+                    dealii::Tensor<1, dim> n;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        x[d] = part[k + d];
+                        n[d] = part[k + dim + d];
+                        X[d] = part[k + 2 * dim + d];
+                      }
+                    surface.x.push_back(x);
+                    surface.n.push_back(n);
+                    surface.X.push_back(X);
                   }
-                x_b.push_back(x);
-                n_b.push_back(n);
-                X_b.push_back(X);
-              }
+            }
+          const auto &x_b  = surface.x;
+          const auto &n_b  = surface.n;
+          const auto &X_b  = surface.X;
+          const auto &id_b = surface.id;
           if (x_b.empty())
             continue;
           const auto tree = dealii::pack_rtree_of_indices(x_b);

@@ -124,6 +124,14 @@ namespace Talus
 
 
     template <int dim>
+    void
+    MPMProblem<dim>::update_boundary_displacement()
+    {
+      mpm_solver->update_boundary_displacement();
+    }
+
+
+    template <int dim>
     NewtonResult
     MPMProblem<dim>::solve_step()
     {

@@ -467,6 +467,9 @@ namespace Talus
                     grid.locally_owned_dofs,
                     dsp,
                     grid.mpi_communicator);
+      // the whole grid's pattern: the first step makes its own
+      pattern_current = false;
+      p2g_current     = false;
 
       const auto owned    = grid.locally_owned_dofs;
       const auto relevant = grid.locally_relevant_dofs;
@@ -630,12 +633,46 @@ namespace Talus
     MPMSolver<dim>::prepare_step(const double new_time, const double step)
     {
       dealii::TimerOutput::Scope scope(timer, "prepare (P2G)");
-      time                    = new_time;
-      dt                      = step;
-      step_impact_dissipation = 0.;
-      step_reset_dissipation  = 0.;
+      time = new_time;
+      dt   = step;
       cache_particles();
       project_to_grid();
+      acceleration_p2g = acceleration_n;
+      // the initial acceleration's projection (zero step) is not a step
+      p2g_current = !initializing;
+      prepare_boundaries();
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::update_boundary_displacement()
+    {
+      if (!p2g_current)
+        {
+          AssertThrow(dt > 0.,
+                      dealii::ExcMessage("update_boundary_displacement() "
+                                         "before the first prepare_step()"));
+          prepare_step(time, dt);
+          return;
+        }
+      dealii::TimerOutput::Scope scope(timer, "prepare (P2G)");
+      // the grid state as project_to_grid() left it (the last preparation
+      // reset the constrained nodes, Newton restored released ones)
+      velocity_n          = velocity_p2g;
+      acceleration_n      = acceleration_p2g;
+      updating_boundaries = true;
+      prepare_boundaries();
+      updating_boundaries = false;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::prepare_boundaries()
+    {
+      step_impact_dissipation = 0.;
+      step_reset_dissipation  = 0.;
       cache_boundary_particles();
       if (ghost_penalty_factor > 0.)
         setup_ghost_penalty();
@@ -691,6 +728,32 @@ namespace Talus
     void
     MPMSolver<dim>::make_step_sparsity_pattern()
     {
+      // the saddle-point factorisation and AMG are built anew in every
+      // step (they reference the matrix: released first, ML's Gauss-Seidel
+      // smoothers access it on destruction); the direct solver's first
+      // factorisation of the step pivots anew (solve_with_tangent())
+      factorisation.reset();
+      amg.reset();
+      amg_current     = false;
+      direct_pivoting = true;
+      std::vector<dealii::types::global_dof_index> blocks;
+      const auto add = [&blocks](const auto &set) {
+        for (const auto &c : set)
+          {
+            blocks.push_back(c.dofs.size());
+            blocks.insert(blocks.end(), c.dofs.begin(), c.dofs.end());
+          }
+      };
+      add(cells);
+      add(boundary_cells);
+      add(ghost_faces);
+      const bool changed = !pattern_current || blocks != pattern_blocks;
+      if (!dealii::Utilities::MPI::logical_or(changed, grid.mpi_communicator))
+        return;
+      pattern_blocks  = std::move(blocks);
+      pattern_current = true;
+      direct_solver.reset();
+      direct_problem.reset();
       dealii::DynamicSparsityPattern dsp(grid.locally_relevant_dofs);
       for (const auto i : grid.locally_owned_dofs)
         dsp.add(i, i);
@@ -712,13 +775,6 @@ namespace Talus
         grid.locally_owned_dofs,
         grid.mpi_communicator,
         grid.locally_relevant_dofs);
-      // the preconditioners reference the matrix: release them first (ML's
-      // Gauss-Seidel smoothers access it on destruction)
-      factorisation.reset();
-      direct_solver.reset();
-      direct_problem.reset();
-      amg.reset();
-      amg_current = false;
       matrix.reinit(grid.locally_owned_dofs,
                     grid.locally_owned_dofs,
                     dsp,
@@ -898,7 +954,8 @@ namespace Talus
             for (unsigned int d = 0; d < dim; ++d)
               props[Properties::acceleration + d] = a_p[d];
           }
-      prepared = false;
+      p2g_current = false;
+      prepared    = false;
     }
 
 
@@ -907,6 +964,7 @@ namespace Talus
     MPMSolver<dim>::attach_boundary_particles(
       Boundaries::BoundaryParticles<dim> &boundaries)
     {
+      p2g_current        = false;
       boundary_particles = boundaries.empty() ? nullptr : &boundaries;
       // The symmetric Nitsche form is coercive only above a stabilisation
       // that grows without bound as a cut shrinks (doc/verification.md).
@@ -1035,6 +1093,7 @@ namespace Talus
       contact_force           = saved_state.contact_force;
       committed_grid_velocity = saved_state.grid_velocity;
       committed_stuck         = saved_state.stuck;
+      p2g_current             = false;
       prepared                = false;
       solved                  = false;
     }
@@ -1081,8 +1140,9 @@ namespace Talus
       for (unsigned int n = 0; n < friction_nodes.size(); ++n)
         if (friction_nodes[n].owned)
           committed_stuck[n] = vectors[1](friction_nodes[n].normal_dof) > 0.5;
-      prepared = false;
-      solved   = false;
+      p2g_current = false;
+      prepared    = false;
+      solved      = false;
     }
 
 

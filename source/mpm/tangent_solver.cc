@@ -136,7 +136,7 @@ namespace Talus
                               dealii::ExcMessage(
                                 "Amesos KLU is not available"));
                   // Later factorisations of the step reuse the pivot
-                  // sequence of the first (klu_refactor); Amesos falls back
+                  // sequence of its first (klu_refactor); Amesos falls back
                   // to a factorisation with pivoting if that fails or if
                   // its estimate of the reciprocal condition number (the
                   // ratio of the smallest to the largest pivot) is below
@@ -153,7 +153,23 @@ namespace Talus
               direct_problem->SetLHS(&x.trilinos_vector());
               direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
                 static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
+              // The symbolic analysis lives as long as the step's sparsity
+              // pattern, also over several steps and coupling iterations
+              // (make_step_sparsity_pattern()); the first factorisation
+              // after each prepare_step() pivots anew, as with a new
+              // solver, so that its result does not depend on the
+              // preparations before.
+              const auto refactorize = [this](const bool on) {
+                Teuchos::ParameterList parameters;
+                parameters.set("Refactorize", on);
+                direct_solver->SetParameters(parameters);
+              };
+              if (direct_pivoting)
+                refactorize(false);
               const int factorised = direct_solver->NumericFactorization();
+              if (direct_pivoting)
+                refactorize(true);
+              direct_pivoting = false;
               AssertThrow(factorised == 0,
                           dealii::ExcMessage(
                             "the factorisation of the tangent (Amesos KLU) "

@@ -526,8 +526,9 @@ namespace Talus
         if (boundary_particles != nullptr)
           boundary_particles->move_to(time);
       }
-      prepared = false;
-      solved   = false;
+      p2g_current = false;
+      prepared    = false;
+      solved      = false;
     }
 
 

@@ -13,6 +13,14 @@
 //  (c) save_state(), a committed step, restore_state(), the same step
 //      again: the committed state (every property of every material point
 //      and boundary particle, the energy accounts) is bitwise identical.
+//  (d) the coupling's re-preparation after a move of the boundaries only
+//      (update_boundary_displacement(), which keeps the P2G and the
+//      pattern): prepare_step() + solve_step() with one prescribed
+//      displacement of boundary 0 (set from outside, as the coupling's
+//      interface), then the displacement changed,
+//      update_boundary_displacement() + solve_step() gives bitwise the
+//      Newton history and reactions of prepare_step() + solve_step() with
+//      the changed displacement; without boundaries, the same step again.
 #include <talus/app/simulation.h>
 #include <talus/base/time_control.h>
 #include <talus/boundaries/boundary_particles.h>
@@ -163,6 +171,36 @@ namespace
     problem.commit_step();
     const bool same_commit = committed_state(problem) == after_first;
 
+    // (d) re-preparation after a move of the boundary (last: it makes
+    // boundary 0 moving)
+    Tensor<1, 2> shift;
+    if (with_boundaries)
+      problem.boundaries().set_displacement(
+        0, [&](const Point<2> &, const double time) {
+          return time > t + 0.5 * dt ? shift : Tensor<1, 2>();
+        });
+    const auto solve_with = [&](const bool update) {
+      if (update)
+        problem.update_boundary_displacement();
+      else
+        problem.prepare_step(t + dt, dt);
+      const auto r = problem.solve_step();
+      return std::make_pair(r, reactions(problem));
+    };
+    t += dt; // the step after the redone one
+    problem.prepare_step(t + dt, dt);
+    problem.solve_step();
+    shift[0]            = 2e-4;
+    shift[1]            = -1e-4;
+    const auto updated  = solve_with(true);
+    const auto prepared = solve_with(false);
+    const bool same_move =
+      updated.first.converged && prepared.first.converged &&
+      updated.first.iterations == prepared.first.iterations &&
+      updated.first.residual == prepared.first.residual &&
+      updated.first.linear_iterations == prepared.first.linear_iterations &&
+      updated.second == prepared.second;
+
     const std::string name = file.substr(file.find("tests/") + 6);
     out << name << ": " << trial.size() << " pressed boundary particles\n";
     if (with_boundaries)
@@ -171,7 +209,9 @@ namespace
     out << "  (b) repeated solve bitwise identical: " << yes(same_solve) << '\n'
         << "  (c) restore_state gives the saved state: " << yes(restored)
         << ", the redone step equals the first commit: " << yes(same_commit)
-        << '\n';
+        << '\n'
+        << "  (d) update_boundary_displacement bitwise as prepare_step: "
+        << yes(same_move) << '\n';
   }
 } // namespace
 

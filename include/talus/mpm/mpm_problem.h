@@ -77,7 +77,9 @@ namespace Talus
      *                              reactions and energies are booked
      *
      * so that a rejected step or a coupling iteration just calls
-     * prepare_step() and solve_step() again. save_state() and
+     * prepare_step() and solve_step() again (a coupling iteration that
+     * only moved the interface calls update_boundary_displacement()
+     * instead of prepare_step()). save_state() and
      * restore_state() copy everything a committed step changes (the
      * points with their history, the boundary particles with gaps,
      * reactions, states and multipliers, the grid friction states, the
@@ -133,6 +135,17 @@ namespace Talus
       /** Initialization phase of the step to @p new_time (P2G). */
       void
       prepare_step(const double new_time, const double dt);
+
+      /**
+       * Prepare the step of the last prepare_step() again after only the
+       * boundaries' prescribed displacement changed (a coupling iteration
+       * after the first of a step): MPMSolver::update_boundary_displacement(),
+       * which reuses the P2G and, where the boundary cells are unchanged,
+       * the sparsity pattern; solve_step() then gives bitwise the result of
+       * a full prepare_step().
+       */
+      void
+      update_boundary_displacement();
 
       /** Newton on the grid increment; no side effect on committed state. */
       NewtonResult

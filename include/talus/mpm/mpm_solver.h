@@ -182,6 +182,27 @@ namespace Talus
       void
       prepare_step(const double new_time, const double dt);
 
+      /**
+       * Prepare the step of the last prepare_step() again after only the
+       * boundaries' prescribed displacements changed (the coupling's
+       * iterations of one step after the first, see doc/coupling.md):
+       * keeps the P2G of the points (cells, shape data, nodal mass,
+       * velocity, acceleration and external forces), which depends on the
+       * committed state, t and dt only, and the contact surfaces gathered
+       * for material-point contact; redoes the boundary particles and the
+       * points in reach of a contact surface, ghost penalty, sparsity
+       * pattern (kept if unchanged), impact friction, friction states,
+       * constraints and the reset of the constrained grid velocities. The
+       * following solve_step() is bitwise that after prepare_step() with
+       * the same t and dt. Nothing but the boundaries' prescribed
+       * displacement may have changed since that prepare_step() (no
+       * change of the points or boundary particles); after commit_step(),
+       * restore_state(), setup() or attach_boundary_particles() this is
+       * the full prepare_step() of the last t and dt.
+       */
+      void
+      update_boundary_displacement();
+
       /** Lagrangian phase: Newton iteration; no side effect on the points. */
       NewtonResult
       solve_step();
@@ -621,6 +642,56 @@ namespace Talus
       void
       project_to_grid();
 
+      /**
+       * The part of prepare_step() after the P2G, which depends on the
+       * boundaries: boundary particles, ghost penalty, sparsity pattern,
+       * impact friction, friction states, constraints and the reset of the
+       * constrained grid velocity and acceleration.
+       */
+      void
+      prepare_boundaries();
+
+      /**
+       * Whether the P2G data of the last prepare_step() (cells, shape
+       * data, nodal mass, external forces, velocity_p2g,
+       * acceleration_p2g) are those of the committed state at time and dt
+       * (update_boundary_displacement()); cleared by whatever changes the
+       * committed state or the grid.
+       */
+      bool p2g_current = false;
+      /**
+       * Material-point contact: the surface of each such boundary as every
+       * rank gathers it from the boundary particles (positions, normals,
+       * reference positions, particle ids; cache_point_contacts()), kept
+       * for update_boundary_displacement() (the particles move only in
+       * commit_step()).
+       */
+      struct ContactSurface
+      {
+        std::vector<dealii::Point<dim>>            x;
+        std::vector<dealii::Tensor<1, dim>>        n;
+        std::vector<dealii::Point<dim>>            X;
+        std::vector<dealii::types::particle_index> id;
+      };
+      std::vector<ContactSurface> contact_surfaces;
+      /** Set while update_boundary_displacement() prepares. */
+      bool updating_boundaries = false;
+      /** Nodal acceleration of the P2G, before the constraints reset it. */
+      dealii::TrilinosWrappers::MPI::Vector acceleration_p2g;
+      /**
+       * Degrees of freedom of the cells, boundary cells and ghost faces
+       * (each block preceded by its size) that the current step sparsity
+       * pattern was built with (make_step_sparsity_pattern()); whether
+       * there is one (not after setup()).
+       */
+      std::vector<dealii::types::global_dof_index> pattern_blocks;
+      bool                                         pattern_current = false;
+      /**
+       * Whether the next numeric factorisation of the direct solver pivots
+       * anew (the first of a preparation; later ones reuse its pivots).
+       */
+      bool direct_pivoting = true;
+
       void
       make_constraints();
 
@@ -709,10 +780,12 @@ namespace Talus
       /**
        * Direct solver of the tangent (Amesos KLU) for the sparsity pattern
        * of the current step: the symbolic analysis (block triangular form,
-       * AMD ordering) is done once per pattern, the numeric factorisation
-       * in every Newton iteration, reusing the pivot sequence of the first
-       * one where it stays accurate (Amesos' "Refactorize"). Released with
-       * the pattern.
+       * AMD ordering) is done once per pattern (which steps and coupling
+       * iterations with the same cells keep), the numeric factorisation
+       * in every Newton iteration, the first after each preparation with
+       * partial pivoting, the later ones reusing its pivot sequence where
+       * it stays accurate (Amesos' "Refactorize"). Released with the
+       * pattern.
        */
       std::unique_ptr<Epetra_LinearProblem> direct_problem;
       std::unique_ptr<Amesos_BaseSolver>    direct_solver;
@@ -890,7 +963,11 @@ namespace Talus
        * the ghost-penalty faces, and the diagonal of every other degree of
        * freedom (the empty grid's, constrained to zero). The pattern of the
        * whole grid would make the direct solver factorise the empty part
-       * of the grid as well (its zeros are stored entries).
+       * of the grid as well (its zeros are stored entries). The pattern,
+       * the matrix and the symbolic factorisation of the direct solver are
+       * kept if the blocks of the cells, boundary cells and ghost faces
+       * are those of the last pattern on every rank (the assembly zeroes
+       * the matrix; the first factorisation of the step pivots anew).
        */
       void
       make_step_sparsity_pattern();
