@@ -187,6 +187,14 @@ namespace Talus
                                 "the post, the net and the rope must have a "
                                 "length (post top differs from post base, "
                                 "net bottom and rope anchor)");
+            if (!(p.brake_length < rope.norm()))
+              InputFile::reject(structure_section + "/Brake",
+                                "length",
+                                std::to_string(p.brake_length),
+                                "the brake is the last piece of the "
+                                "retaining rope: it must be shorter than the "
+                                "rope from the post top to the rope anchor (" +
+                                  std::to_string(rope.norm()) + " m)");
             // The post head is held by three members: the net has to pull
             // it downstream (away from the rope), or the post and the net
             // are a mechanism.
