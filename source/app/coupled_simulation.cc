@@ -430,16 +430,35 @@ namespace Talus
           csv << ",interface_force_" << char('x' + d);
         csv << ",work_structure,work_points,mpm_energy,structure_energy,"
                "dissipation,energy_change,max_structure_displacement,"
-               "penetration,mass\n";
+               "penetration,mass,kinetic_energy,gravitational_energy,"
+               "strain_energy,spring_energy,plastic_dissipation,"
+               "friction_dissipation,numerical_dissipation,barrier_kinetic,"
+               "barrier_dissipation\n";
         csv << std::setprecision(12);
       }
     // the barrier's member forces, brake strokes and dissipation
     IO::StructureTimeSeries barrier_series;
-    barrier_series.open(output.directory() + "/structure.csv", S, root);
+    const auto              impact_columns = [&]() {
+      const auto columns = model->impact_columns(S,
+                                                 structure.displacement(),
+                                                 structure.interface_forces());
+      std::pair<std::vector<std::string>, std::vector<double>> split;
+      for (const auto &[name, value] : columns)
+        {
+          split.first.push_back(name);
+          split.second.push_back(value);
+        }
+      return split;
+    };
+    barrier_series.open(output.directory() + "/structure.csv",
+                        S,
+                        root,
+                        impact_columns().first);
     barrier_series.write(0.,
                          S,
                          structure.displacement(),
-                         structure.dissipated_energy());
+                         structure.dissipated_energy(),
+                         impact_columns().second);
 
     const auto    wall_start       = std::chrono::steady_clock::now();
     unsigned long total_iterations = 0, total_rejected = 0, total_restarts = 0;
@@ -545,13 +564,34 @@ namespace Talus
             csv << ',' << result.work_structure << ',' << result.work_points
                 << ',' << e.mpm << ',' << e.structure << ',' << e.dissipation
                 << ',' << change << ',' << max_u << ',' << penetration << ','
-                << diagnostics.mass << '\n';
+                << diagnostics.mass;
+            // the energies by category: the material's (kinetic,
+            // gravitational, strain, penalty springs), its dissipation
+            // (plastic flow, friction on every boundary, the numerical
+            // dissipation of velocity resets and PIC blending), the
+            // barrier's kinetic energy and dissipation (brakes, damping,
+            // plasticity); the barrier's elastic energy is
+            // structure_energy - barrier_kinetic
+            double springs = 0.;
+            for (const auto &b : diagnostics.boundaries)
+              springs += b.spring_energy;
+            csv << ',' << diagnostics.kinetic_energy << ','
+                << diagnostics.gravitational_energy << ','
+                << diagnostics.strain_energy << ',' << springs << ','
+                << diagnostics.plastic_dissipation << ','
+                << diagnostics.friction_dissipation << ','
+                << diagnostics.reset_dissipation +
+                     diagnostics.transfer_dissipation
+                << ',' << structure.kinetic_energy() << ','
+                << structure.dissipated_energy() << '\n';
+            csv.flush();
           }
         // S was assembled at the committed state by energies()
         barrier_series.write(time_control.time,
                              S,
                              structure.displacement(),
-                             structure.dissipated_energy());
+                             structure.dissipated_energy(),
+                             impact_columns().second);
         if (output.due(time_control.time) || time_control.finished())
           {
             dealii::TimerOutput::Scope s(timer, "output");

@@ -23,8 +23,10 @@ namespace Talus
     void
     StructureTimeSeries::open(const std::string                 &filename,
                               const Talus::Structure::Structure &structure,
-                              const bool                         root)
+                              const bool                         root,
+                              const std::vector<std::string>    &extra_names)
     {
+      n_extra = extra_names.size();
       if (!root)
         return;
       file.open(filename);
@@ -37,7 +39,10 @@ namespace Talus
           if (is_brake(*mesh))
             file << ',' << mesh->name << "_stroke";
         }
-      file << ",dissipated_energy,largest_displacement\n";
+      file << ",dissipated_energy,largest_displacement";
+      for (const auto &name : extra_names)
+        file << ',' << name;
+      file << '\n';
       file << std::setprecision(10);
     }
 
@@ -46,10 +51,14 @@ namespace Talus
     StructureTimeSeries::write(const double                       time,
                                const Talus::Structure::Structure &structure,
                                const dealii::Vector<double>      &u,
-                               const double dissipated_energy)
+                               const double               dissipated_energy,
+                               const std::vector<double> &extra_values)
     {
       if (!file.is_open())
         return;
+      if (extra_values.size() != n_extra)
+        throw std::logic_error("StructureTimeSeries: the model's columns "
+                               "changed between header and row");
       file << time;
       for (const auto &mesh : structure.line_meshes)
         {
@@ -69,7 +78,10 @@ namespace Talus
       double largest = 0.;
       for (unsigned int k = 0; k < structure.n_nodes(); ++k)
         largest = std::max(largest, structure.node_displacement(u, k).norm());
-      file << ',' << dissipated_energy << ',' << largest << '\n';
+      file << ',' << dissipated_energy << ',' << largest;
+      for (const double v : extra_values)
+        file << ',' << v;
+      file << '\n';
       file.flush();
     }
   } // namespace IO

@@ -7,6 +7,7 @@
 
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace Talus
 {
@@ -20,28 +21,34 @@ namespace Talus
      * the largest stroke [m]; the energy the structure has dissipated
      * (brakes, truss plasticity, Rayleigh damping;
      * Structure::StructureProblem::dissipated_energy()) [J]; the largest
-     * nodal displacement [m]. In a 2D problem forces are per metre of
-     * width. The forces are those of the structure's last assembly: call
-     * write() after Structure::assemble() at the committed state.
+     * nodal displacement [m]; then the model's own columns
+     * (StructureModels::Model::impact_columns()). In a 2D problem forces are
+     * per metre of width. The forces are those of the structure's last
+     * assembly: call write() after Structure::assemble() at the committed
+     * state.
      */
     class StructureTimeSeries
     {
     public:
-      /** Open @p filename and write the header (only if @p root). */
+      /** Open @p filename and write the header (only if @p root), with
+       * the model's own columns @p extra_names after the standard ones. */
       void
       open(const std::string                 &filename,
            const Talus::Structure::Structure &structure,
-           const bool                         root);
+           const bool                         root,
+           const std::vector<std::string>    &extra_names = {});
 
       /** One row. */
       void
       write(const double                       time,
             const Talus::Structure::Structure &structure,
             const dealii::Vector<double>      &displacement,
-            const double                       dissipated_energy);
+            const double                       dissipated_energy,
+            const std::vector<double>         &extra_values = {});
 
     private:
       std::ofstream file;
+      std::size_t   n_extra = 0; ///< model columns in the header
     };
   } // namespace IO
 } // namespace Talus

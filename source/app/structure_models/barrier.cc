@@ -182,6 +182,105 @@ namespace Talus
           return columns;
         }
 
+        /**
+         * The barrier engineer's time series of a coupled run: the
+         * material's force on each field (nodal interface forces of the
+         * field's net nodes, the nodes on an inner post shared half and
+         * half, component along the net's downstream normal) [N]; per post
+         * its axial force (tension positive) [N], its rotation about its
+         * base line, downslope positive [degrees], and the force on its
+         * base [N]; the force on every ground anchor (bottom, top and
+         * lateral cable anchors, the retaining ropes' anchors, i.e. the
+         * force in each rope's brake) [N]; every brake's stroke [m]; the
+         * net's largest deflection along its downstream normal [m] and its
+         * residual height (the lowest point of its top edge above the
+         * ground plane z = 0) [m].
+         */
+        std::vector<std::pair<std::string, double>>
+        impact_columns(const Structure      &s,
+                       const Vector<double> &u,
+                       const Vector<double> &interface_forces) const override
+        {
+          const auto        &b       = builder;
+          const unsigned int n_posts = b.n_fields + 1;
+          const double       theta   = b.inclination * numbers::PI / 180.;
+          const Tensor<1, 3> normal({0., -std::cos(theta), -std::sin(theta)});
+          const bool         loaded = interface_forces.size() == u.size();
+          std::vector<std::pair<std::string, double>> columns;
+
+          double deflection = 0., residual_height = b.height;
+          for (unsigned int f = 0; f < b.n_fields; ++f)
+            {
+              const auto   nodes = b.field_nodes(s, f);
+              const auto   nz    = b.cells_over_height + 1;
+              double       force = 0.;
+              unsigned int index = 0;
+              for (unsigned int k = 0; k <= b.cells_per_field; ++k)
+                for (unsigned int j = 0; j < nz; ++j, ++index)
+                  {
+                    const unsigned int n = nodes[index];
+                    const bool         shared =
+                      (k == 0 && f > 0) ||
+                      (k == b.cells_per_field && f + 1 < b.n_fields);
+                    if (loaded)
+                      force +=
+                        (shared ? 0.5 : 1.) *
+                        (s.node_displacement(interface_forces, n) * normal);
+                    const Tensor<1, 3> d = s.node_displacement(u, n);
+                    deflection           = std::max(deflection, d * normal);
+                    if (j + 1 == nz)
+                      residual_height =
+                        std::min(residual_height, s.node_position(n)[2] + d[2]);
+                  }
+              columns.emplace_back("field_" + std::to_string(f) + "_force",
+                                   force);
+            }
+          const auto &posts = s.line_meshes[b.post_meshes[0]]->force;
+          for (unsigned int i = 0; i < n_posts; ++i)
+            {
+              const unsigned int base = b.supports[i], head = b.post_heads[i];
+              const Tensor<1, 3> a0 =
+                s.node_position(head) - s.node_position(base);
+              const Tensor<1, 3> a = a0 + s.node_displacement(u, head) -
+                                     s.node_displacement(u, base);
+              const std::string post = "post_" + std::to_string(i);
+              if (i < posts.size())
+                columns.emplace_back(post + "_force", posts[i]);
+              columns.emplace_back(post + "_rotation",
+                                   -(std::atan2(a[1], a[2]) -
+                                     std::atan2(a0[1], a0[2])) *
+                                     180. / numbers::PI);
+              columns.emplace_back(post + "_base_force",
+                                   s.reaction(base).norm());
+            }
+          const std::vector<std::string> anchors = {"bottom_cable_left",
+                                                    "bottom_cable_right",
+                                                    "top_cable_left",
+                                                    "top_cable_right",
+                                                    "lateral_rope_left",
+                                                    "lateral_rope_right"};
+          for (unsigned int k = 0; k < anchors.size(); ++k)
+            columns.emplace_back("anchor_" + anchors[k] + "_force",
+                                 s.reaction(b.supports[n_posts + k]).norm());
+          const auto &brakes = s.line_meshes[b.brake_meshes[0]]->state;
+          for (unsigned int i = 0; i < n_posts; ++i)
+            for (unsigned int side = 0; side < 2; ++side)
+              {
+                const unsigned int k = 2 * i + side;
+                const std::string  rope =
+                  "rope_" + std::to_string(i) + (side == 0 ? "a" : "b");
+                columns.emplace_back(
+                  "anchor_" + rope + "_force",
+                  s.reaction(b.supports[n_posts + anchors.size() + k]).norm());
+                if (brakes.size() == 2 * n_posts)
+                  columns.emplace_back("brake_" + rope.substr(5) + "_stroke",
+                                       brakes[k].plastic);
+              }
+          columns.emplace_back("net_deflection", deflection);
+          columns.emplace_back("net_residual_height", residual_height);
+          return columns;
+        }
+
         std::vector<Result>
         results(const Structure &s, const Vector<double> &u) override
         {

@@ -184,6 +184,23 @@ namespace Talus
         return {};
       }
 
+      /**
+       * What a barrier engineer reads off a coupled run, written by
+       * IO::StructureTimeSeries into structure.csv after every step besides
+       * the per-mesh columns: e.g. the impact force per field, the post
+       * forces and rotations, the force at every anchor, the net's
+       * deflection and residual height. @p u: committed displacement,
+       * @p interface_forces: the material's nodal forces on the structure
+       * [N] (per global DoF). The names must not change between calls.
+       */
+      virtual std::vector<std::pair<std::string, double>>
+      impact_columns(const Structure &,
+                     const dealii::Vector<double> &,
+                     const dealii::Vector<double> &) const
+      {
+        return {};
+      }
+
       /** Results compared with the closed form at the end. */
       virtual std::vector<Result>
       results(const Structure &s, const dealii::Vector<double> &u) = 0;
