@@ -693,8 +693,7 @@ namespace Talus
     unsigned long       total_multiplier_updates      = 0;
     double              max_constraint_gap            = 0.;
     unsigned int        total_rejected                = 0;
-    // the smallest and largest step chosen by the error (since the start
-    // or the resume)
+    // the smallest and largest step chosen by the error
     double smallest_dt = std::numeric_limits<double>::max(), largest_dt = 0.;
     // steps accepted on the residual alone (MPM::NewtonResult)
     unsigned int total_without_descent = 0;
@@ -707,6 +706,10 @@ namespace Talus
             &total_lost_boundary_particles &total_newton
               &total_multiplier_updates &max_constraint_gap &total_rejected
                 &total_without_descent &errors &next_report;
+      // the step chosen by the error
+      double       &last_error       = time_control.last_error;
+      unsigned int &error_rejections = time_control.error_rejections;
+      archive &last_error &error_rejections &smallest_dt &largest_dt;
     };
     const std::string loop_tag = "talus-time-loop";
     // Write a checkpoint of the committed state; returns its path.
