@@ -21,7 +21,7 @@ namespace Talus
       "by the error (Zienkiewicz and Xie 1991: e = dt^2 (beta - 1/6) "
       "(a_{n+1} - a_n), mass weighted RMS over the grid nodes, divided by "
       "the RMS of the increment plus 'error displacement floor'; "
-      "doc/architecture.md), 'time step' is the first step and the largest "
+      "doc/theory.md), 'time step' is the first step and the largest "
       "unless 'maximum time step' is set, and the steps land on the output "
       "and report times and the end time. The global error follows the "
       "tolerance about linearly; 1e-3 is a period error of about 0.1 % per "
