@@ -207,6 +207,18 @@ namespace Talus
     // The MPM.
     TimeControl time_control;
     time_control.parse_parameters(prm);
+    if (time_control.error_control.enabled())
+      {
+        prm.enter_subsection("Time");
+        const std::string tolerance = prm.get("error tolerance");
+        prm.leave_subsection();
+        InputFile::reject("Time",
+                          "error tolerance",
+                          tolerance,
+                          "0: the step chosen by the error exists only for "
+                          "'problem = mpm' so far, not for 'problem = "
+                          "coupled'");
+      }
     MPM::MPMProblem<dim> mpm(communicator, time_control.newmark, timer);
     mpm.parse_parameters(prm);
     IO::VisualizationOutput<dim> output;

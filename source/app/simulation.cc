@@ -32,6 +32,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace Talus
@@ -468,6 +469,25 @@ namespace Talus
     prm.leave_subsection();
     prm.leave_subsection();
     report_times.push_back(time_control.end_time);
+    if (time_control.error_control.enabled())
+      {
+        if (solver.is_quasi_static())
+          {
+            prm.enter_subsection("Time");
+            const std::string tolerance = prm.get("error tolerance");
+            prm.leave_subsection();
+            InputFile::reject("Time",
+                              "error tolerance",
+                              tolerance,
+                              "it must be 0 in a quasi-static analysis "
+                              "(subsection <Solver>: there are no "
+                              "accelerations to estimate the error from)");
+          }
+        // the steps land on the output and report times
+        time_control.set_event_interval(output.output_interval);
+        if (compare)
+          time_control.add_event_times(report_times);
+      }
 
     // Generate the body and set up the solver.
     problem.setup();
@@ -481,7 +501,8 @@ namespace Talus
           names.push_back(boundaries.boundary(b).name);
         series.open(output.directory() + "/time_series.csv",
                     communicator,
-                    names);
+                    names,
+                    time_control.error_control.enabled());
       }
 
     pcout << "Talus: " << dim << "D implicit MPM, "
@@ -672,6 +693,8 @@ namespace Talus
     unsigned long       total_multiplier_updates      = 0;
     double              max_constraint_gap            = 0.;
     unsigned int        total_rejected                = 0;
+    // the smallest and largest step chosen by the error
+    double smallest_dt = std::numeric_limits<double>::max(), largest_dt = 0.;
     // steps accepted on the residual alone (MPM::NewtonResult)
     unsigned int total_without_descent = 0;
 
@@ -683,6 +706,10 @@ namespace Talus
             &total_lost_boundary_particles &total_newton
               &total_multiplier_updates &max_constraint_gap &total_rejected
                 &total_without_descent &errors &next_report;
+      // the step chosen by the error
+      double       &last_error       = time_control.last_error;
+      unsigned int &error_rejections = time_control.error_rejections;
+      archive &last_error &error_rejections &smallest_dt &largest_dt;
     };
     const std::string loop_tag = "talus-time-loop";
     // Write a checkpoint of the committed state; returns its path.
@@ -719,7 +746,8 @@ namespace Talus
                                         });
         series.resume(output.directory() + "/time_series.csv",
                       communicator,
-                      csv);
+                      csv,
+                      time_control.error_control.enabled());
         output.write_index(communicator);
         pcout << "  resumed from " << resume_path << " at step "
               << time_control.step << ", t = " << time_control.time << " s\n";
@@ -737,16 +765,35 @@ namespace Talus
             imbalance_max = std::max(imbalance_max, imbalance_last);
             ++imbalance_steps;
           }
-        const double      step  = time_control.next_step();
-        const double      t_new = time_control.time + step;
         MPM::NewtonResult result;
+        double            dt_taken = 0.;
         while (true)
           {
             const double dt_try = time_control.next_step();
             problem.prepare_step(time_control.time + dt_try, dt_try);
-            result = problem.solve_step();
-            if (result.converged)
+            result   = problem.solve_step();
+            dt_taken = dt_try;
+            if (result.converged && !time_control.error_control.enabled())
               break;
+            if (result.converged)
+              {
+                // the step chosen by the error (TruncationErrorControl)
+                const double error = time_control.error_control.error(
+                  solver.truncation_error_norms(),
+                  dt_try,
+                  time_control.newmark.beta);
+                if (time_control.assess_error(dt_try, error))
+                  break;
+                ++total_rejected;
+                if (!test_mode)
+                  pcout << "  step " << time_control.step + 1
+                        << " at t = " << time_control.time
+                        << " s rejected (dt = " << dt_try
+                        << " s): estimated error " << error
+                        << " above the tolerance; retrying with dt = "
+                        << time_control.next_step() << " s\n";
+                continue;
+              }
             ++total_rejected;
             pcout << "  step " << time_control.step + 1
                   << " at t = " << time_control.time
@@ -782,11 +829,13 @@ namespace Talus
             pcout << "    retrying with dt = " << time_control.next_step()
                   << " s\n";
           }
-        (void)t_new;
-        (void)step;
-        const double dt_taken = time_control.next_step();
         problem.commit_step();
         time_control.accept(dt_taken);
+        if (time_control.error_control.enabled())
+          {
+            smallest_dt = std::min(smallest_dt, dt_taken);
+            largest_dt  = std::max(largest_dt, dt_taken);
+          }
         total_newton += result.iterations;
         total_without_descent += result.accepted_without_descent ? 1 : 0;
         total_multiplier_updates += result.multiplier_updates;
@@ -883,7 +932,8 @@ namespace Talus
                      dt_taken,
                      result,
                      diagnostics,
-                     lost_mass);
+                     lost_mass,
+                     time_control.last_error);
         deposit.step(time_control.step, time_control.time, points);
 
         if (output.due(time_control.time) || time_control.finished())
@@ -904,7 +954,10 @@ namespace Talus
                       << "  t = " << std::scientific << std::setprecision(4)
                       << time_control.time
                       << " s  dt = " << std::setprecision(2) << dt_taken
-                      << " s  Newton " << std::setw(2) << result.iterations
+                      << " s";
+                if (time_control.error_control.enabled())
+                  pcout << "  error " << time_control.last_error;
+                pcout << "  Newton " << std::setw(2) << result.iterations
                       << "  linear " << std::setw(4) << result.linear_iterations
                       << "  |R| " << result.residual << std::defaultfloat
                       << "  wall " << format_seconds(wall) << "  left ~"
@@ -996,6 +1049,12 @@ namespace Talus
           }
         pcout << "\n  max speed: " << round(v_max)
               << "\n  lost mass: " << round(total_lost_mass) << " kg\n";
+        if (time_control.error_control.enabled())
+          pcout << "  steps chosen by the error: " << time_control.step
+                << " steps, " << time_control.error_rejections
+                << " rejected for their error, dt " << std::setprecision(4)
+                << smallest_dt << " .. " << largest_dt << " s"
+                << std::setprecision(6) << '\n';
         if (total_without_descent > 0)
           pcout << "  steps accepted on the residual alone (no descent "
                    "along the last correction): "
@@ -1020,27 +1079,31 @@ namespace Talus
                 << solver.n_ghost_penalty_faces() << '\n';
       }
     else
-      pcout << "Done: " << time_control.step << " steps (" << total_rejected
-            << " rejected), "
-            << static_cast<double>(total_newton) /
-                 std::max(1u, time_control.step)
-            << " Newton iterations per step, "
-            << (total_without_descent > 0 ?
-                  std::to_string(total_without_descent) +
-                    " accepted on the residual alone, " :
-                  std::string())
-            << (boundaries.any_augmented() ?
-                  std::to_string(total_multiplier_updates) +
-                    " multiplier updates in " +
-                    std::to_string(time_control.step) + " steps, " :
-                  std::string())
-            << "lost mass " << total_lost_mass << " kg, "
-            << (total_lost_boundary_particles > 0 ?
-                  std::to_string(total_lost_boundary_particles) +
-                    " boundary particles lost, " :
-                  std::string())
-            << "wall time " << format_seconds(wall_seconds()) << "\n"
-            << "Output in " << output.directory() << "/\n";
+      pcout
+        << "Done: " << time_control.step << " steps (" << total_rejected
+        << " rejected), "
+        << static_cast<double>(total_newton) / std::max(1u, time_control.step)
+        << " Newton iterations per step, "
+        << (total_without_descent > 0 ? std::to_string(total_without_descent) +
+                                          " accepted on the residual alone, " :
+                                        std::string())
+        << (boundaries.any_augmented() ?
+              std::to_string(total_multiplier_updates) +
+                " multiplier updates in " + std::to_string(time_control.step) +
+                " steps, " :
+              std::string())
+        << "lost mass " << total_lost_mass << " kg, "
+        << (time_control.error_control.enabled() ?
+              std::to_string(time_control.error_rejections) +
+                " rejected for their error, dt " + std::to_string(smallest_dt) +
+                " .. " + std::to_string(largest_dt) + " s, " :
+              std::string())
+        << (total_lost_boundary_particles > 0 ?
+              std::to_string(total_lost_boundary_particles) +
+                " boundary particles lost, " :
+              std::string())
+        << "wall time " << format_seconds(wall_seconds()) << "\n"
+        << "Output in " << output.directory() << "/\n";
     if (track_imbalance && imbalance_steps > 0)
       pcout << "  imbalance of the material points (largest rank / mean) "
                "at the start of the steps: mean "

@@ -100,6 +100,7 @@ namespace Talus
                         "Accepted steps after a rejection before an adaptive "
                         "step grows again [-], >= 1.");
       NewmarkBeta::declare_parameters(prm);
+      TruncationErrorControl::declare_parameters(prm);
     }
     prm.leave_subsection();
   }
@@ -126,6 +127,14 @@ namespace Talus
                minimum :
                initial_dt * std::min(1e-3, std::ldexp(1., -max_halvings));
     newmark.parse_parameters(prm);
+    error_control.parse_parameters(prm, initial_dt);
+    if (error_control.enabled() && adaptive)
+      InputFile::reject("Time",
+                        "adaptive time step",
+                        prm.get("adaptive time step"),
+                        "it must be false when 'error tolerance' (" +
+                          prm.get("error tolerance") +
+                          ") chooses the step by the error");
     prm.leave_subsection();
   }
 
@@ -133,6 +142,15 @@ namespace Talus
   double
   TimeControl::next_step() const
   {
+    if (error_control.enabled())
+      {
+        const double remaining = next_event() - time;
+        if (remaining <= dt * (1. + 1e-8))
+          return remaining;
+        if (remaining < 2. * dt)
+          return remaining / 2.;
+        return dt;
+      }
     const double remaining = end_time - time;
     // Avoid a sliver of a last step: take it together with this one.
     if (remaining <= dt * (1. + 1e-8))
@@ -146,6 +164,9 @@ namespace Talus
   bool
   TimeControl::reject()
   {
+    // (a step shortened for an event: halve what was tried)
+    if (error_control.enabled())
+      dt = std::min(dt, next_step());
     if (halvings >= max_halvings || dt / 2. < min_dt * (1. - 1e-12))
       return false;
     ++halvings;
@@ -155,9 +176,43 @@ namespace Talus
   }
 
 
+  bool
+  TimeControl::assess_error(const double step_taken, const double error)
+  {
+    const auto  &c = error_control;
+    const double raw =
+      error > 0. ? c.safety * std::sqrt(c.tolerance / error) : c.growth_limit;
+    last_error = error;
+    if (c.rejects(error) && step_taken > min_dt * (1. + 1e-12))
+      {
+        dt = std::max(step_taken * std::max(raw, c.shrink_limit), min_dt);
+        ++error_rejections;
+        successes_since_cut = 0;
+        return false;
+      }
+    // The growth limit applies to the step proposed before an event
+    // shortened step_taken (dt), the shrink limit to the step taken.
+    dt = std::clamp(step_taken * raw,
+                    step_taken * c.shrink_limit,
+                    std::max(dt, step_taken) * c.growth_limit);
+    dt = std::max(std::min(dt, c.max_dt), min_dt);
+    return true;
+  }
+
+
   void
   TimeControl::accept(const double step_taken)
   {
+    if (error_control.enabled())
+      {
+        const double event = next_event();
+        time += step_taken;
+        if (std::abs(event - time) <= 1e-12 * std::max(1., std::abs(event)))
+          time = event;
+        ++step;
+        halvings = 0;
+        return;
+      }
     time += step_taken;
     if (std::abs(end_time - time) < 1e-12 * end_time)
       time = end_time;
@@ -174,6 +229,42 @@ namespace Talus
             successes_since_cut = 0;
           }
       }
+  }
+
+
+  void
+  TimeControl::add_event_times(const std::vector<double> &times)
+  {
+    event_times.insert(event_times.end(), times.begin(), times.end());
+    std::sort(event_times.begin(), event_times.end());
+  }
+
+
+  void
+  TimeControl::set_event_interval(const double interval)
+  {
+    event_interval = interval;
+  }
+
+
+  double
+  TimeControl::next_event() const
+  {
+    // an event closer than this to the current time is the one just met
+    const double tiny  = 1e-12 * std::max(1., end_time);
+    double       event = end_time;
+    for (const double t : event_times)
+      if (t > time + tiny)
+        {
+          event = std::min(event, t);
+          break;
+        }
+    if (event_interval > 0.)
+      {
+        const double k = std::floor(time / event_interval + 1e-9) + 1.;
+        event          = std::min(event, k * event_interval);
+      }
+    return event;
   }
 
 

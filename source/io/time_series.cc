@@ -12,10 +12,12 @@ namespace Talus
     void
     TimeSeries<dim>::open(const std::string              &filename,
                           const MPI_Comm                  communicator,
-                          const std::vector<std::string> &boundary_names)
+                          const std::vector<std::string> &boundary_names,
+                          const bool                      error_column)
     {
-      is_root   = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
-      file_name = filename;
+      with_error = error_column;
+      is_root    = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+      file_name  = filename;
       if (is_root)
         file.open(filename);
       const int ok =
@@ -40,6 +42,8 @@ namespace Talus
           file << ',' << name << "_normal_force," << name
                << "_tangential_force," << name << "_penetration";
         }
+      if (with_error)
+        file << ",error_estimate";
       file << '\n';
       file << std::setprecision(12);
     }
@@ -63,10 +67,12 @@ namespace Talus
     void
     TimeSeries<dim>::resume(const std::string &filename,
                             const MPI_Comm     communicator,
-                            const std::string &contents)
+                            const std::string &contents,
+                            const bool         error_column)
     {
-      is_root   = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
-      file_name = filename;
+      with_error = error_column;
+      is_root    = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+      file_name  = filename;
       if (is_root)
         {
           file.close();
@@ -91,7 +97,8 @@ namespace Talus
                            const double                 dt,
                            const MPM::NewtonResult     &newton,
                            const MPM::Diagnostics<dim> &d,
-                           const double                 lost_mass)
+                           const double                 lost_mass,
+                           const double                 error)
     {
       if (!is_root)
         return;
@@ -119,6 +126,8 @@ namespace Talus
           file << ',' << b.normal_force << ',' << b.tangential_force << ','
                << b.penetration;
         }
+      if (with_error)
+        file << ',' << error;
       file << '\n';
       file.flush();
     }

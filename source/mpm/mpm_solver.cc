@@ -1146,6 +1146,37 @@ namespace Talus
     }
 
 
+    template <int dim>
+    TruncationErrorNorms
+    MPMSolver<dim>::truncation_error_norms() const
+    {
+      Assert(solved, dealii::ExcMessage("solve_step() first"));
+      // sums of m (a_{n+1} - a_n)^2, m du^2 and m over the owned dofs
+      double sums[3] = {0., 0., 0.};
+      if (!quasi_static)
+        for (const auto i : grid.locally_owned_dofs)
+          {
+            const double m = nodal_mass(i);
+            if (!(m > 0.))
+              continue;
+            const double du = displacement(i);
+            const double an = acceleration_n(i);
+            const double a  = newmark.acceleration(du, velocity_n(i), an, dt);
+            sums[0] += m * (a - an) * (a - an);
+            sums[1] += m * du * du;
+            sums[2] += m;
+          }
+      dealii::Utilities::MPI::sum(sums, grid.mpi_communicator, sums);
+      TruncationErrorNorms norms;
+      if (sums[2] > 0.)
+        {
+          norms.acceleration_change = std::sqrt(sums[0] / sums[2]);
+          norms.increment           = std::sqrt(sums[1] / sums[2]);
+        }
+      return norms;
+    }
+
+
     template class MPMSolver<2>;
     template class MPMSolver<3>;
   } // namespace MPM

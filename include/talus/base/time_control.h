@@ -1,7 +1,11 @@
 #ifndef talus_base_time_control_h
 #define talus_base_time_control_h
 
+#include <talus/base/step_size_controller.h>
+
 #include <deal.II/base/parameter_handler.h>
+
+#include <vector>
 
 namespace Talus
 {
@@ -70,6 +74,16 @@ namespace Talus
    * growth' successful steps, and the minimum keeps a step that is
    * rejected more often than it grows from ratcheting down until the run
    * stalls.
+   *
+   * With 'error tolerance' > 0 the step is chosen by the estimated local
+   * truncation error instead (TruncationErrorControl, member
+   * error_control): the caller passes the error of every solved step to
+   * assess_error(), which rejects it or sets the next step; the halving
+   * of steps whose Newton iteration fails stays as the safety net, and
+   * the steps land exactly on the event times (add_event_times(),
+   * set_event_interval()) and the end time. Without it the fixed (or
+   * 'adaptive time step') stepping above is unchanged and ignores the
+   * events.
    */
   class TimeControl
   {
@@ -81,7 +95,12 @@ namespace Talus
     void
     parse_parameters(dealii::ParameterHandler &prm);
 
-    /** Step to attempt next: never beyond the end time. */
+    /**
+     * Step to attempt next: never beyond the end time. With the error
+     * control never beyond the next event either: the step before an
+     * event is shortened to land on it (two equal steps when one would
+     * leave less than the step for the next).
+     */
     double
     next_step() const;
 
@@ -91,10 +110,39 @@ namespace Talus
     bool
     reject();
 
+    /**
+     * Error control only: the step of size @p step_taken converged with
+     * the estimated error @p error (TruncationErrorControl::error()). Sets
+     * the next step, dt step_factor(error) within [min_dt, max_dt] (the
+     * growth limit relative to the proposed step, so that a step
+     * shortened for an event does not hold the next one back, the shrink
+     * limit relative to the step taken), and
+     * returns false if the step must be repeated (the error exceeds the
+     * rejection factor times the tolerance and the step is above min_dt);
+     * then accept() must not be called.
+     */
+    bool
+    assess_error(const double step_taken, const double error);
+
     /** The attempted step of size @p step_taken was accepted: advance
      * time. A fixed step returns to 'time step' after a halved step. */
     void
     accept(const double step_taken);
+
+    /** Error control: times the steps must land on (report times). */
+    void
+    add_event_times(const std::vector<double> &times);
+
+    /**
+     * Error control: the steps land on every multiple of @p interval (the
+     * output interval; 0: none).
+     */
+    void
+    set_event_interval(const double interval);
+
+    /** The next event after the current time (at most the end time). */
+    double
+    next_event() const;
 
     bool
     finished() const;
@@ -124,6 +172,16 @@ namespace Talus
     unsigned int steps_before_growth = 10;
     unsigned int successes_since_cut = 0;
     NewmarkBeta  newmark;
+    /** The step chosen by the error ('error tolerance' > 0). */
+    TruncationErrorControl error_control;
+    /** Error control: the error of the last assessed step [-]. */
+    double last_error = 0.;
+    /** Error control: steps rejected for their error so far. */
+    unsigned int error_rejections = 0;
+
+  private:
+    std::vector<double> event_times;
+    double              event_interval = 0.;
   };
 } // namespace Talus
 

@@ -30,20 +30,25 @@ namespace Talus
        * <name>_normal_force, <name>_tangential_force, <name>_penetration
        * (reaction of the material on the boundary [N], its normal
        * (compression positive) and tangential resultants [N], largest
-       * penetration [m]).
+       * penetration [m]). With @p error_column (the step chosen by the
+       * error, TruncationErrorControl) a last column `error_estimate`
+       * holds the estimated relative truncation error of each step [-].
        */
       void
       open(const std::string              &filename,
            const MPI_Comm                  communicator,
-           const std::vector<std::string> &boundary_names = {});
+           const std::vector<std::string> &boundary_names = {},
+           const bool                      error_column   = false);
 
+      /** One row; @p error is written only with the error column. */
       void
       write(const unsigned int           step,
             const double                 time,
             const double                 dt,
             const MPM::NewtonResult     &newton,
             const MPM::Diagnostics<dim> &diagnostics,
-            const double                 lost_mass);
+            const double                 lost_mass,
+            const double                 error = 0.);
 
       /**
        * Everything written so far (rank 0, after a flush; empty on the
@@ -55,17 +60,20 @@ namespace Talus
       /**
        * Continue the time series of a resumed run: replace the file
        * @p filename by @p contents (rows written after the checkpoint by
-       * the run that stopped are dropped) and append to it.
+       * the run that stopped are dropped) and append to it;
+       * @p error_column as in open().
        */
       void
       resume(const std::string &filename,
              const MPI_Comm     communicator,
-             const std::string &contents);
+             const std::string &contents,
+             const bool         error_column = false);
 
     private:
       std::ofstream file;
       std::string   file_name;
-      bool          is_root = false;
+      bool          is_root    = false;
+      bool          with_error = false;
     };
   } // namespace IO
 } // namespace Talus

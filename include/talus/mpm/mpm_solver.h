@@ -211,6 +211,18 @@ namespace Talus
       void
       commit_step();
 
+      /**
+       * The grid norms of the solved step (after solve_step(), before
+       * commit_step()) for the estimate of its truncation error
+       * (TruncationErrorControl): the mass weighted RMS over the grid
+       * dofs with mass of the acceleration change a_{n+1} - a_n (a_{n+1}
+       * from the increment by the Newmark formula, a_n that of the P2G
+       * after the constraints) and of the increment du. Zero in a
+       * quasi-static analysis. Collective.
+       */
+      TruncationErrorNorms
+      truncation_error_norms() const;
+
       /** Integrals over all points (all ranks). */
       Diagnostics<dim>
       compute_diagnostics() const;
