@@ -60,18 +60,15 @@ namespace Talus
 
     // The factors: peak resident memory (/usr/bin/time -v, "Maximum
     // resident set size") of talus runs of 2 steps with the default solver
-    // (CG + AMG) of a linear elastic body filling a box grid (every cell
-    // holds material), doc/testing.md ("Memory estimate"); 1 MB = 1e6 B.
-    // 2D, 1 rank: a 2 x 2 grid 186 MB; 320^2 cells refined from 10^2
-    // (206,082 DoFs) with 1, 4 and 9 points per cell 658, 779 and 1036 MB;
-    // 640^2 (821,762 DoFs), 1 point per cell, 2113 MB; 320^2 cells on one
-    // level 695 MB. 3D: 32^3 cells refined from 4^3 (107,811 DoFs) with 1
-    // and 8 points per cell 822 and 1163 MB, 64^3 (823,875 DoFs) with 1
-    // point per cell 5645 MB, 32^3 on one level 861 MB. Per DoF the
-    // cell's own share (triangulation, DoF handler) is included: 2100 B (2D),
-    // 6200 B (3D); per point 500 B (2D), 1500 B (3D): the points' property pool
-    // and its saved copy, the solver's cached shape values and gradients, the
-    // vectors of the generation.
+    // (CG + AMG) of a linear elastic body in a box grid; the runs and the
+    // estimate of each are tabulated in doc/testing.md ("Memory
+    // estimate"). A 2 x 2 grid: 186 MB (M0). A body filling the grid gives
+    // m_dof + m_material per DoF (2D 2040-2095 B, 3D 5440-6150 B; the
+    // larger grid the larger), one filling 1/4 (2D) or 1/8 (3D) of it the
+    // split; the points per cell 1, 4, 9 (2D) and 1, 8 (3D) at a fixed grid
+    // m_point (2D 394-502 B, 3D 1487 B); a grid on one level against the
+    // same grid refined from a coarse one m_coarse (2D 361 B on 1 rank,
+    // 502 B on 2; 3D 1209 B on 1 rank).
     template <int dim>
     double
     MemoryEstimate<dim>::bytes_base()
