@@ -215,7 +215,10 @@ namespace Talus
           coarse_cells = n_gmsh_grid_cells;
           grid_volume  = gmsh_grid_volume;
           cells        = coarse_cells * std::pow(refine, dim);
-          dofs         = dim * n_gmsh_grid_vertices * std::pow(refine, dim);
+          // every refinement adds a vertex per new cell inside and a
+          // surface's worth on the boundary (exact for a box)
+          dofs = dim * (cells + (n_gmsh_grid_vertices - coarse_cells) *
+                                  std::pow(refine, dim - 1));
         }
       else if (lower.size() == dim && upper.size() == dim &&
                subdivisions.size() == dim)
