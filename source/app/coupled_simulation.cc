@@ -377,6 +377,8 @@ namespace Talus
           << dealii::Utilities::MPI::n_mpi_processes(communicator)
           << " MPI rank(s)\n";
     mpm.print_summary(pcout);
+    if (!test_mode)
+      pcout << "  " << mpm.memory_estimate().summary() << '\n';
     pcout << "  structure: model '" << sp.model_text << "' ("
           << model->description() << "), " << structure.get_structure().n_dofs()
           << " DoFs, " << (structure.is_dynamic() ? "dynamic" : "static")

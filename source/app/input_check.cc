@@ -3,20 +3,18 @@
 #include <talus/app/simulation.h>
 #include <talus/app/structure_simulation.h>
 #include <talus/base/input.h>
+#include <talus/mpm/memory_estimate.h>
 
 #include <deal.II/base/utilities.h>
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <vector>
@@ -96,32 +94,6 @@ namespace Talus
             else
               check_tree(node, path.empty() ? name : path + "/" + name);
           }
-      }
-
-
-      /** Comma-separated numbers; empty if any is not a number. */
-      std::vector<double>
-      numbers(const std::string &text, const char separator = ',')
-      {
-        std::vector<double> result;
-        for (const auto &s :
-             dealii::Utilities::split_string_list(text, separator))
-          {
-            double v;
-            if (!parse_double(s, v))
-              return {};
-            result.push_back(v);
-          }
-        return result;
-      }
-
-
-      std::string
-      gigabytes(const double bytes)
-      {
-        std::ostringstream s;
-        s << std::setprecision(3) << bytes / 1e9 << " GB";
-        return s.str();
       }
     } // namespace
 
@@ -218,209 +190,33 @@ namespace Talus
     }
 
 
-    std::uint64_t
-    machine_memory()
-    {
-      std::ifstream meminfo("/proc/meminfo");
-      std::string   key;
-      std::uint64_t kilobytes;
-      std::string   unit;
-      while (meminfo >> key >> kilobytes >> unit)
-        if (key == "MemTotal:")
-          return kilobytes * 1024;
-      const long pages     = sysconf(_SC_PHYS_PAGES);
-      const long page_size = sysconf(_SC_PAGESIZE);
-      if (pages > 0 && page_size > 0)
-        return static_cast<std::uint64_t>(pages) *
-               static_cast<std::uint64_t>(page_size);
-      return 0;
-    }
-
-
-    template <int dim>
-    double
-    estimate_mpm_memory(const dealii::ParameterHandler &prm_in,
-                        std::string                    &responsible_subsection,
-                        std::string                    &responsible_entry,
-                        std::string                    &details)
+    void
+    require_memory(const dealii::ParameterHandler &prm_in,
+                   const unsigned int              dimension,
+                   const MPI_Comm                  communicator)
     {
       // get() needs a non-const handler to enter subsections; nothing is
       // changed.
       auto &prm = const_cast<dealii::ParameterHandler &>(prm_in);
-
       prm.enter_subsection("Convergence study");
       const unsigned int level = prm.get_integer("first level") +
                                  prm.get_integer("number of levels") - 1;
       prm.leave_subsection();
-
-      prm.enter_subsection("Background grid");
-      const bool                box_grid     = prm.get("type") == "box";
-      const std::vector<double> lower        = numbers(prm.get("lower corner"));
-      const std::vector<double> upper        = numbers(prm.get("upper corner"));
-      const std::vector<double> subdivisions = numbers(prm.get("subdivisions"));
-      prm.leave_subsection();
-      // A grid from a mesh file, or corners the grid will reject itself.
-      if (!box_grid || lower.size() != dim || upper.size() != dim ||
-          subdivisions.size() != dim)
-        return 0.;
-
-      // Cells and Q1 vertices of the finest level.
-      double cells = 1., vertices = 1., cell_volume = 1.;
-      for (unsigned int d = 0; d < dim; ++d)
+      // Without the model's internal variables (a lower bound): the run
+      // checks again with them before it creates the grid.
+      if (dimension == 2)
         {
-          const double n = subdivisions[d] * std::pow(2., level);
-          cells *= n;
-          vertices *= n + 1.;
-          cell_volume *= std::abs(upper[d] - lower[d]) / n;
-        }
-      const double dofs = dim * vertices;
-
-      // Material points: the body's share of the grid times n^dim.
-      prm.enter_subsection("Body");
-      const std::string geometry = prm.get("geometry");
-      const double      n_per_direction =
-        prm.get_integer("points per cell per direction");
-      double body_volume = 0.;
-      if (geometry == "box")
-        {
-          const std::vector<double> body_lower =
-            numbers(prm.get("lower corner"));
-          const std::vector<double> body_upper =
-            numbers(prm.get("upper corner"));
-          if (body_lower.size() == dim && body_upper.size() == dim)
-            {
-              body_volume = 1.;
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  // only the part inside the grid holds points
-                  const double lo =
-                    std::max(std::min(body_lower[d], body_upper[d]),
-                             std::min(lower[d], upper[d]));
-                  const double hi =
-                    std::min(std::max(body_lower[d], body_upper[d]),
-                             std::max(lower[d], upper[d]));
-                  body_volume *= std::max(hi - lo, 0.);
-                }
-            }
-        }
-      else if (geometry == "polygon" && dim == 2)
-        {
-          // shoelace area of the vertices 'x, y; x, y; ...'
-          std::vector<std::vector<double>> v;
-          for (const auto &pair :
-               dealii::Utilities::split_string_list(prm.get("vertices"), ';'))
-            v.push_back(numbers(pair));
-          double twice_area = 0.;
-          bool   valid      = v.size() >= 3;
-          for (std::size_t i = 0; valid && i < v.size(); ++i)
-            {
-              const auto &a = v[i];
-              const auto &b = v[(i + 1) % v.size()];
-              valid         = a.size() == 2 && b.size() == 2;
-              if (valid)
-                twice_area += a[0] * b[1] - b[0] * a[1];
-            }
-          if (valid)
-            body_volume = std::abs(twice_area) / 2.;
-        }
-      prm.leave_subsection();
-      const double points =
-        cell_volume > 0. ?
-          body_volume / cell_volume * std::pow(n_per_direction, dim) :
-          0.;
-
-      // Bytes per cell (triangulation, DoF handler, cell data), per degree
-      // of freedom (Trilinos tangent with its sparsity pattern, 3^dim * dim
-      // entries a row, and the solution vectors) and per material point
-      // (position, volume, F, stresses, internal variables, cell
-      // iterator): deliberately low, so that only runs that certainly do
-      // not fit are stopped. A 2D run of 300 x 300 cells (181,202 DoFs,
-      // 180,000 points, one step) peaked at 531 MB resident; these
-      // numbers give 198 MB for it.
-      const double bytes_per_cell  = dim == 2 ? 600. : 1500.;
-      const double bytes_per_dof   = dim == 2 ? 300. : 700.;
-      const double bytes_per_point = dim == 2 ? 500. : 900.;
-      const double grid_bytes  = cells * bytes_per_cell + dofs * bytes_per_dof;
-      const double point_bytes = points * bytes_per_point;
-
-      std::ostringstream counts;
-      counts << std::setprecision(3) << cells << " cells and " << dofs
-             << " degrees of freedom (" << gigabytes(grid_bytes) << "), "
-             << points << " material points (" << gigabytes(point_bytes) << ")";
-      if (level > 0)
-        counts << " on refinement level " << level
-               << " of subsection <Convergence study>";
-      details = counts.str();
-      if (grid_bytes >= point_bytes)
-        {
-          responsible_subsection = "Background grid";
-          responsible_entry      = "subdivisions";
+          MPM::MemoryEstimate<2> memory;
+          memory.parse_parameters(prm, communicator, level, 0);
+          memory.check(prm);
         }
       else
         {
-          responsible_subsection = "Body";
-          responsible_entry      = "points per cell per direction";
+          MPM::MemoryEstimate<3> memory;
+          memory.parse_parameters(prm, communicator, level, 0);
+          memory.check(prm);
         }
-      return grid_bytes + point_bytes;
     }
-
-
-    void
-    require_memory(const dealii::ParameterHandler &prm,
-                   const unsigned int              dimension,
-                   const MPI_Comm                  communicator)
-    {
-      std::string  subsection, entry, details;
-      const double total =
-        dimension == 2 ?
-          estimate_mpm_memory<2>(prm, subsection, entry, details) :
-          estimate_mpm_memory<3>(prm, subsection, entry, details);
-      const double machine = machine_memory();
-      if (total <= 0. || machine <= 0.)
-        return;
-
-      // This node holds its ranks' share of the run.
-      int n_ranks = 1, n_node_ranks = 1;
-      int mpi_initialized = 0;
-      MPI_Initialized(&mpi_initialized);
-      if (mpi_initialized != 0)
-        {
-          MPI_Comm_size(communicator, &n_ranks);
-          MPI_Comm node;
-          MPI_Comm_split_type(
-            communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-          MPI_Comm_size(node, &n_node_ranks);
-          MPI_Comm_free(&node);
-        }
-      const double on_this_node = total * n_node_ranks / n_ranks;
-      if (on_this_node <= machine)
-        return;
-
-      auto &p = const_cast<dealii::ParameterHandler &>(prm);
-      p.enter_subsection(subsection);
-      const std::string value = p.get(entry);
-      p.leave_subsection();
-      std::ostringstream allowed;
-      allowed << "the run would need at least " << gigabytes(on_this_node)
-              << " of memory on this machine (" << details << ", "
-              << n_node_ranks << " of " << n_ranks
-              << " MPI ranks here), more than its " << gigabytes(machine)
-              << " (MemTotal in /proc/meminfo): use fewer cells or points, or "
-                 "more machines";
-      InputFile::reject(subsection, entry, value, allowed.str());
-    }
-
-
-    template double
-    estimate_mpm_memory<2>(const dealii::ParameterHandler &,
-                           std::string &,
-                           std::string &,
-                           std::string &);
-    template double
-    estimate_mpm_memory<3>(const dealii::ParameterHandler &,
-                           std::string &,
-                           std::string &,
-                           std::string &);
   } // namespace InputCheck
 
 

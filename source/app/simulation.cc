@@ -510,7 +510,8 @@ namespace Talus
           << " MPI rank(s)\n";
     problem.print_summary(pcout);
     if (!test_mode)
-      pcout << "  time: end " << time_control.end_time << " s, step "
+      pcout << "  " << problem.memory_estimate().summary() << '\n'
+            << "  time: end " << time_control.end_time << " s, step "
             << time_control.initial_dt << " s\n";
 
     if (resuming)

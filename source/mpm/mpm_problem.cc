@@ -2,6 +2,8 @@
 #include <talus/mpm/mpm_problem.h>
 #include <talus/mpm/state_transfer.h>
 
+#include <deal.II/grid/grid_tools.h>
+
 #include <boost/archive/archive_exception.hpp>
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
@@ -39,6 +41,7 @@ namespace Talus
       MPMSolver<dim>::declare_parameters(prm);
       Boundaries::BoundaryParticles<dim>::declare_parameters(prm, n_boundaries);
       LoadBalancing<dim>::declare_parameters(prm);
+      MemoryEstimate<dim>::declare_parameters(prm);
     }
 
 
@@ -47,8 +50,37 @@ namespace Talus
     MPMProblem<dim>::parse_parameters(dealii::ParameterHandler &prm,
                                       const unsigned int        refinement)
     {
+      constitutive_model = Materials::create_model(prm);
+      // the solver reads only the dim x dim x dim x dim block of dP/dF
+      constitutive_model->set_tangent_dimension(dim);
+      const unsigned int n_history = constitutive_model->n_history_variables();
+
+      // The memory of the grid and the points, estimated before they are
+      // allocated: from the parameters for a box grid, from the coarse
+      // cells of a Gmsh grid once it is read (before refinement and
+      // points).
+      prm.enter_subsection("Background grid");
+      const bool box_grid = prm.get("type") == "box";
+      prm.leave_subsection();
+      if (box_grid)
+        {
+          memory.parse_parameters(prm, communicator, refinement, n_history);
+          memory.check(prm);
+        }
       background_grid = std::make_unique<BackgroundGrid<dim>>(communicator);
       background_grid->parse_parameters_and_create(prm);
+      if (!box_grid)
+        {
+          const auto &tria = background_grid->triangulation;
+          memory.parse_parameters(prm,
+                                  communicator,
+                                  refinement,
+                                  n_history,
+                                  tria.n_global_active_cells(),
+                                  tria.n_vertices(),
+                                  dealii::GridTools::volume(tria));
+          memory.check(prm);
+        }
       if (refinement > 0)
         {
           auto &grid = *background_grid;
@@ -58,9 +90,6 @@ namespace Talus
           grid.setup_dofs();
         }
 
-      constitutive_model = Materials::create_model(prm);
-      // the solver reads only the dim x dim x dim x dim block of dP/dF
-      constitutive_model->set_tangent_dimension(dim);
       prm.enter_subsection("Material");
       material_density = get_positive(prm, "Material", "density");
       prm.leave_subsection();

@@ -4,7 +4,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -63,28 +62,10 @@ namespace Talus
     void
     require_finite_numbers(const dealii::ParameterHandler &prm);
 
-    /** Bytes of memory of this machine (MemTotal of /proc/meminfo). */
-    std::uint64_t
-    machine_memory();
-
     /**
-     * A lower estimate of the memory an MPM run of @p prm needs on its
-     * finest level (background cells and their degrees of freedom,
-     * material points with their properties), all ranks together; 0 if the
-     * grid or body comes from a mesh file. @p responsible_subsection and
-     * @p responsible_entry name the parameter that contributes most,
-     * @p details the counts.
-     */
-    template <int dim>
-    double
-    estimate_mpm_memory(const dealii::ParameterHandler &prm,
-                        std::string                    &responsible_subsection,
-                        std::string                    &responsible_entry,
-                        std::string                    &details);
-
-    /**
-     * Reject an MPM run whose estimated memory (this node's share of it)
-     * exceeds the memory of this machine.
+     * Reject an MPM run whose estimated memory per rank on the finest level
+     * of its convergence study exceeds the limit of subsection `Memory`
+     * (MPM::MemoryEstimate, without the internal variables of the model).
      */
     void
     require_memory(const dealii::ParameterHandler &prm,

@@ -8,6 +8,7 @@
 #include <talus/mpm/initial_stress.h>
 #include <talus/mpm/load_balancing.h>
 #include <talus/mpm/material_points.h>
+#include <talus/mpm/memory_estimate.h>
 #include <talus/mpm/mpm_solver.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -319,6 +320,13 @@ namespace Talus
         return newmark;
       }
 
+      /** The memory estimate made before the grid was created. */
+      const MemoryEstimate<dim> &
+      memory_estimate() const
+      {
+        return memory;
+      }
+
       MPI_Comm
       get_communicator() const
       {
@@ -338,6 +346,7 @@ namespace Talus
       std::unique_ptr<MPMSolver<dim>>                     mpm_solver;
       std::unique_ptr<Boundaries::BoundaryParticles<dim>> boundary_particles;
       LoadBalancing<dim>                                  balancing;
+      MemoryEstimate<dim>                                 memory;
       /** Whether save_state() holds a copy on the present partition. */
       bool saved_state_valid = false;
     };
