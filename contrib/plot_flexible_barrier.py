@@ -152,10 +152,26 @@ def main():
         ax[2].plot(ts, s[name], "m:", lw=0.8)
     ax[2].set_ylabel("[m] or [deg]")
     ax[2].legend(fontsize=8, ncol=2)
-    ax[3].plot(t, coupling["mpm_energy"] / 1e3,
-               label="material (kin + strain + grav)")
-    ax[3].plot(t, coupling["dissipation"] / 1e3, label="dissipated")
-    ax[3].plot(t, coupling["structure_energy"] / 1e3, label="barrier")
+    if "plastic_dissipation" in coupling:  # the energies by category
+        c = coupling
+        released = c["gravitational_energy"][0] - c["gravitational_energy"]
+        for values, label in (
+                (released, "gravitational energy released"),
+                (c["kinetic_energy"], "kinetic (material)"),
+                (c["plastic_dissipation"], "plastic dissipation (material)"),
+                (c["friction_dissipation"], "friction (slope and net)"),
+                (c["numerical_dissipation"], "numerical (resets, PIC)"),
+                (c["strain_energy"] + c["spring_energy"],
+                 "strain + contact springs (material)"),
+                (c["structure_energy"] - c["structure_energy"][0],
+                 "barrier: elastic + kinetic change"),
+                (c["barrier_dissipation"], "barrier: brakes + damping")):
+            ax[3].plot(t, values / 1e3, label=label)
+    else:
+        ax[3].plot(t, coupling["mpm_energy"] / 1e3,
+                   label="material (kin + strain + grav)")
+        ax[3].plot(t, coupling["dissipation"] / 1e3, label="dissipated")
+        ax[3].plot(t, coupling["structure_energy"] / 1e3, label="barrier")
     ax[3].plot(t, coupling["energy_change"] / 1e3, "k:",
                label="balance error")
     ax[3].set_ylabel("energy [kJ]")
