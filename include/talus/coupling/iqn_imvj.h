@@ -16,7 +16,9 @@ namespace Talus
     /**
      * Interface quasi-Newton with an inverse Jacobian carried from window to
      * window, IQN-IMVJ, the "multi-vector" update (Degroote & Vierendeels
-     * 2011, Comput. Methods Appl. Mech. Engrg. 200:2195-2210; Lindner,
+     * 2011, Comput. Methods Appl. Mech. Engrg. 200:2195-2210; Bogaers, Kok,
+     * Reddy & Franz 2014, Comput. Methods Appl. Mech. Engrg. 279:113-132,
+     * "MVQN"; Lindner,
      * Mehl, Uekermann & Bungartz 2015, "A comparison of various quasi-Newton
      * schemes for partitioned fluid-structure interaction", Proc. ECCOMAS
      * Coupled Problems; preCICE's MVQNAcceleration without restart).
