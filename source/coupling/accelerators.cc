@@ -1,5 +1,6 @@
 #include <talus/base/input.h>
 #include <talus/coupling/accelerators.h>
+#include <talus/coupling/iqn_imvj.h>
 
 #include <deal.II/lac/qr.h>
 
@@ -7,26 +8,15 @@
 #include <cmath>
 #include <vector>
 
+#include "qr_filter.h"
 #include "range_checks.h"
 
 namespace Talus
 {
   namespace Coupling
   {
-    namespace
-    {
-      /** A residual difference below this fraction of the residuals is
-       * round-off: no secant (Aitken), no column (IQN-ILS). */
-      constexpr double roundoff_difference = 1e-14;
-
-      /** A column whose part orthogonal to the kept ones is below this
-       * fraction of its norm is dependent to round-off. */
-      constexpr double roundoff_dependence = 1e-12;
-
-      /** IQN-ILS: a step that changed a nonzero residual by less than this
-       * fraction brought no information (stagnation guard). */
-      constexpr double stagnation_ratio = 1e-3;
-    } // namespace
+    using internal::roundoff_difference;
+    using internal::stagnation_ratio;
 
 
     // ---------------------------------------------------------------------
@@ -294,53 +284,11 @@ namespace Talus
       unsigned int                       removed = 0;
       if (!first_ever && !stagnated)
         {
-          for (unsigned int i = 0; i < columns.size(); ++i)
-            {
-              const dealii::Vector<double> &v      = columns[i].delta_residual;
-              const double                  v_norm = v.l2_norm();
-              double                        orthogonal_norm = v_norm;
-              if (qr.size() > 0 && v_norm > 0.)
-                {
-                  dealii::Vector<double> projection(qr.size());
-                  qr.multiply_with_QT(projection, v);
-                  dealii::Vector<double> orthogonal(v.size());
-                  qr.multiply_with_Q(orthogonal, projection);
-                  orthogonal.sadd(-1., 1., v);
-                  orthogonal_norm = orthogonal.l2_norm();
-                }
-              const double limit =
-                (filter == Filter::QR2 ?
-                   std::max(filter_tolerance, roundoff_dependence) :
-                   roundoff_dependence);
-              if (v_norm > 0. && orthogonal_norm >= limit * v_norm)
-                {
-                  qr.append_column(v);
-                  kept.push_back(i);
-                }
-              else
-                ++removed;
-            }
-
-          if (filter == Filter::QR1)
-            for (bool removing = true; removing && qr.size() > 1;)
-              {
-                removing                                    = false;
-                const dealii::LAPACKFullMatrix<double> &R   = qr.get_R();
-                double                                  sum = 0.;
-                for (unsigned int i = 0; i < qr.size(); ++i)
-                  for (unsigned int j = i; j < qr.size(); ++j)
-                    sum += R(i, j) * R(i, j);
-                const double frobenius = std::sqrt(sum);
-                for (unsigned int i = 0; i < qr.size(); ++i)
-                  if (std::abs(R(i, i)) < filter_tolerance * frobenius)
-                    {
-                      qr.remove_column(i);
-                      kept.erase(kept.begin() + i);
-                      ++removed;
-                      removing = true;
-                      break;
-                    }
-              }
+          std::vector<const dealii::Vector<double> *> v;
+          for (const Column &column : columns)
+            v.push_back(&column.delta_residual);
+          removed =
+            internal::build_filtered_qr(v, filter, filter_tolerance, qr, kept);
 
           // Delete the removed columns from V and W for good.
           if (removed > 0)
@@ -432,10 +380,13 @@ namespace Talus
       prm.declare_entry(
         "acceleration",
         "IQN-ILS",
-        Selection("constant|Aitken|IQN-ILS"),
+        Selection("constant|Aitken|IQN-ILS|IQN-IMVJ"),
         "Convergence acceleration of the interface iteration: constant "
-        "under-relaxation, Aitken's dynamic relaxation, or interface "
-        "quasi-Newton with a least-squares inverse Jacobian (IQN-ILS).");
+        "under-relaxation, Aitken's dynamic relaxation, interface "
+        "quasi-Newton with a least-squares inverse Jacobian (IQN-ILS), or "
+        "with an explicit inverse Jacobian carried from window to window "
+        "(IQN-IMVJ, multi-vector update; n x n doubles on every rank, at "
+        "most 5000 interface DoFs).");
       prm.declare_entry("relaxation",
                         "0.5",
                         Double(),
@@ -446,30 +397,33 @@ namespace Talus
                         "0.1",
                         Double(),
                         "Relaxation factor [-], in (0, 1], of Aitken's first "
-                        "window and of IQN-ILS's first iteration (and of "
-                        "their fall-back steps without secant or column "
-                        "information). preCICE: 0.1 for IQN-ILS, 0.5 for "
-                        "Aitken.");
+                        "window and of the first iteration of IQN-ILS and "
+                        "IQN-IMVJ (and of their fall-back steps without "
+                        "secant or column information). preCICE: 0.1 for "
+                        "IQN-ILS, 0.5 for Aitken.");
       prm.declare_entry("IQN-ILS reuse",
                         "10",
                         Integer(),
                         "Number of past time windows [-], >= 0, whose "
                         "residual differences IQN-ILS keeps in its "
-                        "least-squares model (preCICE 'time-windows-reused').");
+                        "least-squares model (preCICE 'time-windows-reused'); "
+                        "not used by IQN-IMVJ, whose inverse Jacobian carries "
+                        "the past windows.");
       prm.declare_entry("IQN-ILS maximum columns",
                         "100",
                         Integer(),
                         "Largest number of columns [-], >= 1, of the IQN-ILS "
-                        "least-squares model; the oldest are dropped "
-                        "(preCICE 'max-used-iterations').");
-      prm.declare_entry("QR filter",
-                        "QR2",
-                        Selection("none|QR1|QR2"),
-                        "Filter of (nearly) linearly dependent IQN-ILS "
-                        "columns: QR1 removes column i if |R_ii| < tol "
-                        "|R|_F, QR2 skips a column whose part orthogonal to "
-                        "the newer ones is below tol times its norm; none "
-                        "keeps all but those dependent to round-off.");
+                        "least-squares model (of IQN-IMVJ: per window); the "
+                        "oldest are dropped (preCICE 'max-used-iterations').");
+      prm.declare_entry(
+        "QR filter",
+        "QR2",
+        Selection("none|QR1|QR2"),
+        "Filter of (nearly) linearly dependent IQN-ILS and "
+        "IQN-IMVJ columns: QR1 removes column i if |R_ii| < tol "
+        "|R|_F, QR2 skips a column whose part orthogonal to "
+        "the newer ones is below tol times its norm; none "
+        "keeps all but those dependent to round-off.");
       prm.declare_entry("QR filter tolerance",
                         "1e-2",
                         Double(),
@@ -486,6 +440,7 @@ namespace Talus
       const std::string m = prm.get("acceleration");
       method              = (m == "constant" ? Method::constant :
                              m == "Aitken"   ? Method::Aitken :
+                             m == "IQN-IMVJ" ? Method::IQN_IMVJ :
                                                Method::IQN_ILS);
       relaxation          = internal::get_in_half_open_interval(
         prm, subsection, "relaxation", 0., 1.);
@@ -512,6 +467,11 @@ namespace Talus
             return std::make_unique<ConstantRelaxation>(p.relaxation);
           case AccelerationParameters::Method::Aitken:
             return std::make_unique<AitkenRelaxation>(p.initial_relaxation);
+          case AccelerationParameters::Method::IQN_IMVJ:
+            return std::make_unique<IQNIMVJ>(p.initial_relaxation,
+                                             p.maximum_columns,
+                                             p.filter,
+                                             p.filter_tolerance);
           case AccelerationParameters::Method::IQN_ILS:
           default:
             return std::make_unique<IQNILS>(p.initial_relaxation,

@@ -31,14 +31,15 @@ namespace Talus
        * quasi-Newton step. */
       double relaxation = 0.;
 
-      /** IQN-ILS: the step came from the least-squares model. */
+      /** IQN-ILS, IQN-IMVJ: the step came from the quasi-Newton model. */
       bool quasi_newton = false;
 
-      /** IQN-ILS: columns of the least-squares model used in this step. */
+      /** IQN-ILS, IQN-IMVJ: columns of the least-squares model used in
+       * this step. */
       unsigned int columns = 0;
 
-      /** IQN-ILS: columns removed in this step by the QR filter (or because
-       * they are zero or dependent to round-off). */
+      /** IQN-ILS, IQN-IMVJ: columns removed in this step by the QR filter (or
+       * because they are zero or dependent to round-off). */
       unsigned int filtered_columns = 0;
 
       /** No secant or column information was available (zero residual
@@ -76,7 +77,8 @@ namespace Talus
     public:
       virtual ~InterfaceAccelerator() = default;
 
-      /** Name as in the parameter file ("constant", "Aitken", "IQN-ILS"). */
+      /** Name as in the parameter file ("constant", "Aitken", "IQN-ILS",
+       * "IQN-IMVJ"). */
       virtual std::string
       name() const = 0;
 
@@ -246,8 +248,9 @@ namespace Talus
      * QR1 is not recommended for contact (doc/coupling.md).
      *
      * Not done: residual preconditioning (with one data field, the interface
-     * displacement, a scalar weight changes neither c nor the filters),
-     * IQN-IMVJ (explicit inverse Jacobian, doc/coupling.md).
+     * displacement, a scalar weight changes neither c nor the filters).
+     * IQNIMVJ (iqn_imvj.h) carries the information of past windows in an
+     * explicit inverse Jacobian instead of reused columns.
      */
     class IQNILS : public InterfaceAccelerator
     {
@@ -345,7 +348,8 @@ namespace Talus
       {
         constant,
         Aitken,
-        IQN_ILS
+        IQN_ILS,
+        IQN_IMVJ
       };
 
       Method         method             = Method::IQN_ILS;
