@@ -284,24 +284,10 @@ namespace Talus
       unsigned int                       removed = 0;
       if (!first_ever && !stagnated)
         {
-          std::vector<const dealii::Vector<double> *> v;
-          for (const Column &column : columns)
-            v.push_back(&column.delta_residual);
-          removed =
-            internal::build_filtered_qr(v, filter, filter_tolerance, qr, kept);
-
-          // Delete the removed columns from V and W for good.
-          if (removed > 0)
-            {
-              std::deque<Column> remaining;
-              for (const unsigned int i : kept)
-                remaining.push_back(std::move(columns[i]));
-              columns.swap(remaining);
-              kept.clear();
-              for (unsigned int i = 0; i < columns.size(); ++i)
-                kept.push_back(i);
-              filtered_total += removed;
-            }
+          // the removed columns are deleted from V and W for good
+          removed = internal::filter_columns(
+            columns, filter, filter_tolerance, qr, kept);
+          filtered_total += removed;
         }
       last_info.filtered_columns = removed;
 

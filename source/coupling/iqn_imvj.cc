@@ -123,21 +123,9 @@ namespace Talus
       unsigned int                       removed = 0;
       if (!first_step && !stagnated)
         {
-          std::vector<const dealii::Vector<double> *> v;
-          for (const Column &column : columns)
-            v.push_back(&column.delta_residual);
-          removed =
-            internal::build_filtered_qr(v, filter, filter_tolerance, qr, kept);
-          if (removed > 0)
-            {
-              std::deque<Column> remaining;
-              for (const unsigned int i : kept)
-                remaining.push_back(std::move(columns[i]));
-              columns.swap(remaining);
-              for (unsigned int i = 0; i < kept.size(); ++i)
-                kept[i] = i;
-              filtered_total += removed;
-            }
+          removed = internal::filter_columns(
+            columns, filter, filter_tolerance, qr, kept);
+          filtered_total += removed;
         }
       last_info.filtered_columns = removed;
 

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <vector>
 
 namespace Talus
@@ -96,6 +97,37 @@ namespace Talus
                     break;
                   }
             }
+        return removed;
+      }
+      /**
+       * The filtered QR factorisation of the columns' residual differences
+       * (build_filtered_qr()), with the removed columns deleted from
+       * @p columns (V and W) for good; @p kept then lists the remaining
+       * columns 0 .. n - 1. Returns the number of columns removed.
+       */
+      template <typename Column>
+      unsigned int
+      filter_columns(std::deque<Column>                 &columns,
+                     const IQNILS::Filter                filter,
+                     const double                        filter_tolerance,
+                     dealii::QR<dealii::Vector<double>> &qr,
+                     std::vector<unsigned int>          &kept)
+      {
+        std::vector<const dealii::Vector<double> *> v;
+        for (const Column &column : columns)
+          v.push_back(&column.delta_residual);
+        const unsigned int removed =
+          build_filtered_qr(v, filter, filter_tolerance, qr, kept);
+        if (removed > 0)
+          {
+            std::deque<Column> remaining;
+            for (const unsigned int i : kept)
+              remaining.push_back(std::move(columns[i]));
+            columns.swap(remaining);
+            kept.clear();
+            for (unsigned int i = 0; i < columns.size(); ++i)
+              kept.push_back(i);
+          }
         return removed;
       }
     } // namespace internal
