@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Build talus (Release), run the flagship prm/flexible_barrier.prm (25 m^3
 # of granular material sliding into a three-field flexible barrier, 3D,
-# coupled MPM + FE, about 20 minutes on one core) and draw its pictures.
+# coupled MPM + FE, about 15 minutes on one core) and draw its pictures.
 # Output goes to output/flexible_barrier/ at the repository top:
 # snapshots.png (side and plan view of flow and barrier at three instants),
 # forces.png (impact force per field, cable, post and anchor forces, post
