@@ -344,6 +344,19 @@ namespace Talus
             {
               n_linear = solve_linear(increment);
             }
+          catch (const dealii::SolverControl::NoConvergence &e)
+            {
+              // one line, not deal.II's page of advice
+              std::ostringstream msg;
+              msg << "the linear solver (" << linear_solver_type
+                  << ") did not converge in " << e.last_step
+                  << " iterations (residual " << e.last_residual
+                  << "; 'maximum linear iterations', 'linear solver "
+                     "tolerance' in subsection Solver, or 'linear solver = "
+                     "direct')";
+              result.failure = msg.str();
+              return;
+            }
           catch (const std::exception &e)
             {
               result.failure =
