@@ -1,26 +1,34 @@
 #!/usr/bin/env bash
-# Build talus (Release), run the flagship prm/flexible_barrier.prm (25 m^3
-# of granular material sliding into a three-field flexible barrier, 3D,
-# coupled MPM + FE, about 15 minutes on one core) and draw its pictures.
-# Output goes to output/flexible_barrier/ at the repository top:
-# snapshots.png (side and plan view of flow and barrier at three instants),
-# forces.png (impact force per field, cable, post and anchor forces, post
-# rotations, net deflection, brake strokes, energies), coupling.csv,
-# structure.csv, and .pvd files for ParaView.
-#   usage: bash contrib/run_flexible_barrier.sh
+# Build talus (Release), run the flagship and draw its pictures.
+#   bash contrib/run_flexible_barrier.sh       prm/flexible_barrier.prm: 25 m^3
+#        of granular material sliding into a three-field flexible barrier,
+#        3D, coupled MPM + FE, about 15 minutes on one core
+#   bash contrib/run_flexible_barrier.sh 2d    prm/flexible_barrier_2d.prm: the
+#        same event in a longitudinal section per metre of width, ~30 s
+# Output goes to output/flexible_barrier[_2d]/ at the repository top:
+# snapshots.png (flow and barrier at three instants; 3D: side and plan
+# view), forces.png (impact force (3D: per field), member forces (3D: every
+# cable, post and anchor, post rotations, net deflection), brake strokes,
+# energies), coupling.csv, structure.csv, and .pvd files for ParaView.
 set -euo pipefail
 
+case "${1:-}" in
+  "") name=flexible_barrier ;;
+  2d) name=flexible_barrier_2d ;;
+  *) echo "usage: $0 [2d]" >&2; exit 2 ;;
+esac
+me=$(basename "$0")
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$top"
-out=output/flexible_barrier
+out=output/$name
 
 bash contrib/build.sh Release build
 
-echo "run_flexible_barrier.sh: running build/talus prm/flexible_barrier.prm"
-build/talus prm/flexible_barrier.prm
+echo "$me: running build/talus prm/$name.prm"
+build/talus "prm/$name.prm"
 
 for f in coupling.csv structure.csv; do
-  [[ -f $out/$f ]] || { echo "run_flexible_barrier.sh: talus wrote no $out/$f" >&2; exit 1; }
+  [[ -f $out/$f ]] || { echo "$me: talus wrote no $out/$f" >&2; exit 1; }
 done
 
 # Debian's matplotlib lives in /usr/bin/python3; a python3 earlier on PATH
@@ -29,13 +37,13 @@ python=
 for p in /usr/bin/python3 "$(command -v python3 || true)"; do
   if [[ -x "$p" ]] && "$p" -c 'import matplotlib' 2>/dev/null; then python=$p; break; fi
 done
-[[ -n "$python" ]] || { echo "run_flexible_barrier.sh: no python3 with matplotlib (apt-get install python3-matplotlib)" >&2; exit 1; }
-"$python" contrib/plot_flexible_barrier.py "$out"
+[[ -n "$python" ]] || { echo "$me: no python3 with matplotlib (apt-get install python3-matplotlib)" >&2; exit 1; }
+"$python" "contrib/plot_$name.py" "$out"
 
 echo
-echo "Output of the flagship in $top/$out:"
+echo "Output of prm/$name.prm in $top/$out:"
 echo "  pictures: $out/snapshots.png, $out/forces.png"
 echo "  time series: $out/coupling.csv (impact force, iterations, energies),"
-echo "               $out/structure.csv (forces per field, member and anchor forces,"
-echo "               post rotations, brake strokes, net deflection)"
-echo "  ParaView: $out/particles.pvd, $out/net.pvd, $out/posts.pvd, ..."
+echo "               $out/structure.csv (member forces, brake strokes; 3D: forces"
+echo "               per field, anchor forces, post rotations, net deflection)"
+echo "  ParaView: $out/particles.pvd, $out/net.pvd, ..."
