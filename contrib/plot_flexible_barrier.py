@@ -30,7 +30,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_particles import read_particles, read_vtu  # noqa: E402
-from plot_flexible_barrier_2d import numbered, read_csv  # noqa: E402
+from plot_flexible_barrier_2d import numbered, plot_energies, read_csv  # noqa: E402,E501
 
 LINES = (("posts", "k-", 2.0), ("retaining_ropes", "b-", 1.0),
          ("brakes", "m-", 2.5), ("top_cable", "g-", 1.2),
@@ -152,31 +152,7 @@ def main():
         ax[2].plot(ts, s[name], "m:", lw=0.8)
     ax[2].set_ylabel("[m] or [deg]")
     ax[2].legend(fontsize=8, ncol=2)
-    if "plastic_dissipation" in coupling:  # the energies by category
-        c = coupling
-        released = c["gravitational_energy"][0] - c["gravitational_energy"]
-        for values, label in (
-                (released, "gravitational energy released"),
-                (c["kinetic_energy"], "kinetic (material)"),
-                (c["plastic_dissipation"], "plastic dissipation (material)"),
-                (c["friction_dissipation"], "friction (slope and net)"),
-                (c["numerical_dissipation"], "numerical (resets, PIC)"),
-                (c["strain_energy"] + c["spring_energy"],
-                 "strain + contact springs (material)"),
-                (c["structure_energy"] - c["structure_energy"][0],
-                 "barrier: elastic + kinetic change"),
-                (c["barrier_dissipation"], "barrier: brakes + damping")):
-            ax[3].plot(t, values / 1e3, label=label)
-    else:
-        ax[3].plot(t, coupling["mpm_energy"] / 1e3,
-                   label="material (kin + strain + grav)")
-        ax[3].plot(t, coupling["dissipation"] / 1e3, label="dissipated")
-        ax[3].plot(t, coupling["structure_energy"] / 1e3, label="barrier")
-    ax[3].plot(t, coupling["energy_change"] / 1e3, "k:",
-               label="balance error")
-    ax[3].set_ylabel("energy [kJ]")
-    ax[3].set_xlabel("t [s]")
-    ax[3].legend(fontsize=8)
+    plot_energies(ax[3], coupling, "kJ")
     fig.tight_layout()
     fig.savefig(os.path.join(d, "forces.png"), dpi=100)
     print("wrote %s and %s" % (os.path.join(d, "snapshots.png"),

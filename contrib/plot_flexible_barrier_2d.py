@@ -10,7 +10,7 @@ Writes
                  speed;
   forces.png     the impact force on the net, the forces of post, rope and
                  brake, the brake stroke, the net's largest displacement,
-                 and the energies of the coupled system over time.
+                 and the energies of the coupled system by category over time.
 Prints the peak and final impact force. Needs numpy and matplotlib
 (Debian: python3-matplotlib).
 
@@ -49,6 +49,29 @@ def numbered(directory, stem, extension):
         if m:
             files[int(m.group(1))] = path
     return files
+
+
+def plot_energies(ax, c, unit):
+    """The coupled run's energies by category (coupling.csv) over time."""
+    t = c["time"]
+    released = c["gravitational_energy"][0] - c["gravitational_energy"]
+    for values, label in (
+            (released, "gravitational energy released"),
+            (c["kinetic_energy"], "kinetic (material)"),
+            (c["plastic_dissipation"], "plastic dissipation (material)"),
+            (c["friction_dissipation"], "friction (slope and net)"),
+            (c["numerical_dissipation"], "numerical (resets, PIC)"),
+            (c["strain_energy"] + c["spring_energy"],
+             "strain + contact springs (material)"),
+            (c["structure_energy"] - c["structure_energy"][0],
+             "barrier: elastic + kinetic change"),
+            (c["barrier_dissipation"], "barrier: brakes + damping"),
+            (c["energy_change"], "balance error")):
+        ax.plot(t, values / 1e3, "k:" if label == "balance error" else "-",
+                label=label)
+    ax.set_ylabel("energy [%s]" % unit)
+    ax.set_xlabel("t [s]")
+    ax.legend(fontsize=8)
 
 
 def main():
@@ -135,14 +158,7 @@ def main():
         ax[1].plot(tm, members["brake_stroke"], "m-", label="brake stroke")
     ax[1].set_ylabel("[m]")
     ax[1].legend(fontsize=8)
-    ax[2].plot(t, coupling["mpm_energy"] / 1e3, label="material (kin+strain+grav)")
-    ax[2].plot(t, coupling["dissipation"] / 1e3, label="dissipated")
-    ax[2].plot(t, coupling["structure_energy"] / 1e3, label="barrier")
-    ax[2].plot(t, coupling["energy_change"] / 1e3, "k:",
-               label="balance error")
-    ax[2].set_ylabel("energy [kJ/m]")
-    ax[2].set_xlabel("t [s]")
-    ax[2].legend(fontsize=8)
+    plot_energies(ax[2], coupling, "kJ/m")
     fig.tight_layout()
     fig.savefig(os.path.join(d, "forces.png"), dpi=110)
     print("wrote %s and %s" % (os.path.join(d, "snapshots.png"),
