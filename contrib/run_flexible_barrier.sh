@@ -9,7 +9,8 @@
 # snapshots.png (flow and barrier at three instants; 3D: side and plan
 # view), forces.png (impact force (3D: per field), member forces (3D: every
 # cable, post and anchor, post rotations, net deflection), brake strokes,
-# energies), coupling.csv, structure.csv, and .pvd files for ParaView.
+# energies), coupling.csv, structure.csv, and .pvd files for ParaView;
+# with PyVista installed (PyPI) also render.png and animation.gif (3D).
 set -euo pipefail
 
 case "${1:-}" in
@@ -40,9 +41,27 @@ done
 [[ -n "$python" ]] || { echo "$me: no python3 with matplotlib (apt-get install python3-matplotlib)" >&2; exit 1; }
 "$python" "contrib/plot_$name.py" "$out"
 
+# 3D renders and an animation need PyVista (PyPI), which Debian does not
+# package: draw them when some python3 has it, else say how.
+rendered=
+if [[ $name == flexible_barrier ]]; then
+  for p in "$(command -v python3 || true)" /usr/bin/python3; do
+    if [[ -x "$p" ]] && "$p" -c 'import pyvista' 2>/dev/null; then
+      "$p" contrib/render_flexible_barrier.py "$out" --animation && rendered=yes
+      break
+    fi
+  done
+fi
+
 echo
 echo "Output of prm/$name.prm in $top/$out:"
 echo "  pictures: $out/snapshots.png, $out/forces.png"
+if [[ -n $rendered ]]; then
+  echo "  3D render: $out/render.png, animation: $out/animation.gif"
+elif [[ $name == flexible_barrier ]]; then
+  echo "  3D render and animation: pip install pyvista imageio (in a venv), then"
+  echo "    python3 contrib/render_flexible_barrier.py $out --animation"
+fi
 echo "  time series: $out/coupling.csv (impact force, iterations, energies),"
 echo "               $out/structure.csv (member forces, brake strokes; 3D: forces"
 echo "               per field, anchor forces, post rotations, net deflection)"
