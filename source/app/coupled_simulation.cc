@@ -412,18 +412,14 @@ namespace Talus
       dealii::Vector<double> r;
       S.assemble(structure.displacement(), 1., r, nullptr);
       Energies e;
-      e.mpm = d.kinetic_energy + d.strain_energy + d.gravitational_energy;
-      // the penalty springs of the boundaries (the interface's contact)
-      for (const auto &b : d.boundaries)
-        e.mpm += b.spring_energy;
+      // with the penalty springs of the boundaries (the interface's contact)
+      e.mpm = d.mechanical_energy();
       // the structure's own loads only: the interface force is internal
       // to the coupled system (load_potential() includes -F . u)
       e.structure = structure.kinetic_energy() + S.strain_energy() +
                     S.load_potential(structure.displacement(), 1.) +
                     S.external_forces * structure.displacement();
-      e.dissipation = d.plastic_dissipation + d.friction_dissipation +
-                      d.reset_dissipation + d.transfer_dissipation +
-                      structure.dissipated_energy();
+      e.dissipation = d.dissipated_energy() + structure.dissipated_energy();
       return e;
     };
     const auto   initial_diagnostics = mpm.diagnostics();
@@ -582,20 +578,20 @@ namespace Talus
             // the energies by category: the material's (kinetic,
             // gravitational, strain, penalty springs), its dissipation
             // (plastic flow, friction on every boundary, the numerical
-            // dissipation of velocity resets and PIC blending), the
+            // dissipation of velocity resets, the transfer and the time
+            // integrator), the
             // barrier's kinetic energy and dissipation (brakes, damping,
             // plasticity); the barrier's elastic energy is
             // structure_energy - barrier_kinetic
-            double springs = 0.;
-            for (const auto &b : diagnostics.boundaries)
-              springs += b.spring_energy;
+            const double springs = diagnostics.spring_energy();
             csv << ',' << diagnostics.kinetic_energy << ','
                 << diagnostics.gravitational_energy << ','
                 << diagnostics.strain_energy << ',' << springs << ','
                 << diagnostics.plastic_dissipation << ','
                 << diagnostics.friction_dissipation << ','
                 << diagnostics.reset_dissipation +
-                     diagnostics.transfer_dissipation
+                     diagnostics.transfer_dissipation +
+                     diagnostics.integrator_dissipation
                 << ',' << structure.kinetic_energy() << ','
                 << structure.dissipated_energy() << '\n';
             csv.flush();

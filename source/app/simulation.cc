@@ -909,13 +909,8 @@ namespace Talus
           max_drift =
             std::max(max_drift,
                      std::abs(e - e0) / std::max(std::abs(e0), 1e-300));
-          const double b0 =
-            e0 + initial.plastic_dissipation + initial.friction_dissipation +
-            initial.reset_dissipation + initial.transfer_dissipation;
-          const double b = e + diagnostics.plastic_dissipation +
-                           diagnostics.friction_dissipation +
-                           diagnostics.reset_dissipation +
-                           diagnostics.transfer_dissipation;
+          const double b0    = initial.energy_balance();
+          const double b     = diagnostics.energy_balance();
           max_balance_change = std::max(max_balance_change, std::abs(b - b0));
           for (const auto &b : diagnostics.boundaries)
             max_penetration = std::max(max_penetration, b.penetration);
@@ -1163,7 +1158,10 @@ namespace Talus
               << final_state.plastic_dissipation << " J, friction dissipation "
               << final_state.friction_dissipation << " J, reset dissipation "
               << final_state.reset_dissipation << " J, transfer dissipation "
-              << final_state.transfer_dissipation << " J\n";
+              << final_state.transfer_dissipation
+              << " J, integrator dissipation "
+              << final_state.integrator_dissipation << " J, spring energy "
+              << final_state.spring_energy() << " J\n";
         check("energy balance",
               max_balance_change / std::max(scale, 1e-300),
               balance_tolerance);

@@ -28,12 +28,14 @@ namespace Talus
         throw ExcInvalidInput("Cannot write the time series file <" + filename +
                               ">: check 'output directory' in subsection "
                               "<Output>.");
-      file << "step,time,dt,newton_iterations,linear_iterations,mass,"
-              "momentum_x,momentum_y,momentum_z,kinetic_energy,strain_energy,"
-              "gravitational_energy,total_energy,lost_mass,plastic_dissipation,"
-              "friction_dissipation,energy_balance,contact_force_x,"
-              "contact_force_y,contact_force_z,volume,grid_kinetic_energy,"
-              "max_grid_speed,reset_dissipation,transfer_dissipation";
+      file
+        << "step,time,dt,newton_iterations,linear_iterations,mass,"
+           "momentum_x,momentum_y,momentum_z,kinetic_energy,strain_energy,"
+           "gravitational_energy,total_energy,lost_mass,plastic_dissipation,"
+           "friction_dissipation,energy_balance,contact_force_x,"
+           "contact_force_y,contact_force_z,volume,grid_kinetic_energy,"
+           "max_grid_speed,reset_dissipation,transfer_dissipation,spring_energy,"
+           "integrator_dissipation";
       for (const auto &name : boundary_names)
         {
           for (unsigned int d = 0; d < dim; ++d)
@@ -110,15 +112,13 @@ namespace Talus
            << d.gravitational_energy << ','
            << d.kinetic_energy + d.strain_energy + d.gravitational_energy << ','
            << lost_mass << ',' << d.plastic_dissipation << ','
-           << d.friction_dissipation << ','
-           << d.kinetic_energy + d.strain_energy + d.gravitational_energy +
-                d.plastic_dissipation + d.friction_dissipation +
-                d.reset_dissipation + d.transfer_dissipation;
+           << d.friction_dissipation << ',' << d.energy_balance();
       for (unsigned int i = 0; i < 3; ++i)
         file << ',' << (i < dim ? d.contact_force[i] : 0.);
       file << ',' << d.volume << ',' << d.grid_kinetic_energy << ','
            << d.max_grid_speed << ',' << d.reset_dissipation << ','
-           << d.transfer_dissipation;
+           << d.transfer_dissipation << ',' << d.spring_energy() << ','
+           << d.integrator_dissipation;
       for (const auto &b : d.boundaries)
         {
           for (unsigned int i = 0; i < dim; ++i)

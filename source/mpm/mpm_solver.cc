@@ -1040,11 +1040,12 @@ namespace Talus
         dealii::Utilities::MPI::sum(d.gravitational_energy, comm);
       d.plastic_dissipation =
         dealii::Utilities::MPI::sum(d.plastic_dissipation, comm);
-      d.volume               = dealii::Utilities::MPI::sum(d.volume, comm);
-      d.friction_dissipation = friction_dissipation;
-      d.reset_dissipation    = reset_dissipation;
-      d.transfer_dissipation = transfer_dissipation;
-      d.contact_force        = contact_force;
+      d.volume                 = dealii::Utilities::MPI::sum(d.volume, comm);
+      d.friction_dissipation   = friction_dissipation;
+      d.reset_dissipation      = reset_dissipation;
+      d.transfer_dissipation   = transfer_dissipation;
+      d.integrator_dissipation = integrator_dissipation;
+      d.contact_force          = contact_force;
       if (grid_kinetic_energy >= 0.)
         {
           d.grid_kinetic_energy = grid_kinetic_energy;
@@ -1066,15 +1067,16 @@ namespace Talus
     void
     MPMSolver<dim>::save_state()
     {
-      saved_state.friction_dissipation = friction_dissipation;
-      saved_state.reset_dissipation    = reset_dissipation;
-      saved_state.transfer_dissipation = transfer_dissipation;
-      saved_state.grid_kinetic_energy  = grid_kinetic_energy;
-      saved_state.max_grid_speed       = max_grid_speed;
-      saved_state.contact_force        = contact_force;
-      saved_state.grid_velocity        = committed_grid_velocity;
-      saved_state.stuck                = committed_stuck;
-      saved_state.saved                = true;
+      saved_state.friction_dissipation   = friction_dissipation;
+      saved_state.reset_dissipation      = reset_dissipation;
+      saved_state.transfer_dissipation   = transfer_dissipation;
+      saved_state.integrator_dissipation = integrator_dissipation;
+      saved_state.grid_kinetic_energy    = grid_kinetic_energy;
+      saved_state.max_grid_speed         = max_grid_speed;
+      saved_state.contact_force          = contact_force;
+      saved_state.grid_velocity          = committed_grid_velocity;
+      saved_state.stuck                  = committed_stuck;
+      saved_state.saved                  = true;
     }
 
 
@@ -1088,6 +1090,7 @@ namespace Talus
       friction_dissipation    = saved_state.friction_dissipation;
       reset_dissipation       = saved_state.reset_dissipation;
       transfer_dissipation    = saved_state.transfer_dissipation;
+      integrator_dissipation  = saved_state.integrator_dissipation;
       grid_kinetic_energy     = saved_state.grid_kinetic_energy;
       max_grid_speed          = saved_state.max_grid_speed;
       contact_force           = saved_state.contact_force;

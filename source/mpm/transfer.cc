@@ -293,6 +293,11 @@ namespace Talus
       dealii::TrilinosWrappers::MPI::Vector dv(a_new);
       if (!quasi_static)
         {
+          // the integrator's dissipation: the forces' work by the
+          // trapezoidal rule, du (M a_n + M a_{n+1}) / 2, minus the grid's
+          // kinetic energy change (lumped masses; zero for gamma = 1/2,
+          // beta = 1/4)
+          double integrator = 0.;
           for (const auto i : grid.locally_owned_dofs)
             if (nodal_mass(i) > 0.)
               {
@@ -302,7 +307,13 @@ namespace Talus
                   newmark.acceleration(du, velocity_n(i), an, dt);
                 a_new(i) = a;
                 dv(i)    = newmark.velocity(0., an, a, dt);
+                integrator +=
+                  nodal_mass(i) *
+                  (0.5 * du * (an + a) - dv(i) * (velocity_n(i) + 0.5 * dv(i)));
               }
+          if (!consistent_mass)
+            integrator_dissipation +=
+              dealii::Utilities::MPI::sum(integrator, grid.mpi_communicator);
           a_new.compress(dealii::VectorOperation::insert);
           dv.compress(dealii::VectorOperation::insert);
         }
@@ -441,9 +452,13 @@ namespace Talus
 
               dealii::Tensor<1, dim> du_p, a_p, dv_p, v_pic;
               dealii::Tensor<2, dim> H, grad_v;
+              // sum_I N_I |dv_I|^2: with it, the kinetic energy the grid
+              // gains and the points do not (lumped-mass gap, below)
+              double dv_square_mean = 0.;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const auto ci = fe.system_to_component_index(i);
+                  dv_square_mean += N[ci.second] * dv_local[i] * dv_local[i];
                   v_pic[ci.first] += N[ci.second] * v_local[i];
                   grad_v[ci.first] += v_local[i] * dN[ci.second];
                   du_p[ci.first] += N[ci.second] * du_local[i];
@@ -500,6 +515,19 @@ namespace Talus
               particles[k]->set_location(particles[k]->get_location() + du_p);
               if (!quasi_static)
                 {
+                  // the FLIP increment's lumped-mass gap: the grid's kinetic
+                  // energy (lumped masses m_I = sum_p m_p N_I) changes by
+                  // sum_I m_I (v_I . dv_I + |dv_I|^2 / 2), the points' by
+                  // sum_p m_p (v_p . dv_p + |dv_p|^2 / 2) with dv_p =
+                  // sum_I N_I dv_I; the first terms agree (the projection
+                  // of the momentum), the second differ by
+                  // m_p (sum_I N_I |dv_I|^2 - |dv_p|^2) / 2 >= 0 per point
+                  // (Jensen), kinetic energy the transfer takes. With the
+                  // consistent mass the grid's quadratic term is
+                  // dv^T M dv / 2 = sum_p m_p |dv_p|^2 / 2: no gap.
+                  if (!consistent_mass)
+                    transfer_energy += 0.5 * props[Properties::mass] *
+                                       (dv_square_mean - dv_p.norm_square());
                   grid_energy +=
                     0.5 * props[Properties::mass] * v_pic.norm_square();
                   grid_speed = std::max(grid_speed, v_pic.norm());

@@ -105,12 +105,63 @@ namespace Talus
        */
       double transfer_dissipation = 0.;
       /**
+       * Energy the time integrator dissipates since the start [J]: per step
+       * sum_I m_I (du_I (a_I^n + a_I^{n+1}) / 2 - (|v_I^{n+1}|^2 -
+       * |v_I^n|^2) / 2) over the free nodes with mass (lumped masses), the
+       * work of the forces by the trapezoidal rule minus the grid's kinetic
+       * energy change. Zero for the trapezoidal rule (gamma = 1/2, beta =
+       * 1/4); Newmark with gamma > 1/2 damps the high frequencies and books
+       * it here. Not booked (zero) with the consistent mass matrix.
+       */
+      double integrator_dissipation = 0.;
+      /**
        * Resultant force of all friction boundaries on the material at the
        * end of the last step [N] (normal and tangential contact forces).
        */
       dealii::Tensor<1, dim> contact_force;
       /** Resultants of the boundaries imposed by boundary particles. */
       std::vector<Boundaries::BoundaryResultant<dim>> boundaries;
+
+      /**
+       * Elastic energy of the boundaries' penalty springs [J]: sum over the
+       * boundaries of their committed gaps' beta w |g|^2 / 2 (zero for
+       * multipliers and for grid boundaries).
+       */
+      double
+      spring_energy() const
+      {
+        double e = 0.;
+        for (const auto &b : boundaries)
+          e += b.spring_energy;
+        return e;
+      }
+
+      /** Kinetic + strain + gravitational + spring energy [J]. */
+      double
+      mechanical_energy() const
+      {
+        return kinetic_energy + strain_energy + gravitational_energy +
+               spring_energy();
+      }
+
+      /** Plastic + friction + reset + transfer + integrator dissipation [J]. */
+      double
+      dissipated_energy() const
+      {
+        return plastic_dissipation + friction_dissipation + reset_dissipation +
+               transfer_dissipation + integrator_dissipation;
+      }
+
+      /**
+       * mechanical_energy() + dissipated_energy() [J]: constant in time if
+       * every energy the scheme moves is booked; its change is the
+       * unbooked remainder (the CSV column energy_balance).
+       */
+      double
+      energy_balance() const
+      {
+        return mechanical_energy() + dissipated_energy();
+      }
 
       /** Read or write with a boost archive (checkpoints). */
       template <class Archive>
@@ -120,7 +171,7 @@ namespace Talus
         ar &mass &momentum &kinetic_energy &grid_kinetic_energy &max_grid_speed
           &strain_energy &gravitational_energy &plastic_dissipation &volume
             &friction_dissipation &reset_dissipation &transfer_dissipation
-              &contact_force &boundaries;
+              &integrator_dissipation &contact_force &boundaries;
       }
     };
 
@@ -351,7 +402,8 @@ namespace Talus
       serialize_committed_scalars(Archive &ar)
       {
         ar &friction_dissipation &reset_dissipation &transfer_dissipation
-          &grid_kinetic_energy &max_grid_speed &contact_force;
+          &integrator_dissipation &grid_kinetic_energy &max_grid_speed
+            &contact_force;
       }
 
       /**
@@ -1083,11 +1135,12 @@ namespace Talus
       /** What commit_step() changes in the solver (save_state()). */
       struct CommittedState
       {
-        double                                friction_dissipation = 0.;
-        double                                reset_dissipation    = 0.;
-        double                                transfer_dissipation = 0.;
-        double                                grid_kinetic_energy  = -1.;
-        double                                max_grid_speed       = -1.;
+        double                                friction_dissipation   = 0.;
+        double                                reset_dissipation      = 0.;
+        double                                transfer_dissipation   = 0.;
+        double                                integrator_dissipation = 0.;
+        double                                grid_kinetic_energy    = -1.;
+        double                                max_grid_speed         = -1.;
         dealii::Tensor<1, dim>                contact_force;
         dealii::TrilinosWrappers::MPI::Vector grid_velocity;
         std::vector<bool>                     stuck;
@@ -1105,6 +1158,9 @@ namespace Talus
       double reset_dissipation = 0.;
       /** Accumulated transfer dissipation [J] (all ranks); see Diagnostics. */
       double transfer_dissipation = 0.;
+      /** Accumulated integrator dissipation [J] (all ranks); see Diagnostics.
+       */
+      double integrator_dissipation = 0.;
       /**
        * The present step's impact friction and reset dissipation [J] (all
        * ranks): set by prepare_step() (and the velocity restore of released
