@@ -443,7 +443,11 @@ namespace Talus
                "penetration,mass,kinetic_energy,gravitational_energy,"
                "strain_energy,spring_energy,plastic_dissipation,"
                "friction_dissipation,numerical_dissipation,barrier_kinetic,"
-               "barrier_dissipation\n";
+               "barrier_dissipation";
+        // the friction dissipation split by boundary (slope, net, ...)
+        for (unsigned int b = 0; b < mpm.boundaries().n_boundaries(); ++b)
+          csv << ',' << mpm.boundaries().name(b) << "_friction_dissipation";
+        csv << '\n';
         csv << std::setprecision(12);
       }
     // the barrier's member forces, brake strokes and dissipation
@@ -593,7 +597,10 @@ namespace Talus
                      diagnostics.transfer_dissipation +
                      diagnostics.integrator_dissipation
                 << ',' << structure.kinetic_energy() << ','
-                << structure.dissipated_energy() << '\n';
+                << structure.dissipated_energy();
+            for (const double w : diagnostics.boundary_friction_dissipation)
+              csv << ',' << w;
+            csv << '\n';
             csv.flush();
           }
         // S was assembled at the committed state by energies()

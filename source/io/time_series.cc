@@ -42,7 +42,8 @@ namespace Talus
             file << ',' << name << "_force_"
                  << "xyz"[d];
           file << ',' << name << "_normal_force," << name
-               << "_tangential_force," << name << "_penetration";
+               << "_tangential_force," << name << "_penetration," << name
+               << "_friction_dissipation";
         }
       if (with_error)
         file << ",error_estimate";
@@ -119,12 +120,16 @@ namespace Talus
            << d.max_grid_speed << ',' << d.reset_dissipation << ','
            << d.transfer_dissipation << ',' << d.spring_energy() << ','
            << d.integrator_dissipation;
-      for (const auto &b : d.boundaries)
+      for (unsigned int k = 0; k < d.boundaries.size(); ++k)
         {
+          const auto &b = d.boundaries[k];
           for (unsigned int i = 0; i < dim; ++i)
             file << ',' << b.force[i];
           file << ',' << b.normal_force << ',' << b.tangential_force << ','
-               << b.penetration;
+               << b.penetration << ','
+               << (k < d.boundary_friction_dissipation.size() ?
+                     d.boundary_friction_dissipation[k] :
+                     0.);
         }
       if (with_error)
         file << ',' << error;

@@ -960,9 +960,9 @@ namespace Talus
       const unsigned int dofs_per_cell = fe.dofs_per_cell;
       boundary_trial.clear();
       point_contact_trial.clear();
-      boundary_trial_work = 0.;
+      boundary_trial_work.assign(boundary_friction_dissipation.size(), 0.);
       {
-        double work = 0.;
+        std::vector<double> work(boundary_trial_work.size(), 0.);
         // per-particle traction, force and gap at commit (debugging)
         const bool debug_boundary = std::getenv("TALUS_DEBUG_NITSCHE");
         const bool debug_point_contact =
@@ -1002,7 +1002,8 @@ namespace Talus
                       0.)
                     active_share += bp.N[k];
                 // dissipated: -f . (relative increment - elastic gap change)
-                work -= bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
+                work[bp.boundary] -=
+                  bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
                 // a merged (cell-wise) point shares its gap, state and,
                 // by weight, its reaction among its particles
                 // the multiplier the next step starts from reproduces this
@@ -1044,7 +1045,8 @@ namespace Talus
                       {
                         // the dashpot's work on the normal increment
                         const double dgn = (du_b - bp.du_bar) * bp.normal;
-                        work += bp.damping * bp.beta * bp.weight * dgn * dgn;
+                        work[bp.boundary] +=
+                          bp.damping * bp.beta * bp.weight * dgn * dgn;
                         pc.reaction    = -bf.force;
                         pc.normal      = bp.normal;
                         pc.penetration = std::max(0., -(bf.gap * bp.normal));
@@ -1061,8 +1063,10 @@ namespace Talus
                     write(bp.members[m], bp.member_weights[m] / bp.weight);
               }
           }
-        boundary_trial_work =
-          dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
+        if (!work.empty())
+          dealii::Utilities::MPI::sum(work,
+                                      grid.mpi_communicator,
+                                      boundary_trial_work);
       }
     }
 
@@ -1134,10 +1138,14 @@ namespace Talus
                 props[BP::reaction + d] = it->second[d];
             }
         }
-      friction_dissipation += boundary_trial_work;
+      for (unsigned int b = 0; b < boundary_trial_work.size(); ++b)
+        {
+          friction_dissipation += boundary_trial_work[b];
+          boundary_friction_dissipation[b] += boundary_trial_work[b];
+        }
       boundary_trial.clear();
       point_contact_trial.clear();
-      boundary_trial_work = 0.;
+      boundary_trial_work.assign(boundary_trial_work.size(), 0.);
       boundary_points.clear();
     }
 

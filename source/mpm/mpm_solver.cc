@@ -966,6 +966,8 @@ namespace Talus
     {
       p2g_current        = false;
       boundary_particles = boundaries.empty() ? nullptr : &boundaries;
+      // (resize: a checkpoint restored before keeps its values)
+      boundary_friction_dissipation.resize(boundaries.n_boundaries(), 0.);
       // The symmetric Nitsche form is coercive only above a stabilisation
       // that grows without bound as a cut shrinks (doc/verification.md).
       if (ghost_penalty_factor == 0. &&
@@ -1045,7 +1047,8 @@ namespace Talus
       d.reset_dissipation      = reset_dissipation;
       d.transfer_dissipation   = transfer_dissipation;
       d.integrator_dissipation = integrator_dissipation;
-      d.contact_force          = contact_force;
+      d.boundary_friction_dissipation = boundary_friction_dissipation;
+      d.contact_force                 = contact_force;
       if (grid_kinetic_energy >= 0.)
         {
           d.grid_kinetic_energy = grid_kinetic_energy;
@@ -1067,16 +1070,17 @@ namespace Talus
     void
     MPMSolver<dim>::save_state()
     {
-      saved_state.friction_dissipation   = friction_dissipation;
-      saved_state.reset_dissipation      = reset_dissipation;
-      saved_state.transfer_dissipation   = transfer_dissipation;
-      saved_state.integrator_dissipation = integrator_dissipation;
-      saved_state.grid_kinetic_energy    = grid_kinetic_energy;
-      saved_state.max_grid_speed         = max_grid_speed;
-      saved_state.contact_force          = contact_force;
-      saved_state.grid_velocity          = committed_grid_velocity;
-      saved_state.stuck                  = committed_stuck;
-      saved_state.saved                  = true;
+      saved_state.friction_dissipation          = friction_dissipation;
+      saved_state.reset_dissipation             = reset_dissipation;
+      saved_state.transfer_dissipation          = transfer_dissipation;
+      saved_state.integrator_dissipation        = integrator_dissipation;
+      saved_state.boundary_friction_dissipation = boundary_friction_dissipation;
+      saved_state.grid_kinetic_energy           = grid_kinetic_energy;
+      saved_state.max_grid_speed                = max_grid_speed;
+      saved_state.contact_force                 = contact_force;
+      saved_state.grid_velocity                 = committed_grid_velocity;
+      saved_state.stuck                         = committed_stuck;
+      saved_state.saved                         = true;
     }
 
 
@@ -1087,18 +1091,19 @@ namespace Talus
       AssertThrow(saved_state.saved,
                   dealii::ExcMessage("MPMSolver::restore_state() without a "
                                      "preceding save_state()"));
-      friction_dissipation    = saved_state.friction_dissipation;
-      reset_dissipation       = saved_state.reset_dissipation;
-      transfer_dissipation    = saved_state.transfer_dissipation;
-      integrator_dissipation  = saved_state.integrator_dissipation;
-      grid_kinetic_energy     = saved_state.grid_kinetic_energy;
-      max_grid_speed          = saved_state.max_grid_speed;
-      contact_force           = saved_state.contact_force;
-      committed_grid_velocity = saved_state.grid_velocity;
-      committed_stuck         = saved_state.stuck;
-      p2g_current             = false;
-      prepared                = false;
-      solved                  = false;
+      friction_dissipation          = saved_state.friction_dissipation;
+      reset_dissipation             = saved_state.reset_dissipation;
+      transfer_dissipation          = saved_state.transfer_dissipation;
+      integrator_dissipation        = saved_state.integrator_dissipation;
+      boundary_friction_dissipation = saved_state.boundary_friction_dissipation;
+      grid_kinetic_energy           = saved_state.grid_kinetic_energy;
+      max_grid_speed                = saved_state.max_grid_speed;
+      contact_force                 = saved_state.contact_force;
+      committed_grid_velocity       = saved_state.grid_velocity;
+      committed_stuck               = saved_state.stuck;
+      p2g_current                   = false;
+      prepared                      = false;
+      solved                        = false;
     }
 
 

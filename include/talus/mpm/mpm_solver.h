@@ -121,6 +121,13 @@ namespace Talus
       dealii::Tensor<1, dim> contact_force;
       /** Resultants of the boundaries imposed by boundary particles. */
       std::vector<Boundaries::BoundaryResultant<dim>> boundaries;
+      /**
+       * Friction dissipation of each boundary of boundary particles since
+       * the start [J] (the boundaries' share of friction_dissipation: the
+       * work of their contact forces on the slip, without the change of
+       * the springs' elastic energy).
+       */
+      std::vector<double> boundary_friction_dissipation;
 
       /**
        * Elastic energy of the boundaries' penalty springs [J]: sum over the
@@ -171,7 +178,8 @@ namespace Talus
         ar &mass &momentum &kinetic_energy &grid_kinetic_energy &max_grid_speed
           &strain_energy &gravitational_energy &plastic_dissipation &volume
             &friction_dissipation &reset_dissipation &transfer_dissipation
-              &integrator_dissipation &contact_force &boundaries;
+              &integrator_dissipation &contact_force &boundaries
+                &boundary_friction_dissipation;
       }
     };
 
@@ -402,8 +410,8 @@ namespace Talus
       serialize_committed_scalars(Archive &ar)
       {
         ar &friction_dissipation &reset_dissipation &transfer_dissipation
-          &integrator_dissipation &grid_kinetic_energy &max_grid_speed
-            &contact_force;
+          &integrator_dissipation &boundary_friction_dissipation
+            &grid_kinetic_energy &max_grid_speed &contact_force;
       }
 
       /**
@@ -642,8 +650,11 @@ namespace Talus
       };
       std::vector<BoundaryParticleTrial> boundary_trial;
       std::vector<PointContactTrial>     point_contact_trial;
-      /** Work dissipated by the boundaries in the step (all ranks) [J]. */
-      double boundary_trial_work = 0.;
+      /**
+       * Work dissipated by each boundary of boundary particles in the step
+       * (all ranks) [J].
+       */
+      std::vector<double> boundary_trial_work;
 
       /** Evaluate the boundary trial state at the converged increment. */
       void
@@ -1139,8 +1150,9 @@ namespace Talus
         double                                reset_dissipation      = 0.;
         double                                transfer_dissipation   = 0.;
         double                                integrator_dissipation = 0.;
-        double                                grid_kinetic_energy    = -1.;
-        double                                max_grid_speed         = -1.;
+        std::vector<double>                   boundary_friction_dissipation;
+        double                                grid_kinetic_energy = -1.;
+        double                                max_grid_speed      = -1.;
         dealii::Tensor<1, dim>                contact_force;
         dealii::TrilinosWrappers::MPI::Vector grid_velocity;
         std::vector<bool>                     stuck;
@@ -1161,6 +1173,11 @@ namespace Talus
       /** Accumulated integrator dissipation [J] (all ranks); see Diagnostics.
        */
       double integrator_dissipation = 0.;
+      /**
+       * Accumulated friction dissipation of each boundary of boundary
+       * particles [J] (all ranks; part of friction_dissipation).
+       */
+      std::vector<double> boundary_friction_dissipation;
       /**
        * The present step's impact friction and reset dissipation [J] (all
        * ranks): set by prepare_step() (and the velocity restore of released
