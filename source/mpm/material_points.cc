@@ -816,21 +816,10 @@ namespace Talus
               // their cells (a few merged boxes per rank keep the search
               // cheap).
               const auto global_boxes = grid.global_bounding_boxes();
-              if (b == 0)
-                handler.insert_global_particles(points,
-                                                global_boxes,
-                                                properties);
-              else
-                {
-                  // ids after those of the earlier bodies
-                  std::vector<dealii::types::particle_index> ids(points.size());
-                  for (unsigned int i = 0; i < points.size(); ++i)
-                    ids[i] = next_id + i;
-                  handler.insert_global_particles(points,
-                                                  global_boxes,
-                                                  properties,
-                                                  ids);
-                }
+              // (deal.II numbers them after the largest id so far; with
+              // explicit ids the ranks without points of the body would
+              // not take part in its exchange of the ids and hang)
+              handler.insert_global_particles(points, global_boxes, properties);
             }
           next_id += n_total;
 
