@@ -817,8 +817,8 @@ namespace Talus
               // cheap).
               const auto global_boxes = grid.global_bounding_boxes();
               // (deal.II numbers them after the largest id so far; with
-              // explicit ids the ranks without points of the body would
-              // not take part in its exchange of the ids and hang)
+              // explicit ids deal.II 9.4 hung on 2 ranks here: rank 0 in
+              // the exchange of the ids, the other rank past it)
               handler.insert_global_particles(points, global_boxes, properties);
             }
           next_id += n_total;
