@@ -118,11 +118,11 @@ namespace Talus
       material_points->parse_parameters(prm);
       initial_stress_field.parse_parameters(prm);
       if (initial_stress_field.enabled())
-        for (const unsigned int m : body_materials)
-          if (m != body_materials[0])
-            InputFile::reject(MaterialPoints<dim>::body_subsection(1),
+        for (unsigned int b = 1; b < body_materials.size(); ++b)
+          if (body_materials[b] != body_materials[0])
+            InputFile::reject(MaterialPoints<dim>::body_subsection(b),
                               "material",
-                              Materials::material_subsection(m),
+                              Materials::material_subsection(body_materials[b]),
                               "an initial stress (subsection Initial stress) "
                               "needs one material for all bodies");
 
@@ -396,7 +396,8 @@ namespace Talus
       mismatch("material points with properties",
                id.n_point_properties,
                material_points->particle_handler().n_properties_per_particle(),
-               "subsections <Material> and <Boundary particles>");
+               "subsections <Material>, <Body> (number of bodies) and "
+               "<Boundary particles>");
       for (unsigned int d = 0; d < dim && id.grid_box.size() == 2 * dim; ++d)
         if (std::abs(id.grid_box[d] - grid.lower_corner[d]) >
               1e-12 * grid.minimal_cell_diameter ||
