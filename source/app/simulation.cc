@@ -502,7 +502,8 @@ namespace Talus
         series.open(output.directory() + "/time_series.csv",
                     communicator,
                     names,
-                    time_control.error_control.enabled());
+                    time_control.error_control.enabled(),
+                    problem.points().n_bodies());
       }
 
     pcout << "Talus: " << dim << "D implicit MPM, "
@@ -1034,6 +1035,17 @@ namespace Talus
           pcout << ' ' << round(final_state.momentum[d]);
         pcout << "\n  kinetic energy: " << round(final_state.kinetic_energy)
               << "\n  strain energy: " << round(final_state.strain_energy);
+        for (unsigned int b = 0; b < final_state.body_mass.size(); ++b)
+          {
+            pcout << "\n  body " << b + 1 << ": mass "
+                  << round(final_state.body_mass[b]) << " kg, momentum";
+            for (unsigned int d = 0; d < dim; ++d)
+              pcout << ' ' << round(final_state.body_momentum[b][d]);
+            pcout << ", kinetic energy "
+                  << round(final_state.body_kinetic_energy[b])
+                  << ", strain energy "
+                  << round(final_state.body_strain_energy[b]);
+          }
         if (points.n_global_points() > 0)
           {
             pcout << "\n  displacement min:";

@@ -13,7 +13,8 @@ namespace Talus
     TimeSeries<dim>::open(const std::string              &filename,
                           const MPI_Comm                  communicator,
                           const std::vector<std::string> &boundary_names,
-                          const bool                      error_column)
+                          const bool                      error_column,
+                          const unsigned int              n_bodies)
     {
       with_error = error_column;
       is_root    = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
@@ -44,6 +45,15 @@ namespace Talus
           file << ',' << name << "_normal_force," << name
                << "_tangential_force," << name << "_penetration," << name
                << "_friction_dissipation";
+        }
+      for (unsigned int b = 0; n_bodies > 1 && b < n_bodies; ++b)
+        {
+          const std::string body = "body" + std::to_string(b + 1);
+          file << ',' << body << "_mass";
+          for (unsigned int d = 0; d < dim; ++d)
+            file << ',' << body << "_momentum_"
+                 << "xyz"[d];
+          file << ',' << body << "_kinetic_energy," << body << "_strain_energy";
         }
       if (with_error)
         file << ",error_estimate";
@@ -130,6 +140,15 @@ namespace Talus
                << (k < d.boundary_friction_dissipation.size() ?
                      d.boundary_friction_dissipation[k] :
                      0.);
+        }
+      for (unsigned int b = 0; d.body_mass.size() > 1 && b < d.body_mass.size();
+           ++b)
+        {
+          file << ',' << d.body_mass[b];
+          for (unsigned int i = 0; i < dim; ++i)
+            file << ',' << d.body_momentum[b][i];
+          file << ',' << d.body_kinetic_energy[b] << ','
+               << d.body_strain_energy[b];
         }
       if (with_error)
         file << ',' << error;

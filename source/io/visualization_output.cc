@@ -115,9 +115,12 @@ namespace Talus
       dealii::Particles::DataOut<dim> particle_out;
       particle_out.build_patches(
         handler,
-        Properties::names(points.n_history(), points.n_contact_slots()),
+        Properties::names(points.n_history(),
+                          points.n_contact_slots(),
+                          points.has_body_property()),
         Properties::interpretation(points.n_history(),
-                                   points.n_contact_slots()));
+                                   points.n_contact_slots(),
+                                   points.has_body_property()));
 
       dealii::DataOut<dim>  grid_out;
       dealii::Vector<float> n_points(grid.triangulation.n_active_cells());

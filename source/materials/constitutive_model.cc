@@ -68,7 +68,12 @@ namespace Talus
 
     namespace
     {
-      const std::string subsection_name = "Material";
+      /**
+       * The material subsection being declared or read ("Material",
+       * "Material 2", ...): set by declare_parameters() and create_model()
+       * for the messages of the model factories.
+       */
+      std::string subsection_name = "Material";
 
       /**
        * How to declare and create one model.
@@ -308,9 +313,29 @@ namespace Talus
 
 
 
+    std::string
+    material_subsection(const unsigned int index)
+    {
+      return index == 0 ? std::string("Material") :
+                          "Material " + std::to_string(index + 1);
+    }
+
+
+
     void
     declare_parameters(dealii::ParameterHandler &prm)
     {
+      for (unsigned int m = 0; m < max_materials; ++m)
+        declare_parameters(prm, material_subsection(m));
+    }
+
+
+
+    void
+    declare_parameters(dealii::ParameterHandler &prm,
+                       const std::string        &subsection)
+    {
+      subsection_name = subsection;
       SubsectionScope scope(prm, subsection_name);
 
       prm.declare_entry(
@@ -382,6 +407,15 @@ namespace Talus
     std::unique_ptr<ConstitutiveModel>
     create_model(dealii::ParameterHandler &prm)
     {
+      return create_model(prm, material_subsection(0));
+    }
+
+
+
+    std::unique_ptr<ConstitutiveModel>
+    create_model(dealii::ParameterHandler &prm, const std::string &subsection)
+    {
+      subsection_name = subsection;
       SubsectionScope scope(prm, subsection_name);
 
       const std::string name  = prm.get("model");

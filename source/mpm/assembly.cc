@@ -347,16 +347,19 @@ namespace Talus
                     H[comp[i]] += du_local[i] * dN[node[i]];
                   dealii::Tensor<2, dim> F_new = F_n + H * F_n;
 
+                  const auto        &point_model = model_of(props);
+                  const unsigned int n_point_history =
+                    point_model.n_history_variables();
                   try
                     {
-                      model.compute_stress(
+                      point_model.compute_stress(
                         embed<dim>(F_n),
                         embed<dim>(F_new),
                         dealii::ArrayView<const double>(props.data() +
                                                           Properties::history,
-                                                        n_history),
+                                                        n_point_history),
                         dealii::ArrayView<double>(history_new.data(),
-                                                  n_history),
+                                                  n_point_history),
                         dt,
                         P,
                         with_matrix ? &A : nullptr);
@@ -374,7 +377,7 @@ namespace Talus
                   if (with_matrix)
                     record_branch(k,
                                   dealii::ArrayView<const double>(
-                                    history_new.data(), n_history));
+                                    history_new.data(), n_point_history));
                   for (unsigned int d = 0; d < 3; ++d)
                     for (unsigned int e = 0; e < 3; ++e)
                       if (!std::isfinite(P[d][e]))
@@ -722,7 +725,8 @@ namespace Talus
     {
       if (k >= point_branches.size())
         return;
-      const int branch = static_cast<int>(model.return_branch(history));
+      const int branch = static_cast<int>(
+        model_of(particles[k]->get_properties()).return_branch(history));
       if (point_branches[k] >= 0 && point_branches[k] != branch)
         ++branch_changes;
       point_branches[k] = branch;
@@ -763,16 +767,18 @@ namespace Talus
                                   const dealii::Tensor<2, dim> &F,
                                   dealii::Tensor<2, 3>         &P,
                                   dealii::Tensor<4, 3>         *A) -> bool {
-        const auto props = particles[c.first + q]->get_properties();
+        const auto         props = particles[c.first + q]->get_properties();
+        const auto        &point_model = model_of(props);
+        const unsigned int n_point_history = point_model.n_history_variables();
         try
           {
-            model.compute_stress(
+            point_model.compute_stress(
               embed<dim>(F_n[q]),
               embed<dim>(F),
               dealii::ArrayView<const double>(props.data() +
                                                 Properties::history,
-                                              n_history),
-              dealii::ArrayView<double>(history_new.data(), n_history),
+                                              n_point_history),
+              dealii::ArrayView<double>(history_new.data(), n_point_history),
               dt,
               P,
               A);
@@ -788,7 +794,7 @@ namespace Talus
         if (k_local != nullptr)
           record_branch(c.first + q,
                         dealii::ArrayView<const double>(history_new.data(),
-                                                        n_history));
+                                                        n_point_history));
         for (unsigned int d = 0; d < 3; ++d)
           for (unsigned int e = 0; e < 3; ++e)
             if (!std::isfinite(P[d][e]))

@@ -1,4 +1,5 @@
 #include <talus/base/input.h>
+#include <talus/mpm/material_points.h>
 #include <talus/mpm/memory_estimate.h>
 
 #include <deal.II/base/types.h>
@@ -237,69 +238,88 @@ namespace Talus
           dofs  = dim * vertices;
         }
 
-      // The points: the body's share of the grid times n^dim.
+      // The points: each body's share of the grid times its n^dim.
       prm.enter_subsection("Body");
-      const std::string geometry = prm.get("geometry");
-      points_per_cell            = std::pow(static_cast<double>(prm.get_integer(
-                                   "points per cell per direction")),
-                                 dim);
-      gmsh_body                  = geometry == "gmsh";
-      double body_volume         = 0.;
-      if (geometry == "box")
-        {
-          const std::vector<double> body_lower =
-            numbers(prm.get("lower corner"));
-          const std::vector<double> body_upper =
-            numbers(prm.get("upper corner"));
-          if (body_lower.size() == dim && body_upper.size() == dim)
-            {
-              body_volume = 1.;
-              for (unsigned int d = 0; d < dim && !gmsh_grid; ++d)
-                {
-                  // only the part inside a box grid holds points
-                  const double lo =
-                    std::max(std::min(body_lower[d], body_upper[d]),
-                             std::min(lower[d], upper[d]));
-                  const double hi =
-                    std::min(std::max(body_lower[d], body_upper[d]),
-                             std::max(lower[d], upper[d]));
-                  body_volume *= std::max(hi - lo, 0.);
-                }
-              for (unsigned int d = 0; d < dim && gmsh_grid; ++d)
-                body_volume *= std::abs(body_upper[d] - body_lower[d]);
-            }
-        }
-      else if (geometry == "polygon" && dim == 2)
-        {
-          // shoelace area of the vertices 'x, y; x, y; ...'
-          std::vector<std::vector<double>> v;
-          for (const auto &pair :
-               dealii::Utilities::split_string_list(prm.get("vertices"), ';'))
-            v.push_back(numbers(pair));
-          double twice_area = 0.;
-          bool   valid      = v.size() >= 3;
-          for (std::size_t i = 0; valid && i < v.size(); ++i)
-            {
-              const auto &a = v[i];
-              const auto &b = v[(i + 1) % v.size()];
-              valid         = a.size() == 2 && b.size() == 2;
-              if (valid)
-                twice_area += a[0] * b[1] - b[0] * a[1];
-            }
-          if (valid)
-            body_volume = std::abs(twice_area) / 2.;
-        }
+      const long n_bodies =
+        std::max(1L,
+                 std::min(prm.get_integer("number of bodies"),
+                          static_cast<long>(MaterialPoints<dim>::max_bodies)));
       prm.leave_subsection();
+      gmsh_body              = false;
+      double all_body_volume = 0.;
+      double body_points     = 0.; // sum of body volume * points per cell
+      points_per_cell        = 1.;
+      for (long b = 0; b < n_bodies; ++b)
+        {
+          prm.enter_subsection(MaterialPoints<dim>::body_subsection(b));
+          const std::string geometry = prm.get("geometry");
+          const double      body_points_per_cell =
+            std::pow(static_cast<double>(
+                       prm.get_integer("points per cell per direction")),
+                     dim);
+          points_per_cell    = std::max(points_per_cell, body_points_per_cell);
+          gmsh_body          = gmsh_body || geometry == "gmsh";
+          double body_volume = 0.;
+          if (geometry == "box")
+            {
+              const std::vector<double> body_lower =
+                numbers(prm.get("lower corner"));
+              const std::vector<double> body_upper =
+                numbers(prm.get("upper corner"));
+              if (body_lower.size() == dim && body_upper.size() == dim)
+                {
+                  body_volume = 1.;
+                  for (unsigned int d = 0; d < dim && !gmsh_grid; ++d)
+                    {
+                      // only the part inside a box grid holds points
+                      const double lo =
+                        std::max(std::min(body_lower[d], body_upper[d]),
+                                 std::min(lower[d], upper[d]));
+                      const double hi =
+                        std::min(std::max(body_lower[d], body_upper[d]),
+                                 std::max(lower[d], upper[d]));
+                      body_volume *= std::max(hi - lo, 0.);
+                    }
+                  for (unsigned int d = 0; d < dim && gmsh_grid; ++d)
+                    body_volume *= std::abs(body_upper[d] - body_lower[d]);
+                }
+            }
+          else if (geometry == "polygon" && dim == 2)
+            {
+              // shoelace area of the vertices 'x, y; x, y; ...'
+              std::vector<std::vector<double>> v;
+              for (const auto &pair :
+                   dealii::Utilities::split_string_list(prm.get("vertices"),
+                                                        ';'))
+                v.push_back(numbers(pair));
+              double twice_area = 0.;
+              bool   valid      = v.size() >= 3;
+              for (std::size_t i = 0; valid && i < v.size(); ++i)
+                {
+                  const auto &a = v[i];
+                  const auto &b = v[(i + 1) % v.size()];
+                  valid         = a.size() == 2 && b.size() == 2;
+                  if (valid)
+                    twice_area += a[0] * b[1] - b[0] * a[1];
+                }
+              if (valid)
+                body_volume = std::abs(twice_area) / 2.;
+            }
+          prm.leave_subsection();
+          all_body_volume += body_volume;
+          body_points += grid_volume > 0. && cells > 0. ?
+                           std::min(body_volume, grid_volume) / grid_volume *
+                             cells * body_points_per_cell :
+                           0.;
+        }
       // (a Gmsh body is not estimated)
       // The share of the cells with material: the tangent and the AMG are
       // built on them only (a Gmsh body or one of unknown volume: all).
-      material_fraction = grid_volume > 0. && body_volume > 0. && !gmsh_body ?
-                            std::min(body_volume / grid_volume, 1.) :
-                            1.;
-      points            = grid_volume > 0. && cells > 0. ?
-                            std::min(body_volume, grid_volume) / grid_volume * cells *
-                   points_per_cell :
-                            0.;
+      material_fraction =
+        grid_volume > 0. && all_body_volume > 0. && !gmsh_body ?
+          std::min(all_body_volume / grid_volume, 1.) :
+          1.;
+      points = body_points;
     }
 
 

@@ -50,10 +50,24 @@ namespace Talus
     MPMProblem<dim>::parse_parameters(dealii::ParameterHandler &prm,
                                       const unsigned int        refinement)
     {
-      constitutive_model = Materials::create_model(prm);
-      // the solver reads only the dim x dim x dim x dim block of dP/dF
-      constitutive_model->set_tangent_dimension(dim);
-      const unsigned int n_history = constitutive_model->n_history_variables();
+      // The model of every material subsection a body names; the points
+      // carry as many history variables as the largest of them.
+      const auto body_materials = MaterialPoints<dim>::body_materials(prm);
+      materials.clear();
+      materials.resize(Materials::max_materials);
+      material_densities.assign(Materials::max_materials, 0.);
+      unsigned int n_history = 0;
+      for (const unsigned int m : body_materials)
+        if (!materials[m])
+          {
+            materials[m] =
+              Materials::create_model(prm, Materials::material_subsection(m));
+            // the solver reads only the dim x dim x dim x dim block of dP/dF
+            materials[m]->set_tangent_dimension(dim);
+            n_history =
+              std::max(n_history, materials[m]->n_history_variables());
+          }
+      constitutive_model = materials[body_materials[0]].get();
 
       // The memory of the grid and the points, estimated before they are
       // allocated: from the parameters for a box grid, from the coarse
@@ -90,13 +104,27 @@ namespace Talus
           grid.setup_dofs();
         }
 
-      prm.enter_subsection("Material");
-      material_density = get_positive(prm, "Material", "density");
-      prm.leave_subsection();
+      for (unsigned int m = 0; m < materials.size(); ++m)
+        if (materials[m])
+          {
+            const std::string sub = Materials::material_subsection(m);
+            prm.enter_subsection(sub);
+            material_densities[m] = get_positive(prm, sub, "density");
+            prm.leave_subsection();
+          }
+      material_density = material_densities[body_materials[0]];
 
       material_points = std::make_unique<MaterialPoints<dim>>(*background_grid);
       material_points->parse_parameters(prm);
       initial_stress_field.parse_parameters(prm);
+      if (initial_stress_field.enabled())
+        for (unsigned int b = 1; b < body_materials.size(); ++b)
+          if (body_materials[b] != body_materials[0])
+            InputFile::reject(MaterialPoints<dim>::body_subsection(b),
+                              "material",
+                              Materials::material_subsection(body_materials[b]),
+                              "an initial stress (subsection Initial stress) "
+                              "needs one material for all bodies");
 
       mpm_solver = std::make_unique<MPMSolver<dim>>(*background_grid,
                                                     *material_points,
@@ -104,6 +132,13 @@ namespace Talus
                                                     newmark,
                                                     timer);
       mpm_solver->parse_parameters(prm);
+      if (body_materials.size() > 1)
+        {
+          std::vector<const Materials::ConstitutiveModel *> models;
+          for (const auto &m : materials)
+            models.push_back(m.get());
+          mpm_solver->set_materials(models);
+        }
 
       boundary_particles =
         std::make_unique<Boundaries::BoundaryParticles<dim>>(*background_grid);
@@ -120,18 +155,30 @@ namespace Talus
       const auto &model = *constitutive_model;
       // contact data (material-point contact) for every boundary
       material_points->set_contact_slots(boundary_particles->n_boundaries());
-      material_points->generate(material_density,
-                                model.n_history_variables(),
-                                [&](const dealii::ArrayView<double> &h) {
-                                  model.initialize_history(h);
-                                });
+      unsigned int n_history      = 0;
+      double       p_wave_modulus = 0.;
+      for (const auto &m : materials)
+        if (m)
+          {
+            n_history      = std::max(n_history, m->n_history_variables());
+            p_wave_modulus = std::max(p_wave_modulus, m->p_wave_modulus());
+          }
+      material_points->generate(
+        material_densities,
+        n_history,
+        [&](const unsigned int m, const dealii::ArrayView<double> &h) {
+          materials[m]->initialize_history(
+            dealii::ArrayView<double>(h.data(),
+                                      materials[m]->n_history_variables()));
+        });
       initial_stress_field.apply(*material_points,
                                  model,
                                  mpm_solver->gravity(),
                                  communicator,
                                  mpm_solver->load_ramp());
       mpm_solver->setup();
-      boundary_particles->generate(model.p_wave_modulus());
+      // the penalty of the boundaries from the stiffest material
+      boundary_particles->generate(p_wave_modulus);
       mpm_solver->attach_boundary_particles(*boundary_particles);
     }
 
@@ -349,7 +396,8 @@ namespace Talus
       mismatch("material points with properties",
                id.n_point_properties,
                material_points->particle_handler().n_properties_per_particle(),
-               "subsections <Material> and <Boundary particles>");
+               "subsections <Material>, <Body> (number of bodies) and "
+               "<Boundary particles>");
       for (unsigned int d = 0; d < dim && id.grid_box.size() == 2 * dim; ++d)
         if (std::abs(id.grid_box[d] - grid.lower_corner[d]) >
               1e-12 * grid.minimal_cell_diameter ||
@@ -458,6 +506,22 @@ namespace Talus
           << "  material points: " << material_points->n_global_points() << '\n'
           << "  material: " << constitutive_model->name() << ", density "
           << material_density << " kg/m^3\n";
+      if (material_points->n_bodies() > 1)
+        {
+          std::vector<unsigned long long> count(material_points->n_bodies(), 0);
+          for (const auto &p : material_points->particle_handler())
+            ++count[material_points->body_of(p.get_properties())];
+          for (auto &c : count)
+            c = dealii::Utilities::MPI::sum(c, communicator);
+          for (unsigned int b = 0; b < count.size(); ++b)
+            {
+              const unsigned int m = material_points->body_material(b);
+              out << "  body " << b + 1 << ": " << count[b]
+                  << " material points, " << Materials::material_subsection(m)
+                  << " (" << materials[m]->name() << ", density "
+                  << material_densities[m] << " kg/m^3)\n";
+            }
+        }
       if (initial_stress_field.enabled())
         out << "  initial stress: " << initial_stress_field.description()
             << '\n';

@@ -428,7 +428,7 @@ namespace Talus
       const auto                &dof_handler = grid.dof_handler;
       {
         // tangent of the undeformed, virgin material (Nitsche's method)
-        const unsigned int  n_history = points.n_history();
+        const unsigned int  n_history = model.n_history_variables();
         std::vector<double> h_old(n_history, 0.), h_new(n_history, 0.);
         model.initialize_history(
           dealii::ArrayView<double>(h_old.data(), n_history));
@@ -992,18 +992,36 @@ namespace Talus
     MPMSolver<dim>::compute_diagnostics() const
     {
       using Properties = MaterialPointProperties<dim>;
-      Diagnostics<dim>   d;
-      double             point_speed       = 0.;
-      const unsigned int n_history         = points.n_history();
-      int                dissipation_index = -1;
-      {
-        const auto names = model.history_names();
+      Diagnostics<dim> d;
+      double           point_speed = 0.;
+      // the history variable "plastic_dissipation" of each material
+      const auto dissipation_of = [](const Materials::ConstitutiveModel &m) {
+        int        index = -1;
+        const auto names = m.history_names();
         for (unsigned int h = 0; h < names.size(); ++h)
           if (names[h] == "plastic_dissipation")
-            dissipation_index = h;
-      }
+            index = h;
+        return index;
+      };
+      const int        single_dissipation = dissipation_of(model);
+      std::vector<int> material_dissipation(materials.size(), -1);
+      for (unsigned int m = 0; m < materials.size(); ++m)
+        if (materials[m] != nullptr)
+          material_dissipation[m] = dissipation_of(*materials[m]);
+      const unsigned int n_bodies = points.n_bodies();
+      if (n_bodies > 1)
+        {
+          d.body_mass.assign(n_bodies, 0.);
+          d.body_momentum.assign(n_bodies, dealii::Tensor<1, dim>());
+          d.body_kinetic_energy.assign(n_bodies, 0.);
+          d.body_strain_energy.assign(n_bodies, 0.);
+        }
       for (const auto &p : points.particle_handler())
         {
+          const int dissipation_index =
+            materials.empty() ?
+              single_dissipation :
+              material_dissipation[points.material_of(p.get_properties())];
           if (dissipation_index >= 0)
             d.plastic_dissipation +=
               p.get_properties()[Properties::initial_volume] *
@@ -1025,13 +1043,35 @@ namespace Talus
           d.volume += props[Properties::initial_volume] *
                       dealii::determinant(
                         read_tensor<dim>(props, Properties::deformation));
-          d.strain_energy +=
+          const auto  &point_model = model_of(props);
+          const double point_strain_energy =
             props[Properties::initial_volume] *
-            model.energy_density(
+            point_model.energy_density(
               embed<dim>(read_tensor<dim>(props, Properties::deformation)),
-              dealii::ArrayView<const double>(props.data() +
-                                                Properties::history,
-                                              n_history));
+              dealii::ArrayView<const double>(
+                props.data() + Properties::history,
+                point_model.n_history_variables()));
+          d.strain_energy += point_strain_energy;
+          if (n_bodies > 1)
+            {
+              const unsigned int b = points.body_of(props);
+              d.body_mass[b] += m;
+              for (unsigned int i = 0; i < dim; ++i)
+                d.body_momentum[b][i] += m * props[Properties::velocity + i];
+              d.body_kinetic_energy[b] += 0.5 * m * v2;
+              d.body_strain_energy[b] += point_strain_energy;
+            }
+        }
+      for (unsigned int b = 0; b < d.body_mass.size(); ++b)
+        {
+          const MPI_Comm comm = grid.mpi_communicator;
+          d.body_mass[b] = dealii::Utilities::MPI::sum(d.body_mass[b], comm);
+          d.body_momentum[b] =
+            dealii::Utilities::MPI::sum(d.body_momentum[b], comm);
+          d.body_kinetic_energy[b] =
+            dealii::Utilities::MPI::sum(d.body_kinetic_energy[b], comm);
+          d.body_strain_energy[b] =
+            dealii::Utilities::MPI::sum(d.body_strain_energy[b], comm);
         }
       const MPI_Comm comm = grid.mpi_communicator;
       d.mass              = dealii::Utilities::MPI::sum(d.mass, comm);

@@ -468,15 +468,18 @@ namespace Talus
                 }
               const dealii::Tensor<2, dim> F_n =
                 read_tensor<dim>(props, Properties::deformation);
-              const dealii::Tensor<2, dim> &F_new = F_cell[q];
-              const dealii::Tensor<2, 3>    F3    = embed<dim>(F_new);
-              model.compute_stress(
+              const dealii::Tensor<2, dim> &F_new       = F_cell[q];
+              const dealii::Tensor<2, 3>    F3          = embed<dim>(F_new);
+              const auto                   &point_model = model_of(props);
+              const unsigned int            n_point_history =
+                point_model.n_history_variables();
+              point_model.compute_stress(
                 embed<dim>(F_n),
                 F3,
                 dealii::ArrayView<const double>(props.data() +
                                                   Properties::history,
-                                                n_history),
-                dealii::ArrayView<double>(history_new.data(), n_history),
+                                                n_point_history),
+                dealii::ArrayView<double>(history_new.data(), n_point_history),
                 dt,
                 P,
                 nullptr);
@@ -484,7 +487,7 @@ namespace Talus
               const dealii::Tensor<2, 3> sigma =
                 P * dealii::transpose(F3) / dealii::determinant(F3);
               Properties::store_stress(props, sigma);
-              for (unsigned int h = 0; h < n_history; ++h)
+              for (unsigned int h = 0; h < n_point_history; ++h)
                 props[Properties::history + h] = history_new[h];
               for (unsigned int i = 0; i < dim; ++i)
                 {

@@ -33,12 +33,16 @@ namespace Talus
        * penetration [m]). With @p error_column (the step chosen by the
        * error, TruncationErrorControl) a last column `error_estimate`
        * holds the estimated relative truncation error of each step [-].
+       * With @p n_bodies > 1 each body b adds (before it)
+       * body<b>_mass, body<b>_momentum_x, _y, (_z), body<b>_kinetic_energy,
+       * body<b>_strain_energy.
        */
       void
       open(const std::string              &filename,
            const MPI_Comm                  communicator,
            const std::vector<std::string> &boundary_names = {},
-           const bool                      error_column   = false);
+           const bool                      error_column   = false,
+           const unsigned int              n_bodies       = 1);
 
       /** One row; @p error is written only with the error column. */
       void

@@ -160,11 +160,28 @@ namespace Talus
     };
 
     /**
-     * Declare the parameters of subsection "Material" (model name, density,
-     * elastic constants and the subsections of every registered model).
+     * Number of material subsections: "Material", "Material 2", ...,
+     * "Material max_materials" (the bodies of an MPM run name theirs,
+     * MPM::MaterialPoints).
+     */
+    constexpr unsigned int max_materials = 4;
+
+    /** "Material" for @p index 0, "Material 2" for 1, ... */
+    std::string
+    material_subsection(const unsigned int index);
+
+    /**
+     * Declare the parameters of the subsections "Material" ...
+     * "Material max_materials" (model name, density, elastic constants and
+     * the subsections of every registered model).
      */
     void
     declare_parameters(dealii::ParameterHandler &prm);
+
+    /** Declare the parameters of one material subsection @p subsection. */
+    void
+    declare_parameters(dealii::ParameterHandler &prm,
+                       const std::string        &subsection);
 
     /**
      * Create the model named in subsection "Material" of @p prm, with its
@@ -173,6 +190,10 @@ namespace Talus
      */
     std::unique_ptr<ConstitutiveModel>
     create_model(dealii::ParameterHandler &prm);
+
+    /** Create the model of the material subsection @p subsection. */
+    std::unique_ptr<ConstitutiveModel>
+    create_model(dealii::ParameterHandler &prm, const std::string &subsection);
 
     /** Names of all available models, separated by '|'. */
     std::string

@@ -89,6 +89,13 @@ namespace Talus
         return history + n_history + dim * b;
       }
 
+      /** The body index: after the contact data (several bodies only). */
+      static constexpr unsigned int
+      body(const unsigned int n_history, const unsigned int n_slots)
+      {
+        return n_properties(n_history, n_slots);
+      }
+
       /** Contact offset against boundary @p b of @p n_slots. */
       static constexpr unsigned int
       contact_offset(const unsigned int n_history,
@@ -114,14 +121,21 @@ namespace Talus
         props[stress + 5] = sigma[0][2];
       }
 
-      /** Names for output, one per property (history as history_i). */
+      /**
+       * Names for output, one per property (history as history_i; "body"
+       * last if @p with_body).
+       */
       static std::vector<std::string>
-      names(const unsigned int n_history, const unsigned int n_slots);
+      names(const unsigned int n_history,
+            const unsigned int n_slots,
+            const bool         with_body = false);
 
       /** Output interpretation (vectors for velocity, ...). */
       static std::vector<
         dealii::DataComponentInterpretation::DataComponentInterpretation>
-      interpretation(const unsigned int n_history, const unsigned int n_slots);
+      interpretation(const unsigned int n_history,
+                     const unsigned int n_slots,
+                     const bool         with_body = false);
     };
 
 
@@ -140,6 +154,15 @@ namespace Talus
      *  - `gmsh` (2D and 3D): the cells of a Gmsh mesh of the body, each
      *    with n^dim points at the centres of its subcells (volume = JxW).
      *
+     * Several bodies: subsection "Body" is body 1 and sets 'number of
+     * bodies' N (1 to max_bodies); "Body 2" ... "Body N" describe the
+     * others with the same parameters. Each body names its material
+     * subsection ("Material", "Material 2", ...). The points of all bodies
+     * share one background grid and one grid velocity field (they stick
+     * where they meet, as in standard MPM). Box and polygon bodies must
+     * not overlap (a point of a later body inside an earlier box or
+     * polygon body is an input error); Gmsh bodies are not checked.
+     *
      * Points that leave the grid are removed: the lost mass is recorded by
      * the `particle_lost` signal and reported (or turned into an error).
      */
@@ -154,21 +177,103 @@ namespace Talus
       static void
       declare_parameters(dealii::ParameterHandler &prm);
 
-      /** Parse subsection "Body". */
+      /** Largest number of bodies ("Body", "Body 2", ...). */
+      static constexpr unsigned int max_bodies = 4;
+
+      /** "Body" for @p index 0, "Body 2" for 1, ... */
+      static std::string
+      body_subsection(const unsigned int index);
+
+      /**
+       * The material subsection index of each body (0: "Material"), with
+       * 'number of bodies' and the material names checked.
+       */
+      static std::vector<unsigned int>
+      body_materials(dealii::ParameterHandler &prm);
+
+      /** Parse subsections "Body" (and "Body 2" ... with several). */
       void
       parse_parameters(dealii::ParameterHandler &prm);
 
       /**
-       * Generate the body: positions, masses (density * volume),
+       * Generate the bodies: positions, masses (density * volume),
        * velocities from the initial-velocity function, F = I, zero stress,
        * history from @p initialize_history. Throws ExcInvalidInput for an
-       * empty body or a body outside the grid.
+       * empty body or a body outside the grid. All bodies get @p density.
        */
       void
       generate(const double       density,
                const unsigned int n_history,
                const std::function<void(const dealii::ArrayView<double> &)>
                  &initialize_history);
+
+      /**
+       * Generate the bodies, each with the density of its material
+       * (@p density[m] for material subsection m), @p n_history history
+       * variables per point (the largest of the materials) and the
+       * history of its material (@p initialize_history(m, history)).
+       */
+      void
+      generate(const std::vector<double> &density,
+               const unsigned int         n_history,
+               const std::function<void(const unsigned int,
+                                        const dealii::ArrayView<double> &)>
+                 &initialize_history);
+
+      /** Number of bodies. */
+      unsigned int
+      n_bodies() const
+      {
+        return bodies.size();
+      }
+
+      /** Index of the material subsection of body @p b (0: "Material"). */
+      unsigned int
+      body_material(const unsigned int b) const
+      {
+        return bodies[b].material;
+      }
+
+      /** Whether the points carry their body (several bodies). */
+      bool
+      has_body_property() const
+      {
+        return bodies.size() > 1;
+      }
+
+      /** Index of the body property (has_body_property()). */
+      unsigned int
+      body_index() const
+      {
+        return MaterialPointProperties<dim>::body(history_size, contact_slots);
+      }
+
+      /** Body of a point with properties @p props (0 with one body). */
+      template <class View>
+      unsigned int
+      body_of(const View &props) const
+      {
+        return has_body_property() ?
+                 static_cast<unsigned int>(props[body_index()] + 0.5) :
+                 0;
+      }
+
+      /** Material subsection index of a point with properties @p props. */
+      template <class View>
+      unsigned int
+      material_of(const View &props) const
+      {
+        return bodies[body_of(props)].material;
+      }
+
+      /** Number of properties per point. */
+      unsigned int
+      n_properties() const
+      {
+        return MaterialPointProperties<dim>::n_properties(history_size,
+                                                          contact_slots) +
+               (has_body_property() ? 1 : 0);
+      }
 
       dealii::Particles::ParticleHandler<dim> &
       particle_handler();
@@ -243,8 +348,39 @@ namespace Talus
       }
 
     private:
+      /** The geometry of one body (subsection "Body", "Body 2", ...). */
+      struct Body
+      {
+        std::string                     subsection;
+        std::string                     geometry;
+        dealii::Point<dim>              box_lower;
+        dealii::Point<dim>              box_upper;
+        std::vector<dealii::Point<dim>> polygon;
+        std::string                     mesh_file;
+        unsigned int                    points_per_direction = 2;
+        /** Clip the points' sub-cells to a box or polygon body. */
+        bool clip_to_body = false;
+        std::unique_ptr<dealii::Functions::ParsedFunction<dim>>
+                     initial_velocity;
+        unsigned int material = 0;
+
+        /**
+         * Whether @p p lies inside a box or polygon body, more than
+         * @p tolerance from its boundary (box) (false for Gmsh bodies).
+         */
+        bool
+        contains(const dealii::Point<dim> &p, const double tolerance) const;
+      };
+
+      static void
+      declare_body(dealii::ParameterHandler &prm, const unsigned int index);
+
+      void
+      parse_body(dealii::ParameterHandler &prm, Body &body) const;
+
       void
       generate_from_background_cells(
+        const Body                                            &body,
         const std::function<bool(const dealii::Point<dim> &)> &inside,
         std::vector<dealii::Point<dim>>                       &points,
         std::vector<double>                                   &volumes,
@@ -253,7 +389,8 @@ namespace Talus
         std::vector<dealii::Point<dim>> &reference_points) const;
 
       void
-      generate_from_gmsh(std::vector<dealii::Point<dim>> &points,
+      generate_from_gmsh(const Body                      &body,
+                         std::vector<dealii::Point<dim>> &points,
                          std::vector<double>             &volumes) const;
 
       const BackgroundGrid<dim> &grid;
@@ -261,17 +398,9 @@ namespace Talus
       dealii::Particles::ParticleHandler<dim> handler;
       dealii::Particles::ParticleHandler<dim> backup;
 
-      std::string                     geometry;
-      dealii::Point<dim>              box_lower;
-      dealii::Point<dim>              box_upper;
-      std::vector<dealii::Point<dim>> polygon;
-      std::string                     mesh_file;
-      unsigned int                    points_per_direction;
-      /** Clip the points' sub-cells to a box or polygon body. */
-      bool clip_to_body = false;
-      std::unique_ptr<dealii::Functions::ParsedFunction<dim>> initial_velocity;
-      unsigned int                                            history_size;
-      unsigned int                                            contact_slots = 0;
+      std::vector<Body> bodies;
+      unsigned int      history_size;
+      unsigned int      contact_slots = 0;
 
       double       lost_mass;
       unsigned int lost_count;

@@ -300,7 +300,7 @@ namespace Talus
         return *constitutive_model;
       }
 
-      /** Density of the material [kg/m^3]. */
+      /** Density of the material of body 1 [kg/m^3]. */
       double
       density() const
       {
@@ -338,12 +338,17 @@ namespace Talus
       const NewmarkBeta   &newmark;
       dealii::TimerOutput &timer;
 
-      std::unique_ptr<BackgroundGrid<dim>>                background_grid;
-      std::unique_ptr<Materials::ConstitutiveModel>       constitutive_model;
-      double                                              material_density = 0.;
-      std::unique_ptr<MaterialPoints<dim>>                material_points;
-      InitialStress<dim>                                  initial_stress_field;
-      std::unique_ptr<MPMSolver<dim>>                     mpm_solver;
+      std::unique_ptr<BackgroundGrid<dim>> background_grid;
+      /** The model of each material subsection a body uses (else null). */
+      std::vector<std::unique_ptr<Materials::ConstitutiveModel>> materials;
+      /** Density of each material subsection a body uses [kg/m^3]. */
+      std::vector<double> material_densities;
+      /** The material of body 1 (model(), density()). */
+      const Materials::ConstitutiveModel  *constitutive_model = nullptr;
+      double                               material_density   = 0.;
+      std::unique_ptr<MaterialPoints<dim>> material_points;
+      InitialStress<dim>                   initial_stress_field;
+      std::unique_ptr<MPMSolver<dim>>      mpm_solver;
       std::unique_ptr<Boundaries::BoundaryParticles<dim>> boundary_particles;
       LoadBalancing<dim>                                  balancing;
       MemoryEstimate<dim>                                 memory;

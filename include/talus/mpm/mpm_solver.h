@@ -61,6 +61,14 @@ namespace Talus
       dealii::Tensor<1, dim> momentum;
       double                 kinetic_energy = 0.;
       /**
+       * Per body (several bodies only, else empty): mass [kg], momentum
+       * [kg m/s], kinetic and strain energy [J] of its points.
+       */
+      std::vector<double>                 body_mass;
+      std::vector<dealii::Tensor<1, dim>> body_momentum;
+      std::vector<double>                 body_kinetic_energy;
+      std::vector<double>                 body_strain_energy;
+      /**
        * Kinetic energy of the grid velocity at the points [J],
        * sum_p m_p |sum_I N_I(x_p) v_I|^2 / 2 with the nodal velocities v_I
        * at the end of the last step: the velocity that moves the points.
@@ -220,6 +228,27 @@ namespace Talus
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
+
+      /**
+       * The constitutive model of each material subsection (index 0:
+       * "Material", ...; null for materials no body uses). Without this
+       * call every point uses the model of the constructor.
+       */
+      void
+      set_materials(
+        const std::vector<const Materials::ConstitutiveModel *> &models)
+      {
+        materials = models;
+      }
+
+      /** The constitutive model of the point with properties @p props. */
+      template <class View>
+      const Materials::ConstitutiveModel &
+      model_of(const View &props) const
+      {
+        return materials.empty() ? model :
+                                   *materials[points.material_of(props)];
+      }
 
       /** Parse subsection "Solver". */
       void
@@ -961,8 +990,10 @@ namespace Talus
       BackgroundGrid<dim>                &grid;
       MaterialPoints<dim>                &points;
       const Materials::ConstitutiveModel &model;
-      const NewmarkBeta                  &newmark;
-      dealii::TimerOutput                &timer;
+      /** Per material subsection (set_materials()); empty: model. */
+      std::vector<const Materials::ConstitutiveModel *> materials;
+      const NewmarkBeta                                &newmark;
+      dealii::TimerOutput                              &timer;
 
       // Parameters.
       bool                                                    quasi_static;
