@@ -158,6 +158,13 @@ namespace Talus
       void
       parse_parameters(dealii::ParameterHandler &prm);
 
+      /** 'points per cell per direction' of subsection "Body". */
+      unsigned int
+      points_per_cell_direction() const
+      {
+        return points_per_direction;
+      }
+
       /**
        * Generate the body: positions, masses (density * volume),
        * velocities from the initial-velocity function, F = I, zero stress,
