@@ -12,7 +12,7 @@
 # usage: bash contrib/ugimp_convergence.sh [path/to/talus] [levels]
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
-talus=${1:-$here/build/talus}
+talus=$(readlink -f "${1:-$here/build/talus}")
 levels=${2:-4}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

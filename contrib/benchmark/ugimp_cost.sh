@@ -10,7 +10,7 @@
 # usage: bash contrib/benchmark/ugimp_cost.sh [talus] [N2D] [N3D] [steps]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-talus=${1:-$here/../../build/talus}
+talus=$(readlink -f "${1:-$here/../../build/talus}")
 n2=${2:-48}
 n3=${3:-12}
 steps=${4:-10}
