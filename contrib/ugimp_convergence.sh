@@ -37,10 +37,12 @@ run() {
           "$here/tests/mpm/vibrating_bar_convergence.prm" > "$prm"
       ;;
   esac
-  printf 'subsection Convergence study\n  set number of levels = %s\n  set minimum rate = -100\nend\n' \
+  printf 'subsection Convergence study\n  set number of levels = %s\n  set minimum rate = 0\nend\n' \
     "$levels" >> "$prm"
-  (cd "$work" && /usr/bin/time -f "wall %e s" "$talus" "$prm") > "$work/$case-$shape.log" 2>&1 || {
-    echo "talus failed on $case $shape:"; tail -20 "$work/$case-$shape.log"; exit 1; }
+  # (a level whose error grows fails the study's rate check: not fatal)
+  (cd "$work" && /usr/bin/time -f "wall %e s" "$talus" "$prm") > "$work/$case-$shape.log" 2>&1 ||
+    grep -q "Convergence table" "$work/$case-$shape.log" || {
+      echo "talus failed on $case $shape:"; tail -20 "$work/$case-$shape.log"; exit 1; }
 }
 
 for c in column bar; do
