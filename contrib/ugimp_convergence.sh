@@ -54,8 +54,8 @@ import math, re, sys
 work = sys.argv[1]
 def rate(a, b):
     return '-' if a is None or b is None or b <= 0 else '%.2f' % math.log2(a / b)
-def table(case, pattern, names):
-    print('\n%s' % case)
+def table(case, title, pattern, names):
+    print('\n%s' % title)
     data = {}
     for s in ('linear', 'uGIMP'):
         text = open('%s/%s-%s.log' % (work, case, s)).read()
@@ -75,13 +75,13 @@ def table(case, pattern, names):
                 row += ['%.3e' % e, rate(prev, e)]
         print('| ' + ' | '.join(row) + ' |')
 # column: one report time (t = 1), displacement, max and RMS stress error
-table('column under self weight (E = 1 MPa, 20 cells on level 0), t = 1 s',
+table('column', 'column under self weight (E = 1 MPa, 20 cells on level 0), t = 1 s',
       r'error at t = 1: displacement (\S+), stress \(relative, max\) (\S+), '
       r'\(relative, RMS\) (\S+)',
       ['u L2 [m]', 'stress max', 'stress RMS'])
 # bar: displacement at T/4 and T/2
 pattern = r'error at t = 2.5: displacement (\S+)\n\s+error at t = 5: displacement (\S+)'
-table('vibrating bar, v0 = 0.1 m/s (36 cells on level 0)', pattern,
+table('bar', 'vibrating bar, v0 = 0.1 m/s (36 cells on level 0)', pattern,
       ['u(T/4)', 'u(T/2)'])
 PY
 grep -h "wall" "$work"/*.log | sed 's/^/  /' || true
