@@ -239,6 +239,9 @@ namespace Talus
       std::vector<double>        du_local(max_dofs), a_local(max_dofs);
       std::vector<unsigned int>  comp(max_dofs), node(max_dofs), active;
       active.reserve(max_dofs);
+      // uGIMP: the nodes a point reaches and V0 G_a . A per node
+      std::vector<unsigned int>           active_nodes;
+      std::vector<dealii::Tensor<3, dim>> GA(shape_stride);
       for (unsigned int i = 0; i < max_dofs; ++i)
         {
           comp[i] = internal::component_and_node<dim>(i).first;
@@ -409,6 +412,60 @@ namespace Talus
                           G[a][J] += F_n[i][J] * dN[a][i];
                     }
 
+                  if (gimp)
+                    {
+                      // uGIMP (up to 3^dim nodes per point): the product
+                      // G_a . A first, per node, then with G_b (a third of
+                      // the operations of the loop below; that loop keeps
+                      // the linear results bitwise).
+                      active_nodes.clear();
+                      for (unsigned int t = 0; t < active.size(); t += dim)
+                        active_nodes.push_back(node[active[t]]);
+                      for (unsigned int s = 0; s < active_nodes.size(); ++s)
+                        {
+                          const unsigned int a  = active_nodes[s];
+                          const auto        &Ga = G[a];
+                          for (unsigned int ci = 0; ci < dim; ++ci)
+                            {
+                              double f = 0.;
+                              for (unsigned int J = 0; J < dim; ++J)
+                                f += P[ci][J] * Ga[J];
+                              r_local[a * dim + ci] -= V0 * f;
+                            }
+                          if (!with_matrix)
+                            continue;
+                          auto &B = GA[s];
+                          for (unsigned int ci = 0; ci < dim; ++ci)
+                            for (unsigned int cj = 0; cj < dim; ++cj)
+                              for (unsigned int L = 0; L < dim; ++L)
+                                {
+                                  double b = 0.;
+                                  for (unsigned int J = 0; J < dim; ++J)
+                                    b += Ga[J] * A[ci][J][cj][L];
+                                  B[ci][cj][L] = V0 * b;
+                                }
+                        }
+                      if (with_matrix)
+                        for (unsigned int s = 0; s < active_nodes.size(); ++s)
+                          {
+                            const unsigned int a = active_nodes[s];
+                            const auto        &B = GA[s];
+                            for (const unsigned int b : active_nodes)
+                              {
+                                const auto &Gb = G[b];
+                                for (unsigned int ci = 0; ci < dim; ++ci)
+                                  for (unsigned int cj = 0; cj < dim; ++cj)
+                                    {
+                                      double kij = 0.;
+                                      for (unsigned int L = 0; L < dim; ++L)
+                                        kij += B[ci][cj][L] * Gb[L];
+                                      k_local(a * dim + ci, b * dim + cj) +=
+                                        kij;
+                                    }
+                              }
+                          }
+                      continue;
+                    }
                   for (const unsigned int i : active)
                     {
                       const unsigned int ci = comp[i];
