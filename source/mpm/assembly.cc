@@ -217,8 +217,9 @@ namespace Talus
     {
       using Properties                 = MaterialPointProperties<dim>;
       const auto        &fe            = grid.fe;
-      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
-      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      const unsigned int n_nodes       = shape_stride;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell; // boundary cells
+      const unsigned int max_dofs      = dim * shape_stride;
       const unsigned int n_history     = points.n_history();
       const double       c_mass = with_inertia ? newmark.mass_factor(dt) : 0.;
 
@@ -233,14 +234,18 @@ namespace Talus
       if (!grid.friction_boundaries.empty())
         raw_residual = 0.;
 
-      dealii::FullMatrix<double> k_local(dofs_per_cell, dofs_per_cell);
-      dealii::Vector<double>     r_local(dofs_per_cell);
-      std::vector<double>       du_local(dofs_per_cell), a_local(dofs_per_cell);
-      std::vector<unsigned int> comp(dofs_per_cell), node(dofs_per_cell);
-      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      dealii::FullMatrix<double> k_local(max_dofs, max_dofs);
+      dealii::Vector<double>     r_local(max_dofs);
+      std::vector<double>        du_local(max_dofs), a_local(max_dofs);
+      std::vector<unsigned int>  comp(max_dofs), node(max_dofs), active;
+      active.reserve(max_dofs);
+      // uGIMP: the nodes a point reaches and V0 G_a . A per node
+      std::vector<unsigned int>           active_nodes;
+      std::vector<dealii::Tensor<3, dim>> GA(shape_stride);
+      for (unsigned int i = 0; i < max_dofs; ++i)
         {
-          comp[i] = fe.system_to_component_index(i).first;
-          node[i] = fe.system_to_component_index(i).second;
+          comp[i] = internal::component_and_node<dim>(i).first;
+          node[i] = internal::component_and_node<dim>(i).second;
         }
       std::vector<double>                 history_new(n_history);
       std::vector<dealii::Tensor<1, dim>> G(n_nodes);
@@ -250,7 +255,7 @@ namespace Talus
 
       // The cells' contributions before friction and constraints, kept for
       // a re-assembly at the same iterate after a contact state update.
-      const unsigned int block = dofs_per_cell * dofs_per_cell + dofs_per_cell;
+      const unsigned int block = max_dofs * max_dofs + max_dofs;
       const bool         keep_contributions =
         with_matrix && !grid.friction_boundaries.empty();
       const bool reuse_contributions =
@@ -261,9 +266,14 @@ namespace Talus
 
       for (unsigned int cell_index = 0; cell_index < cells.size(); ++cell_index)
         {
-          const CellCache &c = cells[cell_index];
+          const CellCache   &c             = cells[cell_index];
+          const unsigned int dofs_per_cell = c.dofs.size();
           if (!ok)
             break;
+          k_local.reinit(dofs_per_cell, dofs_per_cell);
+          r_local.reinit(dofs_per_cell);
+          du_local.resize(dofs_per_cell);
+          a_local.resize(dofs_per_cell);
           double *const stored     = keep_contributions ?
                                        &cell_contributions[cell_index * block] :
                                        nullptr;
@@ -280,7 +290,7 @@ namespace Talus
                         stored + dofs_per_cell * dofs_per_cell,
                         &k_local(0, 0));
               std::copy(stored + dofs_per_cell * dofs_per_cell,
-                        stored + block,
+                        stored + dofs_per_cell * dofs_per_cell + dofs_per_cell,
                         r_local.begin());
             }
           else
@@ -309,6 +319,14 @@ namespace Talus
                   const double V0 = props[Properties::initial_volume];
                   const double m  = props[Properties::mass];
 
+                  // The dofs the point reaches (uGIMP: at most 3^dim of the
+                  // 4^dim patch nodes; linear: all, in order).
+                  active.clear();
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    if (!gimp || N[node[i]] != 0. ||
+                        dN[node[i]].norm_square() != 0.)
+                      active.push_back(i);
+
                   // Particle acceleration for the (consistent) inertia term.
                   dealii::Tensor<1, dim> a_p;
                   if (with_inertia && consistent_mass)
@@ -326,7 +344,7 @@ namespace Talus
                         {
                           r_local[i] -= m * N[node[i]] * a_p[ci];
                           if (with_matrix)
-                            for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                            for (const unsigned int j : active)
                               if (comp[j] == ci)
                                 k_local(i, j) +=
                                   c_mass * m * N[node[i]] * N[node[j]];
@@ -397,7 +415,61 @@ namespace Talus
                           G[a][J] += F_n[i][J] * dN[a][i];
                     }
 
-                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  if (gimp)
+                    {
+                      // uGIMP (up to 3^dim nodes per point): the product
+                      // G_a . A first, per node, then with G_b (a third of
+                      // the operations of the loop below; that loop keeps
+                      // the linear results bitwise).
+                      active_nodes.clear();
+                      for (unsigned int t = 0; t < active.size(); t += dim)
+                        active_nodes.push_back(node[active[t]]);
+                      for (unsigned int s = 0; s < active_nodes.size(); ++s)
+                        {
+                          const unsigned int a  = active_nodes[s];
+                          const auto        &Ga = G[a];
+                          for (unsigned int ci = 0; ci < dim; ++ci)
+                            {
+                              double f = 0.;
+                              for (unsigned int J = 0; J < dim; ++J)
+                                f += P[ci][J] * Ga[J];
+                              r_local[a * dim + ci] -= V0 * f;
+                            }
+                          if (!with_matrix)
+                            continue;
+                          auto &B = GA[s];
+                          for (unsigned int ci = 0; ci < dim; ++ci)
+                            for (unsigned int cj = 0; cj < dim; ++cj)
+                              for (unsigned int L = 0; L < dim; ++L)
+                                {
+                                  double b = 0.;
+                                  for (unsigned int J = 0; J < dim; ++J)
+                                    b += Ga[J] * A[ci][J][cj][L];
+                                  B[ci][cj][L] = V0 * b;
+                                }
+                        }
+                      if (with_matrix)
+                        for (unsigned int s = 0; s < active_nodes.size(); ++s)
+                          {
+                            const unsigned int a = active_nodes[s];
+                            const auto        &B = GA[s];
+                            for (const unsigned int b : active_nodes)
+                              {
+                                const auto &Gb = G[b];
+                                for (unsigned int ci = 0; ci < dim; ++ci)
+                                  for (unsigned int cj = 0; cj < dim; ++cj)
+                                    {
+                                      double kij = 0.;
+                                      for (unsigned int L = 0; L < dim; ++L)
+                                        kij += B[ci][cj][L] * Gb[L];
+                                      k_local(a * dim + ci, b * dim + cj) +=
+                                        kij;
+                                    }
+                              }
+                          }
+                      continue;
+                    }
+                  for (const unsigned int i : active)
                     {
                       const unsigned int ci = comp[i];
                       const auto        &Gi = G[node[i]];
@@ -407,7 +479,7 @@ namespace Talus
                       r_local[i] -= V0 * f;
                       if (!with_matrix)
                         continue;
-                      for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                      for (const unsigned int j : active)
                         {
                           const unsigned int cj  = comp[j];
                           const auto        &Gj  = G[node[j]];
@@ -482,6 +554,9 @@ namespace Talus
       // Boundary particles in cells with at least one node that carries
       // mass: penalty forces on the material.
       std::vector<dealii::Tensor<1, dim>> dT(dofs_per_cell), df(dofs_per_cell);
+      k_local.reinit(dofs_per_cell, dofs_per_cell);
+      r_local.reinit(dofs_per_cell);
+      du_local.resize(dofs_per_cell);
       for (const auto &c : boundary_cells)
         {
           if (!ok)
@@ -742,16 +817,15 @@ namespace Talus
                               std::string                &failure) const
     {
       using Properties                 = MaterialPointProperties<dim>;
-      const auto        &fe            = grid.fe;
-      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
-      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      const unsigned int n_nodes       = shape_stride;
+      const unsigned int dofs_per_cell = c.dofs.size();
       const unsigned int n_history     = points.n_history();
 
       std::vector<unsigned int> comp(dofs_per_cell), node(dofs_per_cell);
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
         {
-          comp[i] = fe.system_to_component_index(i).first;
-          node[i] = fe.system_to_component_index(i).second;
+          comp[i] = internal::component_and_node<dim>(i).first;
+          node[i] = internal::component_and_node<dim>(i).second;
         }
       std::vector<dealii::Tensor<2, dim>> F_n(c.n);
       std::vector<double>                 V0(c.n);
@@ -872,9 +946,8 @@ namespace Talus
       std::vector<dealii::Tensor<2, dim>> &F_new) const
     {
       using Properties                 = MaterialPointProperties<dim>;
-      const auto        &fe            = grid.fe;
-      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
-      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      const unsigned int n_nodes       = shape_stride;
+      const unsigned int dofs_per_cell = c.dofs.size();
       F_new.resize(c.n);
       std::vector<dealii::Tensor<2, dim>> f(c.n);
       std::vector<double>                 J(c.n), v(c.n);
@@ -889,7 +962,7 @@ namespace Talus
             f[q][d][d] = 1.;
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             {
-              const auto ci = fe.system_to_component_index(i);
+              const auto ci = internal::component_and_node<dim>(i);
               f[q][ci.first] += du_local[i] * dN[ci.second];
             }
           F_new[q] = f[q] * F_n;

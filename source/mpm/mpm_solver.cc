@@ -342,6 +342,26 @@ namespace Talus
           "fields, the added energy scales with the factor. "
           "doc/theory.md and doc/verification.md give the measured effect "
           "of the factor.");
+        prm.declare_entry(
+          "shape functions",
+          "linear",
+          Patterns::Selection("linear|uGIMP"),
+          "Shape functions of the transfer between the material points and "
+          "the grid and of the points' integration [-]. 'linear': the Q1 "
+          "shape functions of the point's cell (standard MPM; a point that "
+          "crosses a cell face sees a jump of the gradient, the "
+          "cell-crossing error). 'uGIMP' (uniform generalized interpolation "
+          "material point, Bardenhagen and Kober 2004; weights of Steffen, "
+          "Kirby and Berzins 2008, IJNME 76): the Q1 functions averaged over "
+          "the point's domain, a box of half-width l_p = h / (2 n) per "
+          "direction (h the cell size, n the points per cell per direction "
+          "of subsection Body), fixed at its undeformed size. The weights "
+          "and their gradients are continuous as a point crosses a face; a "
+          "point influences the nodes of the 3^dim cells around its cell "
+          "(truncated at the grid's boundary), and Newton uses the uGIMP "
+          "gradients in its consistent tangent. Cartesian background grids "
+          "only ('grid type = box'); not with boundary particles, grid "
+          "friction boundaries, F-bar, APIC or the ghost penalty.");
         prm.declare_entry("abort on lost material points",
                           "false",
                           Patterns::Bool(),
@@ -416,6 +436,24 @@ namespace Talus
                             prm.get("velocity update") + "' leave it at 1");
       ghost_penalty_factor = prm.get_double("ghost penalty factor");
       max_line_search      = prm.get_integer("maximum line search halvings");
+      gimp                 = prm.get("shape functions") == "uGIMP";
+      shape_stride         = gimp ? (dim == 2 ? 16 : 64) : (1u << dim);
+      if (gimp)
+        {
+          const auto reject_with = [&](const std::string &what) {
+            InputFile::reject(sub,
+                              "shape functions",
+                              "uGIMP",
+                              "uGIMP is not implemented with " + what +
+                                "; use 'shape functions = linear'");
+          };
+          if (use_fbar)
+            reject_with("'volumetric locking treatment = F-bar'");
+          if (apic)
+            reject_with("'velocity update = APIC'");
+          if (ghost_penalty_factor > 0.)
+            reject_with("the ghost penalty ('ghost penalty factor' > 0)");
+        }
       prm.leave_subsection();
     }
 
@@ -449,6 +487,9 @@ namespace Talus
               for (unsigned int l = 0; l < dim; ++l)
                 elastic_tangent[i][j][k][l] = A[i][j][k][l];
       }
+
+      if (gimp)
+        setup_gimp_lattice();
 
       dealii::DynamicSparsityPattern dsp(grid.locally_relevant_dofs);
       if (ghost_penalty_factor > 0.)
@@ -560,6 +601,55 @@ namespace Talus
                                                dealii::ComponentMask(dim, true),
                                                constant_modes);
       setup_friction_nodes();
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::setup_gimp_lattice()
+    {
+      if (!grid.is_cartesian)
+        InputFile::reject("Solver",
+                          "shape functions",
+                          "uGIMP",
+                          "uGIMP needs a Cartesian background grid "
+                          "(subsection Background grid, 'grid type = box'); "
+                          "this grid is read from a mesh file");
+      if (!grid.friction_boundaries.empty())
+        InputFile::reject("Solver",
+                          "shape functions",
+                          "uGIMP",
+                          "uGIMP is not implemented with grid friction "
+                          "boundaries; use 'shape functions = linear'");
+      // the caches' node-major dof order is FESystem<FE_Q(1)^dim>'s
+      for (unsigned int i = 0; i < grid.fe.dofs_per_cell; ++i)
+        AssertThrow(grid.fe.system_to_component_index(i) ==
+                      internal::component_and_node<dim>(i),
+                    dealii::ExcInternalError());
+      const unsigned int n = points.points_per_cell_direction();
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          gimp_half_width[d] = grid.cell_extent[d] / (2. * n);
+          lattice_size[d] =
+            std::llround((grid.upper_corner[d] - grid.lower_corner[d]) /
+                         grid.cell_extent[d]) +
+            1;
+        }
+      lattice_dofs.clear();
+      for (const auto &cell : grid.dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              long long key = 0;
+              for (int d = dim - 1; d >= 0; --d)
+                key = key * lattice_size[d] +
+                      std::llround((cell->vertex(v)[d] - grid.lower_corner[d]) /
+                                   grid.cell_extent[d]);
+              std::array<dealii::types::global_dof_index, dim> dofs;
+              for (unsigned int d = 0; d < dim; ++d)
+                dofs[d] = cell->vertex_dof_index(v, d);
+              lattice_dofs[key] = dofs;
+            }
     }
 
 
@@ -937,16 +1027,15 @@ namespace Talus
       commit_friction_states();
 
       using Properties           = MaterialPointProperties<dim>;
-      const auto        &fe      = grid.fe;
-      const unsigned int n_nodes = fe.base_element(0).dofs_per_cell;
+      const unsigned int n_nodes = shape_stride;
       for (const auto &c : cells)
         for (unsigned int q = 0; q < c.n; ++q)
           {
             const unsigned int     k = c.first + q;
             dealii::Tensor<1, dim> a_p;
-            for (unsigned int i = 0; i < fe.dofs_per_cell; ++i)
+            for (unsigned int i = 0; i < c.dofs.size(); ++i)
               {
-                const auto ci = fe.system_to_component_index(i);
+                const auto ci = internal::component_and_node<dim>(i);
                 a_p[ci.first] += shape_values[k * n_nodes + ci.second] *
                                  acceleration_new(c.dofs[i]);
               }
@@ -968,6 +1057,13 @@ namespace Talus
       boundary_particles = boundaries.empty() ? nullptr : &boundaries;
       // (resize: a checkpoint restored before keeps its values)
       boundary_friction_dissipation.resize(boundaries.n_boundaries(), 0.);
+      if (gimp && boundary_particles != nullptr)
+        InputFile::reject("Solver",
+                          "shape functions",
+                          "uGIMP",
+                          "uGIMP is not implemented with boundary particles "
+                          "(subsection Boundaries); use 'shape functions = "
+                          "linear'");
       // The symmetric Nitsche form is coercive only above a stabilisation
       // that grows without bound as a cut shrinks (doc/verification.md).
       if (ghost_penalty_factor == 0. &&

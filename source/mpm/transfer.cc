@@ -79,8 +79,11 @@ namespace Talus
             c.cell  = cell;
             c.first = particles.size();
             c.n     = n;
-            c.dofs.resize(fe.dofs_per_cell);
-            cell->get_dof_indices(c.dofs);
+            if (!gimp)
+              {
+                c.dofs.resize(fe.dofs_per_cell);
+                cell->get_dof_indices(c.dofs);
+              }
             reference_points.clear();
             for (auto p = handler.particles_in_cell(tria_cell).begin();
                  p != handler.particles_in_cell(tria_cell).end();
@@ -89,7 +92,9 @@ namespace Talus
                 particles.push_back(p);
                 reference_points.push_back(p->get_reference_location());
               }
-            if (grid.is_cartesian)
+            if (gimp)
+              cache_gimp_cell(cell, reference_points, c);
+            else if (grid.is_cartesian)
               {
                 for (const auto &xi : reference_points)
                   for (unsigned int k = 0; k < n_nodes; ++k)
@@ -125,12 +130,96 @@ namespace Talus
 
     template <int dim>
     void
+    MPMSolver<dim>::cache_gimp_cell(
+      const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
+      const std::vector<dealii::Point<dim>> &reference_points,
+      CellCache                             &c)
+    {
+      // Lattice index of the cell's lowest vertex and the patch nodes
+      // (-1..2 per direction around it) that exist (the grid's boundary
+      // truncates the patch).
+      std::array<long long, dim> base;
+      dealii::Point<dim>         lowest = cell->vertex(0);
+      for (const unsigned int v : cell->vertex_indices())
+        for (unsigned int d = 0; d < dim; ++d)
+          lowest[d] = std::min(lowest[d], cell->vertex(v)[d]);
+      for (unsigned int d = 0; d < dim; ++d)
+        base[d] = std::llround((lowest[d] - grid.lower_corner[d]) /
+                               grid.cell_extent[d]);
+      std::vector<unsigned int> slot; // patch node (0..4^dim) of cache node
+      c.dofs.clear();
+      for (unsigned int a = 0; a < shape_stride; ++a)
+        {
+          long long                  key    = 0;
+          bool                       inside = true;
+          unsigned int               rest   = a;
+          std::array<long long, dim> index;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              index[d] = base[d] + static_cast<long long>(rest % 4) - 1;
+              rest /= 4;
+              if (index[d] < 0 || index[d] >= lattice_size[d])
+                inside = false;
+            }
+          if (!inside)
+            continue;
+          for (int d = dim - 1; d >= 0; --d)
+            key = key * lattice_size[d] + index[d];
+          const auto it = lattice_dofs.find(key);
+          AssertThrow(it != lattice_dofs.end(),
+                      dealii::ExcMessage(
+                        "uGIMP: a patch node is not locally relevant"));
+          for (unsigned int d = 0; d < dim; ++d)
+            c.dofs.push_back(it->second[d]);
+          slot.push_back(a);
+        }
+      // uGIMP weights: tensor products of the 1D functions, per cache node
+      // (node j of the cache is patch node slot[j]); the entries beyond
+      // the cache's nodes stay zero.
+      const dealii::Tensor<1, dim> &h = grid.cell_extent;
+      for (const auto &xi : reference_points)
+        {
+          const std::size_t first = shape_values.size();
+          shape_values.resize(first + shape_stride, 0.);
+          shape_gradients.resize(first + shape_stride);
+          for (unsigned int j = 0; j < slot.size(); ++j)
+            {
+              unsigned int rest = slot[j];
+              double       S[dim], dS[dim];
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  const double offset = static_cast<double>(rest % 4) - 1.;
+                  rest /= 4;
+                  // x_p - x_I in units of the cell's lowest vertex
+                  const double r = (xi[d] - offset) * h[d];
+                  S[d] =
+                    internal::ugimp_weight(r, h[d], gimp_half_width[d], dS[d]);
+                }
+              double                 value = 1.;
+              dealii::Tensor<1, dim> gradient;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  value *= S[d];
+                  double g = dS[d];
+                  for (unsigned int e = 0; e < dim; ++e)
+                    if (e != d)
+                      g *= S[e];
+                  gradient[d] = g;
+                }
+              shape_values[first + j]    = value;
+              shape_gradients[first + j] = gradient;
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
     MPMSolver<dim>::project_to_grid()
     {
-      using Properties                 = MaterialPointProperties<dim>;
-      const auto        &fe            = grid.fe;
-      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
-      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      using Properties            = MaterialPointProperties<dim>;
+      const unsigned int n_nodes  = shape_stride;
+      const unsigned int max_dofs = dim * shape_stride;
 
       dealii::TrilinosWrappers::MPI::Vector mass(grid.locally_owned_dofs,
                                                  grid.mpi_communicator);
@@ -138,14 +227,15 @@ namespace Talus
       external_force = 0.;
       particle_forces.resize(particles.size());
 
-      dealii::Vector<double> m_local(dofs_per_cell), p_local(dofs_per_cell),
-        a_local(dofs_per_cell), f_local(dofs_per_cell);
+      dealii::Vector<double> m_local(max_dofs), p_local(max_dofs),
+        a_local(max_dofs), f_local(max_dofs);
       for (const auto &c : cells)
         {
-          m_local = 0.;
-          p_local = 0.;
-          a_local = 0.;
-          f_local = 0.;
+          const unsigned int dofs_per_cell = c.dofs.size();
+          m_local.reinit(dofs_per_cell);
+          p_local.reinit(dofs_per_cell);
+          a_local.reinit(dofs_per_cell);
+          f_local.reinit(dofs_per_cell);
           for (unsigned int q = 0; q < c.n; ++q)
             {
               const unsigned int k     = c.first + q;
@@ -159,7 +249,7 @@ namespace Talus
               const dealii::Point<dim> x_p = particles[k]->get_location();
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
-                  const auto         ci = fe.system_to_component_index(i);
+                  const auto         ci = internal::component_and_node<dim>(i);
                   const double       N  = shape_values[k * n_nodes + ci.second];
                   const unsigned int comp = ci.first;
                   // APIC: the point's affine velocity at the node,
@@ -210,10 +300,9 @@ namespace Talus
     MPMSolver<dim>::compute_xpic_correction(
       std::vector<dealii::Tensor<1, dim>> &w) const
     {
-      using Properties                 = MaterialPointProperties<dim>;
-      const auto        &fe            = grid.fe;
-      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
-      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      using Properties            = MaterialPointProperties<dim>;
+      const unsigned int n_nodes  = shape_stride;
+      const unsigned int max_dofs = dim * shape_stride;
       w.assign(particles.size(), dealii::Tensor<1, dim>());
       for (const auto &c : cells)
         for (unsigned int q = 0; q < c.n; ++q)
@@ -227,14 +316,15 @@ namespace Talus
       dealii::TrilinosWrappers::MPI::Vector ghosted(grid.locally_owned_dofs,
                                                     grid.locally_relevant_dofs,
                                                     grid.mpi_communicator);
-      dealii::Vector<double>                p_local(dofs_per_cell);
+      dealii::Vector<double>                p_local(max_dofs);
       for (unsigned int r = 0; r < xpic_order; ++r)
         {
           // P w: mass-weighted projection to the nodes and back
           grid_velocity = 0.;
           for (const auto &c : cells)
             {
-              p_local = 0.;
+              const unsigned int dofs_per_cell = c.dofs.size();
+              p_local.reinit(dofs_per_cell);
               for (unsigned int q = 0; q < c.n; ++q)
                 {
                   const unsigned int k = c.first + q;
@@ -242,7 +332,7 @@ namespace Talus
                     particles[k]->get_properties()[Properties::mass];
                   for (unsigned int i = 0; i < dofs_per_cell; ++i)
                     {
-                      const auto ci = fe.system_to_component_index(i);
+                      const auto ci = internal::component_and_node<dim>(i);
                       p_local[i] += shape_values[k * n_nodes + ci.second] * m *
                                     w[k][ci.first];
                     }
@@ -259,9 +349,9 @@ namespace Talus
             for (unsigned int q = 0; q < c.n; ++q)
               {
                 const unsigned int k = c.first + q;
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                for (unsigned int i = 0; i < c.dofs.size(); ++i)
                   {
-                    const auto ci = fe.system_to_component_index(i);
+                    const auto ci = internal::component_and_node<dim>(i);
                     w[k][ci.first] -= shape_values[k * n_nodes + ci.second] *
                                       ghosted(c.dofs[i]);
                   }
@@ -281,11 +371,10 @@ namespace Talus
       commit_friction_states();
       friction_dissipation += step_impact_dissipation;
       reset_dissipation += step_reset_dissipation;
-      using Properties                 = MaterialPointProperties<dim>;
-      const auto        &fe            = grid.fe;
-      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
-      const unsigned int dofs_per_cell = fe.dofs_per_cell;
-      const unsigned int n_history     = points.n_history();
+      using Properties             = MaterialPointProperties<dim>;
+      const unsigned int n_nodes   = shape_stride;
+      const unsigned int max_dofs  = dim * shape_stride;
+      const unsigned int n_history = points.n_history();
 
       // Nodal accelerations and velocity increments at t_{n+1}.
       dealii::TrilinosWrappers::MPI::Vector a_new(grid.locally_owned_dofs,
@@ -428,13 +517,18 @@ namespace Talus
         compute_xpic_correction(xpic_correction);
 
       std::vector<double> history_new(n_history);
-      std::vector<double> du_local(dofs_per_cell), a_local(dofs_per_cell),
-        dv_local(dofs_per_cell), v_local(dofs_per_cell);
+      std::vector<double> du_local(max_dofs), a_local(max_dofs),
+        dv_local(max_dofs), v_local(max_dofs);
       double grid_energy = 0., grid_speed = 0., transfer_energy = 0.;
       std::vector<dealii::Tensor<2, dim>> F_cell;
       dealii::Tensor<2, 3>                P;
       for (const auto &c : cells)
         {
+          const unsigned int dofs_per_cell = c.dofs.size();
+          du_local.resize(dofs_per_cell);
+          a_local.resize(dofs_per_cell);
+          dv_local.resize(dofs_per_cell);
+          v_local.resize(dofs_per_cell);
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             {
               du_local[i] = displacement(c.dofs[i]);
@@ -457,7 +551,7 @@ namespace Talus
               double dv_square_mean = 0.;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
-                  const auto ci = fe.system_to_component_index(i);
+                  const auto ci = internal::component_and_node<dim>(i);
                   dv_square_mean += N[ci.second] * dv_local[i] * dv_local[i];
                   v_pic[ci.first] += N[ci.second] * v_local[i];
                   grad_v[ci.first] += v_local[i] * dN[ci.second];
@@ -567,22 +661,22 @@ namespace Talus
     void
     MPMSolver<dim>::project_stress_to_grid()
     {
-      using Properties                 = MaterialPointProperties<dim>;
-      const auto        &fe            = grid.fe;
-      const unsigned int n_nodes       = fe.base_element(0).dofs_per_cell;
-      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      using Properties            = MaterialPointProperties<dim>;
+      const unsigned int n_nodes  = shape_stride;
+      const unsigned int max_dofs = dim * shape_stride;
       std::vector<dealii::TrilinosWrappers::MPI::Vector> sum(
         dim,
         dealii::TrilinosWrappers::MPI::Vector(grid.locally_owned_dofs,
                                               grid.mpi_communicator));
       std::vector<dealii::Vector<double>> local(
-        dim, dealii::Vector<double>(dofs_per_cell));
+        dim, dealii::Vector<double>(max_dofs));
       // Voigt order of the stored stress: xx yy zz xy yz xz
       const unsigned int voigt[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
       for (const auto &c : cells)
         {
+          const unsigned int dofs_per_cell = c.dofs.size();
           for (auto &l : local)
-            l = 0.;
+            l.reinit(dofs_per_cell);
           for (unsigned int q = 0; q < c.n; ++q)
             {
               const unsigned int k     = c.first + q;
@@ -590,7 +684,7 @@ namespace Talus
               const double       m     = props[Properties::mass];
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
-                  const auto   ci = fe.system_to_component_index(i);
+                  const auto   ci = internal::component_and_node<dim>(i);
                   const double N  = shape_values[k * n_nodes + ci.second];
                   for (unsigned int j = 0; j < dim; ++j)
                     local[j][i] +=

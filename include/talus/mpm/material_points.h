@@ -195,6 +195,13 @@ namespace Talus
       void
       parse_parameters(dealii::ParameterHandler &prm);
 
+      /** 'points per cell per direction' of subsection "Body". */
+      unsigned int
+      points_per_cell_direction() const
+      {
+        return points_per_direction;
+      }
+
       /**
        * Generate the bodies: positions, masses (density * volume),
        * velocities from the initial-velocity function, F = I, zero stress,

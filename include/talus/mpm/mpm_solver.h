@@ -24,9 +24,11 @@
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace Talus
@@ -743,6 +745,21 @@ namespace Talus
       void
       cache_particles();
 
+      /**
+       * uGIMP: the patch dofs of a material cell into @p c and the weights
+       * and gradients of its points (at @p reference_points, the unit cell
+       * coordinates) onto shape_values and shape_gradients.
+       */
+      void
+      cache_gimp_cell(
+        const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
+        const std::vector<dealii::Point<dim>> &reference_points,
+        CellCache                             &c);
+
+      /** uGIMP: check the grid, fill lattice_dofs and the half-widths. */
+      void
+      setup_gimp_lattice();
+
       void
       project_to_grid();
 
@@ -1080,6 +1097,33 @@ namespace Talus
 
       /** Anti-locking treatment ("none" or "F-bar"). */
       bool use_fbar = false;
+
+      /**
+       * 'shape functions = uGIMP': a material point influences the nodes of
+       * the 3^dim cells around its cell with the uGIMP weights (particle
+       * half-width l_p = h / (2 n) per direction, n points per cell per
+       * direction); else the Q1 shape functions of its cell.
+       */
+      bool gimp = false;
+      /**
+       * Nodes per point in shape_values and shape_gradients: 2^dim (linear)
+       * or 4^dim (uGIMP; the entries of patch nodes outside the grid are
+       * zero). A material cell's dofs are node-major (internal::
+       * component_and_node()), c.dofs.size() / dim of its nodes are used.
+       */
+      unsigned int shape_stride = 1u << dim;
+      /** uGIMP half-width of the points per direction [m]. */
+      dealii::Tensor<1, dim> gimp_half_width;
+      /**
+       * uGIMP: the dofs (per component) of every locally relevant grid
+       * vertex by its lattice index (integer coordinates of the vertex,
+       * linearised); see setup().
+       */
+      std::unordered_map<long long,
+                         std::array<dealii::types::global_dof_index, dim>>
+        lattice_dofs;
+      /** Vertices per direction of the lattice (uGIMP). */
+      std::array<long long, dim> lattice_size;
 
       /** Backtracking line search in Newton's method. */
       bool line_search = false;

@@ -4,6 +4,9 @@
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/tensor.h>
 
+#include <cmath>
+#include <utility>
+
 namespace Talus
 {
   namespace MPM
@@ -47,6 +50,49 @@ namespace Talus
           for (unsigned int j = 0; j < dim; ++j)
             t[i][j] = p[first + i * dim + j];
         return t;
+      }
+
+      /**
+       * Component and node of local dof @p i of a material cell's cache
+       * (MPMSolver::CellCache): i = node * dim + component, the vertex-major
+       * order of FESystem<FE_Q(1)^dim> on a cell and the order of the
+       * uGIMP patch nodes.
+       */
+      template <int dim>
+      inline std::pair<unsigned int, unsigned int>
+      component_and_node(const unsigned int i)
+      {
+        return {i % dim, i / dim};
+      }
+
+      /**
+       * The 1D uGIMP weight function (Bardenhagen and Kober 2004; Steffen,
+       * Kirby and Berzins 2008, eq. 17) of a node at distance @p r = x_p -
+       * x_I from a point of half-width @p l < h/2, grid spacing @p h, and
+       * its derivative with respect to x_p in @p dS.
+       */
+      inline double
+      ugimp_weight(const double r, const double h, const double l, double &dS)
+      {
+        const double a = std::abs(r);
+        const double s = r < 0. ? -1. : 1.;
+        if (a < l)
+          {
+            dS = -r / (h * l);
+            return 1. - (r * r + l * l) / (2. * h * l);
+          }
+        if (a < h - l)
+          {
+            dS = -s / h;
+            return 1. - a / h;
+          }
+        if (a < h + l)
+          {
+            dS = -s * (h + l - a) / (2. * h * l);
+            return (h + l - a) * (h + l - a) / (4. * h * l);
+          }
+        dS = 0.;
+        return 0.;
       }
     } // namespace internal
   }   // namespace MPM
