@@ -939,6 +939,27 @@ namespace Talus
 
     template struct MaterialPointProperties<2>;
     template struct MaterialPointProperties<3>;
+    template <int dim>
+    unsigned int
+    MaterialPoints<dim>::points_per_cell_direction() const
+    {
+      AssertThrow(!bodies.empty(),
+                  dealii::ExcMessage("parse_parameters() first"));
+      const unsigned int n = bodies.front().points_per_direction;
+      for (const auto &b : bodies)
+        if (b.points_per_direction != n)
+          InputFile::reject(b.subsection,
+                            "points per cell per direction",
+                            std::to_string(b.points_per_direction),
+                            "the same number as in <" +
+                              bodies.front().subsection + "> (" +
+                              std::to_string(n) +
+                              ") with 'shape functions = uGIMP', whose "
+                              "particle size h/(2 n) is one for the grid");
+      return n;
+    }
+
+
     template class MaterialPoints<2>;
     template class MaterialPoints<3>;
   } // namespace MPM

@@ -195,12 +195,12 @@ namespace Talus
       void
       parse_parameters(dealii::ParameterHandler &prm);
 
-      /** 'points per cell per direction' of subsection "Body". */
+      /**
+       * 'points per cell per direction' of subsection "Body" (uGIMP's
+       * particle size); throws ExcInvalidInput if the bodies differ in it.
+       */
       unsigned int
-      points_per_cell_direction() const
-      {
-        return points_per_direction;
-      }
+      points_per_cell_direction() const;
 
       /**
        * Generate the bodies: positions, masses (density * volume),
