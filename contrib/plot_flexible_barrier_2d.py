@@ -55,18 +55,23 @@ def plot_energies(ax, c, unit):
     """The coupled run's energies by category (coupling.csv) over time."""
     t = c["time"]
     released = c["gravitational_energy"][0] - c["gravitational_energy"]
-    for values, label in (
+    # friction split by boundary where coupling.csv has it
+    split = [(c[k], "friction on the %s" % k[:-len("_friction_dissipation")])
+             for k in c if k.endswith("_friction_dissipation")]
+    for values, label in [
             (released, "gravitational energy released"),
             (c["kinetic_energy"], "kinetic (material)"),
-            (c["plastic_dissipation"], "plastic dissipation (material)"),
-            (c["friction_dissipation"], "friction (slope and net)"),
-            (c["numerical_dissipation"], "numerical (resets, PIC)"),
+            (c["plastic_dissipation"], "plastic dissipation (material)")] + (
+            split or [(c["friction_dissipation"], "friction (slope and net)")]
+    ) + [
+            (c["numerical_dissipation"],
+             "numerical (resets, transfer, integrator)"),
             (c["strain_energy"] + c["spring_energy"],
              "strain + contact springs (material)"),
             (c["structure_energy"] - c["structure_energy"][0],
              "barrier: elastic + kinetic change"),
             (c["barrier_dissipation"], "barrier: brakes + damping"),
-            (c["energy_change"], "balance error")):
+            (c["energy_change"], "balance error")]:
         ax.plot(t, values / 1e3, "k:" if label == "balance error" else "-",
                 label=label)
     ax.set_ylabel("energy [%s]" % unit)
