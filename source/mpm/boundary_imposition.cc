@@ -960,7 +960,8 @@ namespace Talus
       const unsigned int dofs_per_cell = fe.dofs_per_cell;
       boundary_trial.clear();
       point_contact_trial.clear();
-      boundary_trial_work.assign(boundary_friction_dissipation.size(), 0.);
+      boundary_trial_work.assign(accounts.boundary_friction_dissipation.size(),
+                                 0.);
       {
         std::vector<double> work(boundary_trial_work.size(), 0.);
         // per-particle traction, force and gap at commit (debugging)
@@ -1140,8 +1141,8 @@ namespace Talus
         }
       for (unsigned int b = 0; b < boundary_trial_work.size(); ++b)
         {
-          friction_dissipation += boundary_trial_work[b];
-          boundary_friction_dissipation[b] += boundary_trial_work[b];
+          accounts.friction_dissipation += boundary_trial_work[b];
+          accounts.boundary_friction_dissipation[b] += boundary_trial_work[b];
         }
       boundary_trial.clear();
       point_contact_trial.clear();

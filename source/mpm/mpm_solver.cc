@@ -1056,7 +1056,8 @@ namespace Talus
       p2g_current        = false;
       boundary_particles = boundaries.empty() ? nullptr : &boundaries;
       // (resize: a checkpoint restored before keeps its values)
-      boundary_friction_dissipation.resize(boundaries.n_boundaries(), 0.);
+      accounts.boundary_friction_dissipation.resize(boundaries.n_boundaries(),
+                                                    0.);
       if (gimp && boundary_particles != nullptr)
         InputFile::reject("Solver",
                           "shape functions",
@@ -1179,11 +1180,11 @@ namespace Talus
       d.plastic_dissipation =
         dealii::Utilities::MPI::sum(d.plastic_dissipation, comm);
       d.volume                 = dealii::Utilities::MPI::sum(d.volume, comm);
-      d.friction_dissipation   = friction_dissipation;
-      d.reset_dissipation      = reset_dissipation;
-      d.transfer_dissipation   = transfer_dissipation;
-      d.integrator_dissipation = integrator_dissipation;
-      d.boundary_friction_dissipation = boundary_friction_dissipation;
+      d.friction_dissipation   = accounts.friction_dissipation;
+      d.reset_dissipation      = accounts.reset_dissipation;
+      d.transfer_dissipation   = accounts.transfer_dissipation;
+      d.integrator_dissipation = accounts.integrator_dissipation;
+      d.boundary_friction_dissipation = accounts.boundary_friction_dissipation;
       d.contact_force                 = contact_force;
       if (grid_kinetic_energy >= 0.)
         {
@@ -1206,17 +1207,13 @@ namespace Talus
     void
     MPMSolver<dim>::save_state()
     {
-      saved_state.friction_dissipation          = friction_dissipation;
-      saved_state.reset_dissipation             = reset_dissipation;
-      saved_state.transfer_dissipation          = transfer_dissipation;
-      saved_state.integrator_dissipation        = integrator_dissipation;
-      saved_state.boundary_friction_dissipation = boundary_friction_dissipation;
-      saved_state.grid_kinetic_energy           = grid_kinetic_energy;
-      saved_state.max_grid_speed                = max_grid_speed;
-      saved_state.contact_force                 = contact_force;
-      saved_state.grid_velocity                 = committed_grid_velocity;
-      saved_state.stuck                         = committed_stuck;
-      saved_state.saved                         = true;
+      saved_state.accounts            = accounts;
+      saved_state.grid_kinetic_energy = grid_kinetic_energy;
+      saved_state.max_grid_speed      = max_grid_speed;
+      saved_state.contact_force       = contact_force;
+      saved_state.grid_velocity       = committed_grid_velocity;
+      saved_state.stuck               = committed_stuck;
+      saved_state.saved               = true;
     }
 
 
@@ -1227,19 +1224,15 @@ namespace Talus
       AssertThrow(saved_state.saved,
                   dealii::ExcMessage("MPMSolver::restore_state() without a "
                                      "preceding save_state()"));
-      friction_dissipation          = saved_state.friction_dissipation;
-      reset_dissipation             = saved_state.reset_dissipation;
-      transfer_dissipation          = saved_state.transfer_dissipation;
-      integrator_dissipation        = saved_state.integrator_dissipation;
-      boundary_friction_dissipation = saved_state.boundary_friction_dissipation;
-      grid_kinetic_energy           = saved_state.grid_kinetic_energy;
-      max_grid_speed                = saved_state.max_grid_speed;
-      contact_force                 = saved_state.contact_force;
-      committed_grid_velocity       = saved_state.grid_velocity;
-      committed_stuck               = saved_state.stuck;
-      p2g_current                   = false;
-      prepared                      = false;
-      solved                        = false;
+      accounts                = saved_state.accounts;
+      grid_kinetic_energy     = saved_state.grid_kinetic_energy;
+      max_grid_speed          = saved_state.max_grid_speed;
+      contact_force           = saved_state.contact_force;
+      committed_grid_velocity = saved_state.grid_velocity;
+      committed_stuck         = saved_state.stuck;
+      p2g_current             = false;
+      prepared                = false;
+      solved                  = false;
     }
 
 

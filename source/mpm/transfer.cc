@@ -369,8 +369,8 @@ namespace Talus
       warm_start = false;
       last_increment.clear();
       commit_friction_states();
-      friction_dissipation += step_impact_dissipation;
-      reset_dissipation += step_reset_dissipation;
+      accounts.friction_dissipation += step_impact_dissipation;
+      accounts.reset_dissipation += step_reset_dissipation;
       using Properties             = MaterialPointProperties<dim>;
       const unsigned int n_nodes   = shape_stride;
       const unsigned int max_dofs  = dim * shape_stride;
@@ -404,7 +404,7 @@ namespace Talus
           // so that round-off does not fill the column)
           if (!consistent_mass &&
               !(newmark.gamma == 0.5 && newmark.beta == 0.25))
-            integrator_dissipation +=
+            accounts.integrator_dissipation +=
               dealii::Utilities::MPI::sum(integrator, grid.mpi_communicator);
           a_new.compress(dealii::VectorOperation::insert);
           dv.compress(dealii::VectorOperation::insert);
@@ -465,7 +465,7 @@ namespace Talus
             }
         contact_force =
           dealii::Utilities::MPI::sum(force, grid.mpi_communicator);
-        friction_dissipation -=
+        accounts.friction_dissipation -=
           dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
         // How far the nodes held in a state (cycling) violate Coulomb's
         // law at the converged iterate: a stuck node by its tangential
@@ -636,7 +636,7 @@ namespace Talus
         }
       grid_kinetic_energy =
         dealii::Utilities::MPI::sum(grid_energy, grid.mpi_communicator);
-      transfer_dissipation +=
+      accounts.transfer_dissipation +=
         dealii::Utilities::MPI::sum(transfer_energy, grid.mpi_communicator);
       max_grid_speed =
         dealii::Utilities::MPI::max(grid_speed, grid.mpi_communicator);

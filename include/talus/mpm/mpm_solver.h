@@ -440,9 +440,7 @@ namespace Talus
       void
       serialize_committed_scalars(Archive &ar)
       {
-        ar &friction_dissipation &reset_dissipation &transfer_dissipation
-          &integrator_dissipation &boundary_friction_dissipation
-            &grid_kinetic_energy &max_grid_speed &contact_force;
+        ar &accounts &grid_kinetic_energy &max_grid_speed &contact_force;
       }
 
       /**
@@ -1218,14 +1216,37 @@ namespace Talus
        */
       std::vector<bool> committed_stuck;
 
+      /**
+       * The energies the scheme has taken out since the start [J] (all
+       * ranks; the same on every rank); see Diagnostics for each term.
+       */
+      struct EnergyAccounts
+      {
+        double friction_dissipation   = 0.;
+        double reset_dissipation      = 0.;
+        double transfer_dissipation   = 0.;
+        double integrator_dissipation = 0.;
+        /**
+         * Friction dissipation of each boundary of boundary particles
+         * (part of friction_dissipation).
+         */
+        std::vector<double> boundary_friction_dissipation;
+
+        template <class Archive>
+        void
+        serialize(Archive &ar, const unsigned int /*version*/)
+        {
+          ar &friction_dissipation &reset_dissipation &transfer_dissipation
+            &integrator_dissipation &boundary_friction_dissipation;
+        }
+      };
+      /** The accumulated energy accounts (committed steps only). */
+      EnergyAccounts accounts;
+
       /** What commit_step() changes in the solver (save_state()). */
       struct CommittedState
       {
-        double                                friction_dissipation   = 0.;
-        double                                reset_dissipation      = 0.;
-        double                                transfer_dissipation   = 0.;
-        double                                integrator_dissipation = 0.;
-        std::vector<double>                   boundary_friction_dissipation;
+        EnergyAccounts                        accounts;
         double                                grid_kinetic_energy = -1.;
         double                                max_grid_speed      = -1.;
         dealii::Tensor<1, dim>                contact_force;
@@ -1239,20 +1260,6 @@ namespace Talus
       void
       commit_friction_states();
 
-      /** Accumulated friction dissipation [J] (all ranks). */
-      double friction_dissipation = 0.;
-      /** Accumulated reset dissipation [J] (all ranks); see Diagnostics. */
-      double reset_dissipation = 0.;
-      /** Accumulated transfer dissipation [J] (all ranks); see Diagnostics. */
-      double transfer_dissipation = 0.;
-      /** Accumulated integrator dissipation [J] (all ranks); see Diagnostics.
-       */
-      double integrator_dissipation = 0.;
-      /**
-       * Accumulated friction dissipation of each boundary of boundary
-       * particles [J] (all ranks; part of friction_dissipation).
-       */
-      std::vector<double> boundary_friction_dissipation;
       /**
        * The present step's impact friction and reset dissipation [J] (all
        * ranks): set by prepare_step() (and the velocity restore of released
