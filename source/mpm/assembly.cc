@@ -72,6 +72,15 @@ namespace Talus
       using CellAD = Sacado::Fad::SFad<double, dim *(1 << dim)>;
 
       /**
+       * The same for the up to 4^dim patch nodes of a uGIMP cell
+       * ('shape functions = uGIMP'): at most 32 derivatives in 2D, 192 in
+       * 3D, as many as the patch has dofs (the grid's boundary truncates
+       * it).
+       */
+      template <int dim>
+      using PatchAD = Sacado::Fad::SLFad<double, dim *(1 << (2 * dim))>;
+
+      /**
        * F-bar internal forces of the points of one cell (see
        * MPMSolver::fbar_cell()), for Number = double (residual only) or
        * CellAD<dim> (residual and exact derivative). The points are given
@@ -881,33 +890,32 @@ namespace Talus
 
       const dealii::Tensor<1, dim> *dN = &shape_gradients[c.first * n_nodes];
       bool                          ok = true;
-      if (k_local != nullptr)
-        {
-          using AD = CellAD<dim>;
-          std::vector<AD> u(dofs_per_cell), f_int(dofs_per_cell);
+      // the derivatives by forward AD with one slot per dof of the cell
+      // (uGIMP: of the patch)
+      const auto with_derivatives = [&](auto zero) {
+        using AD = decltype(zero);
+        std::vector<AD> u(dofs_per_cell), f_int(dofs_per_cell);
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          {
+            u[i]     = AD(dofs_per_cell, i, du_local[i]);
+            f_int[i] = 0.;
+          }
+        ok = fbar_internal_forces<dim>(
+          c.n, n_nodes, comp, node, u, dN, F_n, V0, model_call, f_int, nullptr);
+        if (ok)
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             {
-              u[i]     = AD(dofs_per_cell, i, du_local[i]);
-              f_int[i] = 0.;
+              r_local[i] -= f_int[i].val();
+              for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                (*k_local)(i, j) += f_int[i].dx(j);
             }
-          ok = fbar_internal_forces<dim>(c.n,
-                                         n_nodes,
-                                         comp,
-                                         node,
-                                         u,
-                                         dN,
-                                         F_n,
-                                         V0,
-                                         model_call,
-                                         f_int,
-                                         nullptr);
-          if (ok)
-            for (unsigned int i = 0; i < dofs_per_cell; ++i)
-              {
-                r_local[i] -= f_int[i].val();
-                for (unsigned int j = 0; j < dofs_per_cell; ++j)
-                  (*k_local)(i, j) += f_int[i].dx(j);
-              }
+      };
+      if (k_local != nullptr)
+        {
+          if (gimp)
+            with_derivatives(PatchAD<dim>());
+          else
+            with_derivatives(CellAD<dim>());
         }
       else
         {

@@ -745,7 +745,11 @@ namespace Talus
               c.n_boundary = boundary_points.size() - c.first_boundary;
               if (c.n_boundary > 0)
                 {
-                  c.dofs = mc.dofs; // only for cells with candidates
+                  // only for cells with candidates; the Q1 dofs of the
+                  // point's cell also with uGIMP (whose material cells
+                  // carry the patch's)
+                  c.dofs.resize(grid.fe.dofs_per_cell);
+                  mc.cell->get_dof_indices(c.dofs);
                   boundary_cells.push_back(std::move(c));
                 }
             }

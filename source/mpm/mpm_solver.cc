@@ -359,9 +359,12 @@ namespace Talus
           "and their gradients are continuous as a point crosses a face; a "
           "point influences the nodes of the 3^dim cells around its cell "
           "(truncated at the grid's boundary), and Newton uses the uGIMP "
-          "gradients in its consistent tangent. Cartesian background grids "
-          "only ('grid type = box'); not with boundary particles, grid "
-          "friction boundaries, F-bar, APIC or the ghost penalty.");
+          "gradients in its consistent tangent. F-bar averages over the "
+          "points of a cell, whose derivatives then reach the whole patch. "
+          "Boundary particles (and material-point contact) act on the grid's "
+          "Q1 field at their location, as with 'linear'. Cartesian "
+          "background grids only ('grid type = box'); not with grid "
+          "friction boundaries, APIC or the ghost penalty.");
         prm.declare_entry("abort on lost material points",
                           "false",
                           Patterns::Bool(),
@@ -447,8 +450,6 @@ namespace Talus
                               "uGIMP is not implemented with " + what +
                                 "; use 'shape functions = linear'");
           };
-          if (use_fbar)
-            reject_with("'volumetric locking treatment = F-bar'");
           if (apic)
             reject_with("'velocity update = APIC'");
           if (ghost_penalty_factor > 0.)
@@ -1058,13 +1059,6 @@ namespace Talus
       // (resize: a checkpoint restored before keeps its values)
       accounts.boundary_friction_dissipation.resize(boundaries.n_boundaries(),
                                                     0.);
-      if (gimp && boundary_particles != nullptr)
-        InputFile::reject("Solver",
-                          "shape functions",
-                          "uGIMP",
-                          "uGIMP is not implemented with boundary particles "
-                          "(subsection Boundaries); use 'shape functions = "
-                          "linear'");
       // The symmetric Nitsche form is coercive only above a stabilisation
       // that grows without bound as a cut shrinks (doc/verification.md).
       if (ghost_penalty_factor == 0. &&
