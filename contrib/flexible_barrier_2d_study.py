@@ -1,0 +1,312 @@
+#!/usr/bin/env python3
+"""Convergence and sensitivity study of the 2D flagship analogue.
+
+Runs prm/flexible_barrier_2d.prm (a granular slide into the plane barrier)
+once per variant, each variant the base file with a few parameters set
+anew (appended subsections: the last value set wins), and prints one table
+row per variant with what a barrier engineer reads off a run:
+
+  F_peak   largest interface force on the net [kN/m] and its time [s]
+  F_avg    largest 0.11 s moving average of that force [kN/m] (the impact
+           peak lasts a step or two and depends on the front's last cells)
+  F_end    the force at the end (material at rest) [kN/m]
+  rope     largest force in the retaining rope [kN/m]
+  stroke   the brake's stroke at the end [m]
+  defl     largest and final displacement of the net [m]
+  E_bar    energy taken by the barrier: elastic + kinetic change + brakes
+           and damping, in % of the released gravitational energy
+  fric, plast   friction and plastic dissipation [% released]
+  bal      the energy balance error at the end [% released]
+  ring     high-frequency content of the net force: RMS of the force minus
+           its 0.1 s moving average from 0.2 s after the impact peak on, in
+           % of F_end (cell crossings make the force ring)
+  its      coupling iterations per step; rej: rejected steps; wall [s]
+
+Studies (doc/verification.md, "Flexible barrier (2D): convergence and
+sensitivity"): MPM cell size (three levels), net mesh, time step, coupling
+tolerance; net stiffness, brake activation force, basal friction and
+material model.
+
+usage: contrib/flexible_barrier_2d_study.py [--talus PATH] [--only NAME...]
+       [--work DIR] [--jobs N] [--reuse] [--plot PNG]
+"""
+
+import argparse
+import concurrent.futures
+import csv
+import os
+import re
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+
+
+def sub(section, entries):
+    """A prm subsection setting the given entries (nested: 'A/B')."""
+    names = section.split("/")
+    text = "".join("subsection %s\n" % n for n in names)
+    for key, value in entries.items():
+        text += "  set %s = %s\n" % (key, value)
+    return text + "end\n" * len(names)
+
+
+NEWTON_1E6 = {"residual tolerance": "1e-6", "increment tolerance": "1e-6",
+              "increment test": "estimated error"}
+
+# (study, name, appended prm text); the first of each study is the base
+# value where the base is part of it
+VARIANTS = [
+    ("base", "base", ""),
+    # MPM cell size: 0.2 m (base), 0.1 m, 0.05 m; points per cell fixed
+    ("cell size", "h=0.1", sub("Background grid", {"subdivisions": "140, 76"})),
+    ("cell size", "h=0.05", sub("Background grid", {"subdivisions": "280, 152"})),
+    # the MPM's Newton tolerance of the granular benchmarks (residual 1e-6,
+    # estimated error): the default 1e-8 stalls at rest on the finer grids
+    ("cell size", "Newton 1e-6", sub("Solver", NEWTON_1E6)),
+    ("cell size", "h=0.1 Newton 1e-6",
+     sub("Solver", NEWTON_1E6) +
+     sub("Background grid", {"subdivisions": "140, 76"})),
+    ("cell size", "h=0.05 Newton 1e-6",
+     sub("Solver", NEWTON_1E6) +
+     sub("Background grid", {"subdivisions": "280, 152"})),
+    # shape functions: uGIMP (no cell-crossing error) on the three grids
+    ("shape functions", "uGIMP", sub("Solver", {"shape functions": "uGIMP"})),
+    ("shape functions", "uGIMP h=0.1",
+     sub("Solver", {"shape functions": "uGIMP"}) +
+     sub("Background grid", {"subdivisions": "140, 76"})),
+    ("shape functions", "uGIMP h=0.05",
+     sub("Solver", {"shape functions": "uGIMP"}) +
+     sub("Background grid", {"subdivisions": "280, 152"})),
+    # the net's elements (14 per member in the base)
+    ("net mesh", "net 7", sub("Structure/Line members", {"elements per member": "7"})),
+    ("net mesh", "net 28", sub("Structure/Line members", {"elements per member": "28"})),
+    # time step (0.01 s in the base)
+    ("time step", "dt=0.02", sub("Time", {"time step": "0.02"})),
+    ("time step", "dt=0.005", sub("Time", {"time step": "0.005"})),
+    # coupling tolerance (relative 1e-5 in the base)
+    ("coupling tolerance", "tol=1e-4",
+     sub("Coupling", {"relative tolerance": "1e-4"})),
+    ("coupling tolerance", "tol=1e-6",
+     sub("Coupling", {"relative tolerance": "1e-6"})),
+    # net stiffness: the string's E (EA = 1e6 N in the base)
+    ("net stiffness", "EA x0.5", sub("Structure/Line members", {"Young's modulus": "5e9"})),
+    ("net stiffness", "EA x2", sub("Structure/Line members", {"Young's modulus": "2e10"})),
+    # brake activation force (20 kN/m in the base, where the rope carries
+    # at most 1.8 kN/m: the brake does not slide); below the rope force
+    ("brake", "brake 1 kN/m",
+     sub("Structure/Brake", {"activation force": "1e3"})),
+    ("brake", "brake 0.5 kN/m",
+     sub("Structure/Brake", {"activation force": "5e2"})),
+    # basal friction (0.4 in the base)
+    ("basal friction", "mu=0.3",
+     sub("Boundary particles/Boundary 1", {"friction coefficient": "0.3"})),
+    ("basal friction", "mu=0.5",
+     sub("Boundary particles/Boundary 1", {"friction coefficient": "0.5"})),
+    # material model (Mohr-Coulomb, phi 35 deg, in the base)
+    ("material", "phi=30",
+     sub("Material/Mohr-Coulomb", {"friction angle": "30"})),
+    # the Drucker-Prager cone matched to Mohr-Coulomb in plane strain
+    ("material", "Drucker-Prager",
+     sub("Material", {"model": "Drucker-Prager"}) +
+     sub("Material/Drucker-Prager", {"friction angle": "35"})),
+    # mu(I) rheology (Jop et al. 2006) on top of phi = 35 deg, the
+    # recoverable variant of the Bui collapse; limiting angle and grain
+    # size are assumptions for a gravel (not from a test)
+    ("material", "mu(I)",
+     sub("Material/Mohr-Coulomb", {"limiting friction angle": "45",
+                                   "reference inertial number": "0.279",
+                                   "grain diameter": "0.01",
+                                   "separated volume": "recoverable"})),
+]
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0]}
+
+
+def resample(t, f, dt=0.01):
+    """f(t) linearly interpolated on the uniform times 0, dt, 2 dt, ..."""
+    values, j = [], 0
+    for i in range(int(round(t[-1] / dt)) + 1):
+        x = i * dt
+        while j + 1 < len(t) and t[j + 1] < x:
+            j += 1
+        k = min(j + 1, len(t) - 1)
+        w = 0. if t[k] == t[j] else (x - t[j]) / (t[k] - t[j])
+        values.append((1 - w) * f[j] + w * f[k])
+    return values
+
+
+def moving_average(values, half):
+    """Centred moving average over 2 half + 1 samples (inner points)."""
+    return [sum(values[i - half:i + half + 1]) / (2 * half + 1)
+            for i in range(half, len(values) - half)]
+
+
+def ringing(t, f, dt=0.01, width=0.1):
+    """High-frequency content of a force history: the RMS of f minus its
+    centred moving average over width (a low-pass above ~1/width Hz),
+    after resampling on a uniform grid of step dt, from 0.2 s after the
+    first impact's peak on (the spike of the impact itself is not
+    ringing) while f is above 5 % of its largest value."""
+    values = resample(t, f, dt)
+    half = int(round(width / dt / 2))
+    threshold = 0.05 * max(values)
+    first = values.index(max(values)) + int(round(0.2 / dt))
+    squares = []
+    for i in range(max(half, first), len(values) - half):
+        if values[i] < threshold:
+            continue
+        mean = sum(values[i - half:i + half + 1]) / (2 * half + 1)
+        squares.append((values[i] - mean) ** 2)
+    return (sum(squares) / len(squares)) ** 0.5 if squares else 0.
+
+
+def run(talus, work, name, extra, reuse):
+    """Run one variant, return its row of results (or an error string)."""
+    tag = re.sub(r"[^A-Za-z0-9.=-]+", "_", name)
+    out = os.path.join(work, tag)
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(ROOT, "prm", "flexible_barrier_2d.prm")) as f:
+        text = f.read()
+    text = re.sub(r"set output directory = .*",
+                  "set output directory = %s" % out, text)
+    prm = os.path.join(out, "run.prm")
+    with open(prm, "w") as f:
+        f.write(text + "\n" + extra)
+    done = os.path.join(out, "exit_code_and_wall")
+    if not (reuse and os.path.exists(done)):
+        start = time.time()
+        with open(os.path.join(out, "log"), "w") as log:
+            rc = subprocess.call(["nice", talus, prm], stdout=log,
+                                 stderr=subprocess.STDOUT, cwd=out)
+        with open(done, "w") as f:
+            f.write("%d %.1f\n" % (rc, time.time() - start))
+    with open(done) as f:
+        rc, wall = f.read().split()
+        rc, wall = int(rc), float(wall)
+    with open(os.path.join(out, "log")) as f:
+        log = f.read()
+    if rc != 0:
+        return "failed (exit %d): %s" % (rc, log.strip().splitlines()[-1])
+    s = read_csv(os.path.join(out, "structure.csv"))
+    c = read_csv(os.path.join(out, "coupling.csv"))
+    released = c["gravitational_energy"][0] - c["gravitational_energy"][-1]
+    i_peak = max(range(len(s["net_force"])), key=lambda i: s["net_force"][i])
+    barrier = (c["structure_energy"][-1] - c["structure_energy"][0] +
+               c["barrier_dissipation"][-1])
+    ring = 100 * ringing(s["time"], s["net_force"]) / s["net_force"][-1]
+    m = re.search(r"Done: (\d+) coupled steps \((\d+) rejected\), "
+                  r"([0-9.]+) coupling iterations per step", log)
+    return dict(
+        F_peak=s["net_force"][i_peak] / 1e3, t_peak=s["time"][i_peak],
+        F_avg=max(moving_average(resample(s["time"], s["net_force"]), 5))
+        / 1e3,
+        F_end=s["net_force"][-1] / 1e3,
+        rope=max(s["rope_force"]) / 1e3,
+        stroke=s["brake_stroke"][-1],
+        defl_max=max(s["largest_displacement"]),
+        defl_end=s["largest_displacement"][-1],
+        E_bar=100 * barrier / released,
+        fric=100 * c["friction_dissipation"][-1] / released,
+        plast=100 * c["plastic_dissipation"][-1] / released,
+        bal=100 * c["energy_change"][-1] / released,
+        ring=ring,
+        its=float(m.group(3)) if m else float("nan"),
+        rej=int(m.group(2)) if m else -1,
+        wall=wall)
+
+
+COLUMNS = [("F_peak", "%.1f"), ("t_peak", "%.2f"), ("F_avg", "%.1f"),
+           ("F_end", "%.1f"),
+           ("rope", "%.1f"), ("stroke", "%.3f"), ("defl_max", "%.3f"),
+           ("defl_end", "%.3f"), ("E_bar", "%.2f"), ("fric", "%.1f"),
+           ("plast", "%.1f"), ("bal", "%.2f"), ("ring", "%.2f"),
+           ("its", "%.2f"),
+           ("rej", "%d"), ("wall", "%.0f")]
+
+
+def plot(work, variants, results, path):
+    """Net force over time, one panel per study, each with the base."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    studies = []
+    for study, _, _ in variants:
+        if study != "base" and study not in studies:
+            studies.append(study)
+    studies = studies or ["base"]
+    columns = 2
+    rows = (len(studies) + columns - 1) // columns
+    fig, axes = plt.subplots(rows, columns, figsize=(12, 3.2 * rows),
+                             squeeze=False, sharex=True)
+    base = os.path.join(work, "base", "structure.csv")
+    for ax, study in zip(axes.flat, studies):
+        if os.path.exists(base):
+            s = read_csv(base)
+            ax.plot(s["time"], [f / 1e3 for f in s["net_force"]], "k-",
+                    lw=1, label="base")
+        for (st, name, _), r in zip(variants, results):
+            if st != study or isinstance(r, str):
+                continue
+            tag = re.sub(r"[^A-Za-z0-9.=-]+", "_", name)
+            s = read_csv(os.path.join(work, tag, "structure.csv"))
+            ax.plot(s["time"], [f / 1e3 for f in s["net_force"]], lw=1,
+                    label=name)
+        ax.set_title(study, fontsize=10)
+        ax.set_ylabel("net force [kN/m]")
+        ax.set_xlim(2.0, None)
+        ax.legend(fontsize=8)
+    for ax in axes.flat[len(studies):]:
+        ax.axis("off")
+    for ax in axes[-1]:
+        ax.set_xlabel("t [s]")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    print("wrote %s" % path, file=sys.stderr)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--talus", default=os.path.join(ROOT, "build",
+                                                         "talus"))
+    parser.add_argument("--only", nargs="*", help="variant names to run")
+    parser.add_argument("--work", default="flexible_barrier_2d_study")
+    parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--plot", metavar="PNG",
+                        help="draw the net force of every variant")
+    parser.add_argument("--reuse", action="store_true",
+                        help="report the runs already in the work "
+                        "directory instead of running them again")
+    args = parser.parse_args()
+    talus = os.path.abspath(args.talus)
+    work = os.path.abspath(args.work)
+    variants = [v for v in VARIANTS
+                if not args.only or v[1] in args.only]
+    unknown = set(args.only or []) - {v[1] for v in VARIANTS}
+    if unknown:
+        sys.exit("unknown variants: %s (known: %s)" % (
+            ", ".join(sorted(unknown)), ", ".join(v[1] for v in VARIANTS)))
+    with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+        results = list(pool.map(lambda v: run(talus, work, v[1], v[2],
+                                                args.reuse),
+                                variants))
+    if args.plot:
+        plot(work, variants, results, args.plot)
+    print("| study | variant | " + " | ".join(c for c, _ in COLUMNS) + " |")
+    print("|---" * (len(COLUMNS) + 2) + "|")
+    for (study, name, _), r in zip(variants, results):
+        if isinstance(r, str):
+            print("| %s | %s | %s |" % (study, name, r))
+        else:
+            print("| %s | %s | " % (study, name) + " | ".join(
+                f % r[c] for c, f in COLUMNS) + " |")
+
+
+if __name__ == "__main__":
+    main()
