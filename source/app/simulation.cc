@@ -7,6 +7,7 @@
 #include <talus/io/checkpointing.h>
 #include <talus/io/deposit_profile.h>
 #include <talus/io/point_dump.h>
+#include <talus/io/probe_history.h>
 #include <talus/io/time_series.h>
 #include <talus/io/visualization_output.h>
 #include <talus/materials/constitutive_model.h>
@@ -325,6 +326,7 @@ namespace Talus
     prm.leave_subsection();
     declare_verification_parameters<dim>(prm);
     IO::DepositProfile<dim>::declare_parameters(prm);
+    IO::ProbeHistory<dim>::declare_parameters(prm);
     IO::Checkpointing::declare_parameters(prm);
   }
 
@@ -364,6 +366,8 @@ namespace Talus
 
     IO::DepositProfile<dim> deposit(communicator);
     deposit.parse_parameters(prm);
+    IO::ProbeHistory<dim> probe(communicator);
+    probe.parse_parameters(prm);
 
     // Checkpoints, and the one to resume from (checked on rank 0 first).
     IO::Checkpointing checkpointing;
@@ -377,6 +381,12 @@ namespace Talus
                             "true",
                             "a run on a refined grid of a convergence study "
                             "cannot be resumed");
+        if (probe.enabled())
+          InputFile::reject("Checkpoint",
+                            "resume",
+                            "true",
+                            "a run with a probe (subsection <Probe "
+                            "history>) cannot be resumed yet");
         if (deposit.enabled())
           InputFile::reject("Checkpoint",
                             "resume",
@@ -526,6 +536,8 @@ namespace Talus
         series.write(0, 0., 0., none, initial, 0.);
         output.write(0., grid, points);
         deposit.initialize(points, output.directory());
+        probe.open(output.directory());
+        probe.record(0., points);
       }
 
     // Load balancing between steps (subsection Load balancing): the
@@ -932,6 +944,7 @@ namespace Talus
                      lost_mass,
                      time_control.last_error);
         deposit.step(time_control.step, time_control.time, points);
+        probe.record(time_control.time, points);
 
         if (output.due(time_control.time) || time_control.finished())
           {
@@ -1264,6 +1277,7 @@ namespace Talus
                   period_tolerance);
           }
       }
+    passed = probe.finalize(pcout.get_stream()) && passed;
     const bool deposit_passed =
       deposit.finalize(points, pcout.get_stream(), test_mode);
     if (deposit.enabled())

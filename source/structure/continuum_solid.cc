@@ -41,6 +41,16 @@ namespace Talus
                         "[-] (Gauss quadrature with degree + 1 points per "
                         "direction; ties to other meshes are at the cell "
                         "vertices).");
+      prm.declare_entry(
+        "material law",
+        "St. Venant-Kirchhoff",
+        dealii::Patterns::Selection("St. Venant-Kirchhoff|neo-Hookean"),
+        "Hyperelastic law of the solid, both with the Lame constants of "
+        "'Young's modulus' and 'Poisson's ratio': 'St. Venant-Kirchhoff', "
+        "S = lambda tr(E) I + 2 mu E with the Green-Lagrange strain E (for "
+        "moderate strains; it softens in strong compression); "
+        "'neo-Hookean', P = mu (F - F^-T) + lambda ln J F^-T, the law of "
+        "the MPM's 'neo-Hookean' material (large strains).");
     }
 
 
@@ -54,6 +64,77 @@ namespace Talus
         get_in_open_interval(prm, subsection, "Poisson's ratio", -1., 0.5);
       density = get_non_negative(prm, subsection, "density");
       degree  = prm.get_integer("degree");
+      law     = prm.get("material law") == "neo-Hookean" ?
+                  Law::neo_hookean :
+                  Law::saint_venant_kirchhoff;
+    }
+
+
+    template <int dim>
+    std::string
+    ContinuumSolid<dim>::law_name() const
+    {
+      return law == Law::neo_hookean ? "neo-Hookean" : "St. Venant-Kirchhoff";
+    }
+
+
+    template <int dim>
+    dealii::Tensor<2, dim>
+    ContinuumSolid<dim>::piola_stress(const dealii::Tensor<2, dim> &F,
+                                      double                       &energy,
+                                      dealii::Tensor<4, dim>       *A) const
+    {
+      const double lambda = lame_lambda();
+      const double mu     = shear_modulus();
+      const auto   I      = dealii::unit_symmetric_tensor<dim>();
+      if (law == Law::saint_venant_kirchhoff)
+        {
+          const dealii::Tensor<2, dim> H = F - dealii::Tensor<2, dim>(I);
+          const dealii::SymmetricTensor<2, dim> E =
+            dealii::symmetrize(H) +
+            0.5 * dealii::symmetrize(dealii::transpose(H) * H);
+          const dealii::Tensor<2, dim> S = stress(E);
+          energy                         = energy_density(E);
+          if (A != nullptr)
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int J = 0; J < dim; ++J)
+                for (unsigned int k = 0; k < dim; ++k)
+                  for (unsigned int L = 0; L < dim; ++L)
+                    {
+                      // A_iJkL = d_ik S_JL + F_iM C_MJNL F_kN
+                      double c = i == k ? S[J][L] : 0.;
+                      for (unsigned int M = 0; M < dim; ++M)
+                        for (unsigned int N = 0; N < dim; ++N)
+                          c += F[i][M] * F[k][N] *
+                               ((M == J && N == L ? lambda : 0.) +
+                                mu * ((M == N && J == L ? 1. : 0.) +
+                                      (M == L && J == N ? 1. : 0.)));
+                      (*A)[i][J][k][L] = c;
+                    }
+          return F * S;
+        }
+      const double J = dealii::determinant(F);
+      AssertThrow(J > 0. && std::isfinite(J),
+                  dealii::ExcMessage(
+                    "neo-Hookean solid: inverted quadrature point (det F = " +
+                    std::to_string(J) +
+                    " <= 0); reduce the time step or "
+                    "refine the mesh."));
+      const double                 lnJ   = std::log(J);
+      const dealii::Tensor<2, dim> F_inv = dealii::invert(F);
+      // tr(F^T F) - 3 with F_33 = 1 in plane strain: tr over dim - dim
+      energy = 0.5 * mu * (dealii::scalar_product(F, F) - dim) - mu * lnJ +
+               0.5 * lambda * lnJ * lnJ;
+      if (A != nullptr)
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int a = 0; a < dim; ++a)
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int L = 0; L < dim; ++L)
+                (*A)[i][a][k][L] =
+                  (i == k && a == L ? mu : 0.) +
+                  (mu - lambda * lnJ) * F_inv[L][i] * F_inv[a][k] +
+                  lambda * F_inv[a][i] * F_inv[L][k];
+      return mu * F + (lambda * lnJ - mu) * dealii::transpose(F_inv);
     }
 
 
@@ -94,6 +175,63 @@ namespace Talus
     }
 
 
+    namespace
+    {
+      /** Add the von Mises and mean stress of the Cauchy stress @p sigma
+       * (sigma_33 = @p sigma_33 for dim = 2, plane strain) times @p JxW. */
+      template <int dim>
+      void
+      add_stress_output(const dealii::Tensor<2, dim> &sigma,
+                        const double                  sigma_33,
+                        const double                  JxW,
+                        double                       &von_mises,
+                        double                       &mean)
+      {
+        dealii::SymmetricTensor<2, 3> sigma3;
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int b = a; b < dim; ++b)
+            sigma3[a][b] = 0.5 * (sigma[a][b] + sigma[b][a]);
+        if (dim == 2)
+          sigma3[2][2] = sigma_33;
+        const dealii::SymmetricTensor<2, 3> s = dealii::deviator(sigma3);
+        von_mises += std::sqrt(1.5 * (s * s)) * JxW;
+        mean += dealii::trace(sigma3) / 3. * JxW;
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    ContinuumSolid<dim>::neo_hookean_point(
+      const dealii::Tensor<2, dim>              &F,
+      const std::vector<dealii::Tensor<2, dim>> &grad_phi,
+      const double                               JxW,
+      dealii::Vector<double>                    &r,
+      dealii::FullMatrix<double>                &K) const
+    {
+      const unsigned int n      = grad_phi.size();
+      const double       lambda = lame_lambda();
+      const double       mu     = shear_modulus();
+      double             W      = 0.;
+      const auto         P      = piola_stress(F, W);
+      const double       lnJ    = std::log(dealii::determinant(F));
+      const auto         F_iT   = dealii::transpose(dealii::invert(F));
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          const auto &G = grad_phi[j];
+          // A : G = mu G + (mu - lambda ln J) F^-T G^T F^-T
+          //         + lambda (F^-T : G) F^-T
+          const dealii::Tensor<2, dim> AG =
+            mu * G +
+            (mu - lambda * lnJ) * (F_iT * dealii::transpose(G) * F_iT) +
+            lambda * dealii::scalar_product(F_iT, G) * F_iT;
+          r(j) += dealii::scalar_product(P, G) * JxW;
+          for (unsigned int i = 0; i < n; ++i)
+            K(i, j) += dealii::scalar_product(grad_phi[i], AG) * JxW;
+        }
+    }
+
+
     template <int dim>
     template <int spacedim>
     void
@@ -130,6 +268,25 @@ namespace Talus
             }
           const dealii::Tensor<2, dim> F =
             H + dealii::Tensor<2, dim>(dealii::unit_symmetric_tensor<dim>());
+          if (law == Law::neo_hookean)
+            {
+              neo_hookean_point(F, grad_phi, fe_values.JxW(q), r, K);
+              if (output != nullptr)
+                {
+                  double       W   = 0.;
+                  const auto   P   = piola_stress(F, W);
+                  const double J   = dealii::determinant(F);
+                  const double JxW = fe_values.JxW(q);
+                  energy += W * JxW;
+                  volume += JxW;
+                  add_stress_output(P * dealii::transpose(F) / J,
+                                    lambda * std::log(J) / J,
+                                    JxW,
+                                    von_mises,
+                                    mean);
+                }
+              continue;
+            }
           const dealii::SymmetricTensor<2, dim> E =
             dealii::symmetrize(H) +
             0.5 * dealii::symmetrize(dealii::transpose(H) * H);
@@ -156,19 +313,13 @@ namespace Talus
             {
               energy += energy_density(E) * JxW;
               volume += JxW;
-              const double                          J = dealii::determinant(F);
-              const dealii::SymmetricTensor<2, dim> sigma =
-                dealii::symmetrize(P * dealii::transpose(F)) / J;
+              const double J = dealii::determinant(F);
               // Plane strain (dim = 2): F_33 = 1, sigma_33 = lambda tr E/J.
-              dealii::SymmetricTensor<2, 3> sigma3;
-              for (unsigned int a = 0; a < dim; ++a)
-                for (unsigned int b = a; b < dim; ++b)
-                  sigma3[a][b] = sigma[a][b];
-              if (dim == 2)
-                sigma3[2][2] = lambda * dealii::trace(E) / J;
-              const dealii::SymmetricTensor<2, 3> s = dealii::deviator(sigma3);
-              von_mises += std::sqrt(1.5 * (s * s)) * JxW;
-              mean += dealii::trace(sigma3) / 3. * JxW;
+              add_stress_output(P * dealii::transpose(F) / J,
+                                lambda * dealii::trace(E) / J,
+                                JxW,
+                                von_mises,
+                                mean);
             }
         }
       if (output != nullptr)

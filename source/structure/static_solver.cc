@@ -341,8 +341,21 @@ namespace Talus
           // each successful step. mu changes only the iteration path, not
           // the solution (it never enters r). Needed for cable nets that
           // start stress-free (slack) and snap taut.
-          const dealii::Vector<double> r0           = r;
-          double                       max_diagonal = 0.;
+          const dealii::Vector<double> r0 = r;
+          // |r| of the trial state; infinite where the trial state has no
+          // stress (an inverted neo-Hookean solid throws): the line search
+          // then shortens the step.
+          const auto trial_norm = [&]() {
+            try
+              {
+                return assemble(trial, r, nullptr);
+              }
+            catch (const std::exception &)
+              {
+                return std::numeric_limits<double>::infinity();
+              }
+          };
+          double max_diagonal = 0.;
           for (unsigned int i = 0; i < matrix.m(); ++i)
             max_diagonal = std::max(max_diagonal, matrix.diag_element(i));
           double applied_mu = 0.;
@@ -378,7 +391,7 @@ namespace Talus
               double alpha = 1.;
               trial        = displacement;
               trial.add(alpha, du);
-              new_norm  = assemble(trial, r, nullptr);
+              new_norm  = trial_norm();
               decreased = new_norm < (1. - 1e-4 * alpha) * norm;
               if (line_search)
                 for (unsigned int k = 0; k < 6 && !decreased; ++k)
@@ -386,7 +399,7 @@ namespace Talus
                     alpha *= 0.5;
                     trial = displacement;
                     trial.add(alpha, du);
-                    new_norm  = assemble(trial, r, nullptr);
+                    new_norm  = trial_norm();
                     decreased = new_norm < (1. - 1e-4 * alpha) * norm;
                   }
               if (!line_search)

@@ -32,6 +32,14 @@ namespace Talus
     };
 
 
+    /** Hyperelastic laws of a ContinuumSolid. */
+    enum class SolidLaw
+    {
+      saint_venant_kirchhoff, ///< S = lambda tr(E) I + 2 mu E
+      neo_hookean             ///< P = mu (F - F^-T) + lambda ln J F^-T
+    };
+
+
     /**
      * A continuum solid in the barrier structure (rigid or elastic
      * obstacles, verification): geometrically nonlinear, total-Lagrangian
@@ -53,15 +61,38 @@ namespace Talus
      * compression, stretch below 1/sqrt(3) in uniaxial stress). Source:
      * Holzapfel, Nonlinear Solid Mechanics (2000) ch. 6 and 8; Wriggers,
      * Nonlinear Finite Element Methods (2008) ch. 4.
+     *
+     * With 'material law = neo-Hookean' the compressible neo-Hookean law
+     * of the MPM's Materials::NeoHookean replaces it (J = det F, plane
+     * strain: F_33 = 1):
+     *   W(F) = mu/2 (tr(F^T F) - 3) - mu ln J + lambda/2 (ln J)^2,
+     *   P = mu (F - F^-T) + lambda ln J F^-T,
+     *   A_iJkL = mu d_ik d_JL + (mu - lambda ln J) F^-1_Li F^-1_Jk
+     *            + lambda F^-1_Ji F^-1_Lk,
+     *   f_i = int P : Grad phi_i dV0,  K_ij = int Grad phi_i : A :
+     *   Grad phi_j dV0,
+     * stable in strong compression (W -> infinity as J -> 0), the same as
+     * St. Venant-Kirchhoff to first order in the strain. Source: Bonet &
+     * Wood, Nonlinear Continuum Mechanics for Finite Element Analysis
+     * (2008) sec. 6.4.3.
      */
     template <int dim>
     class ContinuumSolid
     {
     public:
+      /** The hyperelastic law of the solid. */
+      using Law = SolidLaw;
+
       double       youngs_modulus = 2.1e11; ///< E [Pa]
       double       poissons_ratio = 0.3;    ///< nu [-], in (-1, 0.5)
       double       density        = 7850.;  ///< rho_0 [kg/m^3]
       unsigned int degree         = 1;      ///< of FE_Q [-]
+      Law          law            = Law::saint_venant_kirchhoff; ///< stress law
+
+      /** The law's name as in the parameter file ('St. Venant-Kirchhoff'
+       * or 'neo-Hookean'). */
+      std::string
+      law_name() const;
 
       /** The material entries of the current subsection (Structure/Solid). */
       static void
@@ -84,9 +115,23 @@ namespace Talus
       dealii::SymmetricTensor<2, dim>
       stress(const dealii::SymmetricTensor<2, dim> &E) const;
 
-      /** Stored energy W(E) per reference volume [J/m^3]. */
+      /** Stored energy W(E) per reference volume [J/m^3]
+       * (St. Venant-Kirchhoff). */
       double
       energy_density(const dealii::SymmetricTensor<2, dim> &E) const;
+
+      /**
+       * First Piola-Kirchhoff stress P(F) [Pa] of the solid's law, its
+       * stored energy W(F) per reference volume [J/m^3] in @p energy and,
+       * if @p A is not null, the tangent A = dP/dF [Pa]. For dim = 2 the
+       * plane-strain values (F_33 = 1). The neo-Hookean law throws for
+       * det F <= 0 (the Newton iteration's line search of StaticSolver
+       * then shortens the step).
+       */
+      dealii::Tensor<2, dim>
+      piola_stress(const dealii::Tensor<2, dim> &F,
+                   double                       &energy,
+                   dealii::Tensor<4, dim>       *A = nullptr) const;
 
       /**
        * Internal forces r = f_int and their derivative K of the cell on
@@ -98,7 +143,9 @@ namespace Talus
        * (the Structure's layout); only the in-plane components and
        * derivatives enter, the rows and columns of u_z stay zero. Plane
        * strain (E_33 = 0) per unit thickness; the output adds sigma_33 =
-       * lambda tr(E)/J to the von Mises and mean stresses.
+       * lambda tr(E)/J (neo-Hookean: lambda ln J/J) to the von Mises and
+       * mean stresses. The neo-Hookean law throws for an inverted
+       * quadrature point (J <= 0).
        */
       template <int spacedim>
       void
@@ -107,6 +154,16 @@ namespace Talus
               dealii::Vector<double>                &r,
               dealii::FullMatrix<double>            &K,
               SolidCellOutput                       *output = nullptr) const;
+
+    private:
+      /** Add the neo-Hookean forces and stiffness of one quadrature point
+       * with deformation gradient @p F and shape gradients @p grad_phi. */
+      void
+      neo_hookean_point(const dealii::Tensor<2, dim>              &F,
+                        const std::vector<dealii::Tensor<2, dim>> &grad_phi,
+                        const double                               JxW,
+                        dealii::Vector<double>                    &r,
+                        dealii::FullMatrix<double>                &K) const;
     };
 
 

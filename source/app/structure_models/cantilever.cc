@@ -80,15 +80,39 @@ namespace Talus
         description() const override
         {
           return std::string(p.plane_solid ? "plane-strain " : "") +
-                 "cantilever: continuum solid (St. Venant-Kirchhoff, FE_Q(" +
-                 std::to_string(p.solid.degree) +
+                 "cantilever: continuum solid (" + p.solid.law_name() +
+                 ", FE_Q(" + std::to_string(p.solid.degree) +
                  ")) clamped at x_min, end shear load; Timoshenko beam";
         }
 
         bool
         supports_dynamics() const override
         {
-          return false;
+          return true;
+        }
+
+        /** In time: the end face's mean displacement, the end region's
+         * mean deflection ('tip region length') and the energies. */
+        std::vector<std::pair<std::string, double>>
+        monitor(const Structure &s, const Vector<double> &u, double) override
+        {
+          if (!p.dynamic)
+            return {};
+          const auto  &g  = p.solid_geometry;
+          const double x0 = g.lower_corner[0];
+          const double L  = g.upper_corner[0] - x0;
+          const double a =
+            p.tip_region_length > 0. ? p.tip_region_length : last_cell(s);
+          double mean = 0.;
+          on_solid(s, [&](const auto &mesh) {
+            mean = region_mean(mesh, u, x0 + L - a, vertical());
+          });
+          return {{"time", time},
+                  {"tip_u_x", solid_face_mean(s, u, 1, 0)},
+                  {"tip_u_y", solid_face_mean(s, u, 1, vertical())},
+                  {"end_region_u_y", mean},
+                  {"kinetic_energy", kinetic_energy},
+                  {"total_energy", total_energy}};
         }
 
         void
@@ -132,13 +156,7 @@ namespace Talus
             return bending(x) + P * x / kGA + q * (L * x - 0.5 * x * x) / kGA;
           };
           // the last column of cells: x >= L - a
-          double a = 0.;
-          on_solid(s, [&](const auto &mesh) {
-            for (const auto &cell : mesh.triangulation.active_cell_iterators())
-              if (cell->center()[0] + 0.5 * cell->extent_in_direction(0) >
-                  x0 + L * (1. - 1e-12))
-                a = std::max(a, cell->extent_in_direction(0));
-          });
+          const double a = last_cell(s);
           // mean of w over [L - a, L]: 3-point Gauss (w is a quartic)
           double w_mean = 0.;
           for (const auto &[xi, weight] :
@@ -151,6 +169,12 @@ namespace Talus
           on_solid(s, [&](const auto &mesh) {
             u_mean = region_mean(mesh, u, x0 + L - a, vertical());
           });
+          if (p.dynamic)
+            // (in time: the CSV holds the history; no closed form)
+            return {{"tip deflection at the end time [m]",
+                     solid_face_mean(s, u, 1, vertical()),
+                     0.,
+                     false}};
           std::vector<Result> r = {
             {"tip deflection [m]", solid_face_mean(s, u, 1, vertical()), w(L)},
             {"Euler-Bernoulli deflection [m]", bending(L), 0., false}};
@@ -158,6 +182,24 @@ namespace Talus
             r.push_back(
               {"mean deflection of the end cells [m]", u_mean, w_mean});
           return r;
+        }
+
+      private:
+        /** Length of the cells at the free end x = x_max [m]. */
+        double
+        last_cell(const Structure &s) const
+        {
+          const auto  &g  = p.solid_geometry;
+          const double x1 = g.upper_corner[0];
+          const double L  = x1 - g.lower_corner[0];
+          double       a  = 0.;
+          on_solid(s, [&](const auto &mesh) {
+            for (const auto &cell : mesh.triangulation.active_cell_iterators())
+              if (cell->center()[0] + 0.5 * cell->extent_in_direction(0) >
+                  x1 - 1e-12 * L)
+                a = std::max(a, cell->extent_in_direction(0));
+          });
+          return a;
         }
       };
     } // namespace

@@ -403,13 +403,14 @@ namespace Talus
       if (p.dynamic && p.model != "square membrane" && p.model != "barrier" &&
           p.model != "vibrating string" && p.model != "solid" &&
           p.model != "axial bar" && p.model != "plane string" &&
-          p.model != "plane barrier")
+          p.model != "plane barrier" && p.model != "cantilever")
         InputFile::reject(structure_section + "/Dynamics",
                           "dynamic",
                           "true",
                           "only models 'square membrane', 'vibrating "
-                          "string', 'solid', 'axial bar', 'plane string', "
-                          "'plane barrier' and 'barrier' run in time so far");
+                          "string', 'solid', 'axial bar', 'cantilever', "
+                          "'plane string', 'plane barrier' and 'barrier' run "
+                          "in time so far");
       if (!p.dynamic && p.model == "vibrating string")
         InputFile::reject(structure_section + "/Dynamics",
                           "dynamic",
@@ -426,6 +427,10 @@ namespace Talus
       p.tolerance = prm.get_double("tolerance");
       p.reference_displacement =
         prm.get_double("reference largest displacement");
+      p.tip_region_length =
+        get_non_negative(prm,
+                         structure_section + "/Verification",
+                         "tip region length");
       p.n_levels     = prm.get_integer("number of levels");
       p.first_level  = prm.get_integer("first level");
       p.minimum_rate = prm.get_double("minimum rate");
@@ -892,6 +897,15 @@ namespace Talus
                         "Model 'mesh file': if > 0, the largest nodal "
                         "displacement is compared with this value; model "
                         "'midspan cable': the sag [m].");
+      prm.declare_entry("tip region length",
+                        "0",
+                        Patterns::Double(0),
+                        "Model 'cantilever' with 'dynamic = true': the CSV "
+                        "column end_region_u_y is the mean vertical "
+                        "displacement of the cells within this distance of "
+                        "the free end, int u dV0 / V0 over x >= L - a (the "
+                        "mean an MPM run measures on the material points "
+                        "of that region); 0: the last column of cells [m].");
       prm.declare_entry("number of levels",
                         "1",
                         Patterns::Integer(1, 8),

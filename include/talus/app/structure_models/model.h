@@ -99,7 +99,10 @@ namespace Talus
       std::string directory;
       bool        write_vtu = false, test_mode = false;
       double      tolerance = 0., reference_displacement = 0.;
-      bool        dynamic = false;
+      /** Model 'cantilever' in time: length of the end region whose mean
+       * deflection is monitored (0: the last column of cells) [m]. */
+      double tip_region_length = 0.;
+      bool   dynamic           = false;
       double bossak_alpha = 0., dynamic_time_step = 0., string_amplitude = 0.;
       bool   mesh_is_membrane = false;
       double mass_damping = 0., stiffness_damping = 0.;

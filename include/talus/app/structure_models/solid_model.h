@@ -57,7 +57,7 @@ namespace Talus
       description() const override
       {
         return std::string(p.plane_solid ? "plane-strain " : "") +
-               "continuum solid (St. Venant-Kirchhoff, FE_Q(" +
+               "continuum solid (" + p.solid.law_name() + ", FE_Q(" +
                std::to_string(p.solid.degree) +
                ")) with the supports and loads of subsection Solid";
       }
@@ -166,6 +166,7 @@ namespace Talus
             solid->poissons_ratio = p.solid.poissons_ratio;
             solid->density        = p.solid.density;
             solid->degree         = p.solid.degree;
+            solid->law            = p.solid.law;
             return s.add_plane_solid(name, solid, g.thickness, plane).tractions;
           }
         auto &mesh = s.add_solid(name, solid_component());
