@@ -11,6 +11,8 @@
 #include <talus/coupling/coupling_parameters.h>
 #include <talus/coupling/gauss_seidel_coupling.h>
 #include <talus/coupling/structure_interface.h>
+#include <talus/io/checkpointing.h>
+#include <talus/io/point_dump.h>
 #include <talus/io/structure_time_series.h>
 #include <talus/io/visualization_output.h>
 #include <talus/mpm/material_points.h>
@@ -21,9 +23,13 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
@@ -54,6 +60,16 @@ namespace Talus
       for (unsigned int d = 0; d < v.size(); ++d)
         t[d] = v[d];
       return {!v.empty(), t};
+    }
+
+    /** The text of the file @p filename (empty if it cannot be read). */
+    std::string
+    file_contents(const std::string &filename)
+    {
+      std::ifstream      in(filename, std::ios::binary);
+      std::ostringstream text;
+      text << in.rdbuf();
+      return text.str();
     }
   } // namespace
 
@@ -193,17 +209,6 @@ namespace Talus
     dealii::ConditionalOStream &pcout     = console.pcout;
     dealii::TimerOutput        &timer     = console.timer;
 
-    // Checkpoints cover the MPM problem only so far: refuse rather than
-    // ignore them.
-    prm.enter_subsection("Checkpoint");
-    for (const std::string entry : {"every steps", "every minutes", "resume"})
-      if (prm.get(entry) != "0" && prm.get(entry) != "false")
-        InputFile::reject("Checkpoint",
-                          entry,
-                          prm.get(entry),
-                          "0 (false): checkpoints exist only for 'problem = "
-                          "mpm' so far, not for 'problem = coupled'");
-    prm.leave_subsection();
     // The MPM.
     TimeControl time_control;
     time_control.parse_parameters(prm);
@@ -223,6 +228,21 @@ namespace Talus
     mpm.parse_parameters(prm);
     IO::VisualizationOutput<dim> output;
     output.parse_parameters(prm);
+
+    // Checkpoints (doc/checkpoint.md), and the one to resume from (checked
+    // on rank 0 first: a complete checkpoint of a coupled run).
+    IO::Checkpointing checkpointing;
+    checkpointing.parse_parameters(prm, output.directory());
+    checkpointing.set_problem("coupled");
+    std::string resume_path;
+    if (!resume_from.empty() || checkpointing.resume_requested())
+      resume_path =
+        IO::Checkpointing::find_and_check(resume_from.empty() ?
+                                            checkpointing.directory() :
+                                            resume_from,
+                                          communicator,
+                                          "coupled");
+    const bool resuming = !resume_path.empty();
 
     // The structure, in equilibrium under its pre-stress and, 'loaded', its
     // loads.
@@ -396,11 +416,16 @@ namespace Talus
                 "structure first")
           << ", " << coupling.accelerator().name() << '\n';
 
-    coupling.initialize(0.);
+    if (resuming)
+      coupling.load_checkpoint(resume_path, sp.model_text);
+    else
+      coupling.initialize(0.);
     // Load balancing of the MPM (subsection Load balancing) between
     // committed steps: the interface is keyed by the boundary particles'
-    // ids and reference positions, which a repartition carries.
-    mpm.balance_load(time_control.step, pcout);
+    // ids and reference positions, which a repartition carries. (A resumed
+    // run: after its time control is read, below.)
+    if (!resuming)
+      mpm.balance_load(time_control.step, pcout);
 
     // Energies of both fields at the committed state.
     auto &S = structure.get_structure();
@@ -422,13 +447,54 @@ namespace Talus
       e.dissipation = d.dissipated_energy() + structure.dissipated_energy();
       return e;
     };
-    const auto   initial_diagnostics = mpm.diagnostics();
-    const auto   initial             = energies(initial_diagnostics);
-    const double initial_total =
-      initial.mpm + initial.structure + initial.dissipation;
+    // (a resumed run: those of t = 0, from the checkpoint)
+    auto   initial_diagnostics = mpm.diagnostics();
+    double initial_total       = 0.;
+    if (!resuming)
+      {
+        const auto initial = energies(initial_diagnostics);
+        initial_total = initial.mpm + initial.structure + initial.dissipation;
+      }
+
+    // What the time loop keeps besides the fields and the coupling
+    // (checkpoints): the time control, the visualization records, the
+    // CSV files up to the checkpoint and the running quantities of the
+    // summary and the verification.
+    std::string   coupling_csv, structure_csv;
+    unsigned long total_iterations = 0, total_rejected = 0, total_restarts = 0;
+    double        max_u       = 0.; // the structure's largest nodal |u| [m]
+    double        max_balance = 0., max_released = 0.;
+    double        max_conservation = 0.;
+    double        final_kinetic    = 0.; // both fields, at the end [J]
+    double        final_mass       = initial_diagnostics.mass;
+    const auto    loop_state       = [&](auto &archive) {
+      archive &coupling_csv &structure_csv &time_control &output
+        &initial_diagnostics &initial_total &total_iterations &total_rejected
+          &total_restarts &max_u &max_balance &max_released &max_conservation
+            &final_kinetic &final_mass &S.vtu_records();
+    };
+    const std::string loop_tag = "talus-coupled-time-loop";
+    if (resuming)
+      {
+        IO::Checkpointing::load_archive(resume_path,
+                                        resume_path + "/time_loop",
+                                        loop_tag,
+                                        loop_state);
+        mpm.balance_load(time_control.step, pcout);
+      }
 
     std::ofstream csv;
-    if (root)
+    if (root && resuming)
+      {
+        // the rows up to the checkpoint (a killed run's later rows go)
+        csv.open(output.directory() + "/coupling.csv");
+        if (!csv)
+          throw ExcSimulationFailed("cannot write <" + output.directory() +
+                                    "/coupling.csv>");
+        csv << coupling_csv << std::setprecision(12);
+        csv.flush();
+      }
+    else if (root)
       {
         csv.open(output.directory() + "/coupling.csv");
         if (!csv)
@@ -464,23 +530,56 @@ namespace Talus
         }
       return split;
     };
-    barrier_series.open(output.directory() + "/structure.csv",
-                        S,
-                        root,
-                        impact_columns().first);
-    barrier_series.write(0.,
-                         S,
-                         structure.displacement(),
-                         structure.dissipated_energy(),
-                         impact_columns().second);
+    if (resuming)
+      {
+        barrier_series.resume(output.directory() + "/structure.csv",
+                              structure_csv,
+                              root,
+                              impact_columns().first.size());
+        output.write_index(communicator);
+        pcout << "  resumed from " << resume_path << " at step "
+              << time_control.step << ", t = " << time_control.time << " s\n";
+      }
+    else
+      {
+        barrier_series.open(output.directory() + "/structure.csv",
+                            S,
+                            root,
+                            impact_columns().first);
+        barrier_series.write(0.,
+                             S,
+                             structure.displacement(),
+                             structure.dissipated_energy(),
+                             impact_columns().second);
+      }
 
-    const auto    wall_start       = std::chrono::steady_clock::now();
-    unsigned long total_iterations = 0, total_rejected = 0, total_restarts = 0;
-    double        max_u       = 0.; // the structure's largest nodal |u| [m]
-    double        max_balance = 0., max_released = 0.;
-    double        max_conservation = 0.;
-    double        final_kinetic    = 0.; // both fields, at the end [J]
-    double        final_mass       = initial_diagnostics.mass;
+    // Write a checkpoint of the committed state; returns its path.
+    const auto write_checkpoint = [&](const std::string &reason) {
+      if (root)
+        {
+          coupling_csv  = file_contents(output.directory() + "/coupling.csv");
+          structure_csv = file_contents(output.directory() + "/structure.csv");
+        }
+      const auto path = checkpointing.write(
+        time_control.step,
+        time_control.time,
+        reason,
+        [&](const std::string &directory) {
+          coupling.save_checkpoint(directory, sp.model_text);
+          if (root)
+            IO::Checkpointing::save_archive(directory + "/time_loop",
+                                            loop_tag,
+                                            loop_state);
+        },
+        communicator);
+      coupling_csv.clear();
+      structure_csv.clear();
+      pcout << "  checkpoint (" << reason << ") at step " << time_control.step
+            << ", t = " << time_control.time << " s: " << path << '\n';
+      return path;
+    };
+
+    const auto wall_start = std::chrono::steady_clock::now();
     Coupling::CoupledStepResult<dim> result;
     while (!time_control.finished())
       {
@@ -507,6 +606,12 @@ namespace Talus
                        "'acceleration' in subsection <Coupling>, reduce "
                        "'time step' or raise 'maximum step halvings' in "
                        "subsection <Time>.";
+                if (checkpointing.enabled())
+                  msg << " The last accepted step (" << time_control.step
+                      << ", t = " << time_control.time
+                      << " s) is in the checkpoint <"
+                      << write_checkpoint("failure: coupled step not solved")
+                      << ">: change the parameters and resume from it.";
                 throw ExcSimulationFailed(msg.str());
               }
           }
@@ -643,7 +748,18 @@ namespace Talus
                       << "  wall " << std::setprecision(3) << wall << " s\n";
               }
           }
+        if (checkpointing.enabled() && !time_control.finished() &&
+            checkpointing.due(time_control.step, communicator))
+          write_checkpoint("scheduled");
+        // (the kill-and-resume test: die as if killed after this step)
+        if (const char *kill = std::getenv("TALUS_DEBUG_KILL_AFTER_STEP"))
+          if (std::to_string(time_control.step) == kill)
+            std::raise(SIGKILL);
       }
+
+    // (debugging and the checkpoint tests: every point in full precision)
+    if (const char *dump = std::getenv("TALUS_DEBUG_DUMP_POINTS"))
+      IO::write_points_text(mpm.points(), dump, communicator);
 
     const double mean_iterations =
       static_cast<double>(total_iterations) / std::max(1u, time_control.step);

@@ -291,16 +291,12 @@ namespace Talus
       {
         if (!resume_from.empty())
           throw ExcInvalidInput("--resume: checkpoints exist only for 'problem "
-                                "= mpm', the file <" +
+                                "= mpm' and 'problem = coupled', the file <" +
                                 filename + "> sets 'problem = structure'.");
         return StructureSimulation::run_parameter_file(filename);
       }
     const std::string problem =
       InputCheck::problem_and_dimension(filename, dimension);
-    if (problem == "coupled" && !resume_from.empty())
-      throw ExcInvalidInput("--resume: checkpoints exist only for 'problem "
-                            "= mpm', the file <" +
-                            filename + "> sets 'problem = coupled'.");
     dealii::ParameterHandler prm;
     // as many boundary subsections as the file has (no fixed limit)
     const unsigned int n_boundaries =
@@ -311,11 +307,15 @@ namespace Talus
           {
             CoupledSimulation<2>::declare_parameters(prm, n_boundaries);
             prm.parse_input(filename);
-            return CoupledSimulation<2>(communicator).run(prm);
+            CoupledSimulation<2> simulation(communicator);
+            simulation.set_resume(resume_from);
+            return simulation.run(prm);
           }
         CoupledSimulation<3>::declare_parameters(prm, n_boundaries);
         prm.parse_input(filename);
-        return CoupledSimulation<3>(communicator).run(prm);
+        CoupledSimulation<3> simulation(communicator);
+        simulation.set_resume(resume_from);
+        return simulation.run(prm);
       }
     if (dimension == 2)
       {

@@ -199,6 +199,7 @@ namespace Talus
         {"ranks",
          std::to_string(dealii::Utilities::MPI::n_mpi_processes(communicator))},
         {"reason", reason},
+        {"problem", problem},
         {"parameter_file", InputFile::name()}};
       const bool root =
         dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
@@ -321,14 +322,25 @@ namespace Talus
 
     std::string
     Checkpointing::find_and_check(const std::string &path,
-                                  const MPI_Comm     communicator)
+                                  const MPI_Comm     communicator,
+                                  const std::string &problem)
     {
       std::string found, error;
       if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
         try
           {
-            found = find_newest(path);
-            read_manifest(found);
+            found           = find_newest(path);
+            const auto info = read_manifest(found);
+            const auto it   = info.find("problem");
+            // checkpoints without the key are those of the MPM problem
+            const std::string written =
+              it == info.end() ? std::string("mpm") : it->second;
+            if (written != problem)
+              reject_checkpoint(found,
+                                "it was written by a run of 'problem = " +
+                                  written + "', the parameter file <" +
+                                  InputFile::name() +
+                                  "> sets 'problem = " + problem + "'.");
           }
         catch (const ExcInvalidInput &e)
           {

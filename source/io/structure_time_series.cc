@@ -48,6 +48,24 @@ namespace Talus
 
 
     void
+    StructureTimeSeries::resume(const std::string &filename,
+                                const std::string &contents,
+                                const bool         root,
+                                const std::size_t  n_extra_columns)
+    {
+      n_extra = n_extra_columns;
+      if (!root)
+        return;
+      file.open(filename);
+      if (!file)
+        throw std::runtime_error("cannot write <" + filename + ">");
+      file << contents;
+      file.flush();
+      file << std::setprecision(10);
+    }
+
+
+    void
     StructureTimeSeries::write(const double                       time,
                                const Talus::Structure::Structure &structure,
                                const dealii::Vector<double>      &u,

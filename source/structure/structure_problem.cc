@@ -1,6 +1,10 @@
+#include <talus/base/input.h>
 #include <talus/structure/structure_problem.h>
 
 #include <deal.II/base/exceptions.h>
+
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
 
 namespace Talus
 {
@@ -327,6 +331,76 @@ namespace Talus
       // damping, which depends on the restored history).
       if (dynamic_solver.enabled)
         dynamic_solver.update_step_start();
+    }
+
+
+    void
+    StructureProblem::save_committed_state(
+      boost::archive::binary_oarchive &archive) const
+    {
+      const State &s = committed;
+      archive << s.time << s.displacement << s.velocity << s.acceleration
+              << s.damping_force << s.damping_work;
+      const std::size_t n_meshes = s.line_states.size();
+      archive << n_meshes;
+      for (const auto &mesh : s.line_states)
+        {
+          const std::size_t n = mesh.size();
+          archive << n;
+          for (const auto &state : mesh)
+            archive << state.plastic << state.accumulated;
+        }
+      const auto &h = s.solver_history;
+      archive << h.force_scale << h.previous_displacement
+              << h.previous_load_factor << h.previous_valid;
+    }
+
+
+    void
+    StructureProblem::load_committed_state(
+      boost::archive::binary_iarchive &archive,
+      const std::string               &where)
+    {
+      State s;
+      archive >> s.time >> s.displacement >> s.velocity >> s.acceleration >>
+        s.damping_force >> s.damping_work;
+      const auto check = [&](const std::string       &what,
+                             const unsigned long long stored,
+                             const unsigned long long here) {
+        if (stored != here)
+          throw ExcInvalidInput(
+            where + "it holds " + what + " " + std::to_string(stored) +
+            ", the parameter file's structure has " + std::to_string(here) +
+            " (subsection <Structure>).");
+      };
+      check("a structure state of DoFs",
+            s.displacement.size(),
+            structure.n_dofs());
+      std::size_t n_meshes = 0;
+      archive >> n_meshes;
+      check("line meshes", n_meshes, structure.line_meshes.size());
+      s.line_states.resize(n_meshes);
+      for (unsigned int m = 0; m < n_meshes; ++m)
+        {
+          std::size_t n = 0;
+          archive >> n;
+          check("line mesh '" + structure.line_meshes[m]->name +
+                  "' with element states",
+                n,
+                structure.line_meshes[m]->state.size());
+          s.line_states[m].resize(n);
+          for (auto &state : s.line_states[m])
+            archive >> state.plastic >> state.accumulated;
+        }
+      auto &h = s.solver_history;
+      archive >> h.force_scale >> h.previous_displacement >>
+        h.previous_load_factor >> h.previous_valid;
+      committed = s;
+      load(committed);
+      saved_valid = false;
+      solved      = false;
+      step_start  = committed.time;
+      step_size   = 0.;
     }
   } // namespace Structure
 } // namespace Talus

@@ -6,6 +6,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <string>
+
 namespace Talus
 {
   /**
@@ -28,6 +30,12 @@ namespace Talus
    * together with the MPM (one body split into two fields, as
    * tests/coupled/split_cantilever); `loaded` (default) solves its
    * equilibrium under them before the coupling.
+   *
+   * Checkpoints (subsection `Checkpoint`, doc/checkpoint.md) hold both
+   * fields, the coupling's history and the time loop's records
+   * (Coupling::GaussSeidelCoupling::save_checkpoint(), the archive
+   * `time_loop` of coupled_checkpoint.cc); a resumed run continues as the
+   * uninterrupted one.
    */
   template <int dim>
   class CoupledSimulation
@@ -47,12 +55,22 @@ namespace Talus
     static void
     declare_coupling_parameters(dealii::ParameterHandler &prm);
 
+    /** Continue from the checkpoint (or the newest in the directory)
+     * @p path instead of starting at t = 0 (`talus --resume`;
+     * doc/checkpoint.md). */
+    void
+    set_resume(const std::string &path)
+    {
+      resume_from = path;
+    }
+
     /** Run the file's coupled problem; returns the exit code. */
     int
     run(dealii::ParameterHandler &prm);
 
   private:
-    MPI_Comm communicator;
+    MPI_Comm    communicator;
+    std::string resume_from;
   };
 } // namespace Talus
 

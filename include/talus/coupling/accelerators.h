@@ -9,6 +9,15 @@
 #include <memory>
 #include <string>
 
+namespace boost
+{
+  namespace archive
+  {
+    class binary_oarchive;
+    class binary_iarchive;
+  } // namespace archive
+} // namespace boost
+
 namespace Talus
 {
   /**
@@ -116,6 +125,20 @@ namespace Talus
       unsigned int
       iteration() const;
 
+      /**
+       * Write what the accelerator learned (the history of past windows:
+       * relaxation factors, least-squares columns, inverse Jacobian) into
+       * a checkpoint archive (doc/checkpoint.md); load() reads it back into
+       * an accelerator made from the same parameters, after which it
+       * continues bitwise as the one that wrote it.
+       */
+      virtual void
+      save(boost::archive::binary_oarchive &archive) const;
+
+      /** Read the state of save(). */
+      virtual void
+      load(boost::archive::binary_iarchive &archive);
+
     protected:
       AccelerationInfo last_info;
       unsigned int     window_iteration = 0;
@@ -189,6 +212,12 @@ namespace Talus
       /** The last relaxation factor used. */
       double
       relaxation() const;
+
+      void
+      save(boost::archive::binary_oarchive &archive) const override;
+
+      void
+      load(boost::archive::binary_iarchive &archive) override;
 
     private:
       const double           omega_initial;
@@ -299,6 +328,14 @@ namespace Talus
        * last reset(). */
       unsigned int
       n_filtered_columns() const;
+
+      /** The columns V, W of this and the reused windows and the iteration
+       * state (a checkpoint). */
+      void
+      save(boost::archive::binary_oarchive &archive) const override;
+
+      void
+      load(boost::archive::binary_iarchive &archive) override;
 
     private:
       /** One column of V and W and the window it comes from. */

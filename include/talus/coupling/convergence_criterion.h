@@ -122,6 +122,15 @@ namespace Talus
       double
       absolute_tolerance() const;
 
+      /** Read or write (boost archive @p archive) the state carried from
+       * window to window: the last force (a checkpoint). */
+      template <class Archive>
+      void
+      serialize_state(Archive &archive)
+      {
+        archive &iterations &previous_force &have_force;
+      }
+
     private:
       double                 relative;
       double                 absolute;

@@ -124,6 +124,36 @@ namespace Talus
         return *acceleration;
       }
 
+      /**
+       * Write the committed state of the coupled problem into the
+       * checkpoint directory @p directory (collective; doc/checkpoint.md):
+       * the MPM's files (MPM::MPMProblem::save_checkpoint()), then on rank
+       * 0 the archive `structure_state` (what identifies the structure:
+       * @p model, its DoFs, dynamic or static, its line meshes; then its
+       * committed state, Structure::StructureProblem::
+       * save_committed_state()) and the archive `coupling_state` (the
+       * committed interface displacement and forces, the predictor's
+       * windows, the convergence criterion's last force and the
+       * accelerator's history: Aitken's factor, the IQN-ILS columns of the
+       * reused windows, the IQN-IMVJ inverse Jacobian).
+       */
+      void
+      save_checkpoint(const std::string &directory,
+                      const std::string &model) const;
+
+      /**
+       * Replace initialize(): the committed state of the checkpoint
+       * @p directory (written by save_checkpoint() with any number of
+       * ranks) becomes that of both fields and of the coupling, and the
+       * interface is set up again for the boundary particles loaded.
+       * Throws ExcInvalidInput naming the checkpoint, the file and what is
+       * wrong if it does not belong to this problem (another MPM, another
+       * structure model or number of DoFs, another accelerator).
+       * Collective.
+       */
+      void
+      load_checkpoint(const std::string &directory, const std::string &model);
+
     private:
       MPM::MPMProblem<dim>        &mpm;
       Structure::StructureProblem &structure;

@@ -51,9 +51,9 @@ namespace Talus
      * Memory: J_prev has n² doubles on every rank (the interface vectors are
      * replicated). No restart variant (RS-0, RS-SVD of Scheufele & Mehl
      * 2017): instead interfaces with more than @p maximum_dofs DoFs are
-     * rejected with an exception at the first step. J_prev is not part of a
-     * checkpoint (neither are the IQN-ILS columns): a resumed run starts
-     * like the first window.
+     * rejected with an exception at the first step. J_prev is part of a
+     * checkpoint of a coupled run (save(), load()), as are the IQN-ILS
+     * columns: a resumed run continues as the uninterrupted one.
      */
     class IQNIMVJ : public InterfaceAccelerator
     {
@@ -108,6 +108,14 @@ namespace Talus
        * empty without one. */
       const dealii::FullMatrix<double> &
       inverse_jacobian() const;
+
+      /** J_prev, the columns of this window and the iteration state (a
+       * checkpoint). */
+      void
+      save(boost::archive::binary_oarchive &archive) const override;
+
+      void
+      load(boost::archive::binary_iarchive &archive) override;
 
     private:
       /** One column of V and W. */

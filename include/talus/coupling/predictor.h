@@ -8,6 +8,15 @@
 #include <deque>
 #include <string>
 
+namespace boost
+{
+  namespace archive
+  {
+    class binary_oarchive;
+    class binary_iarchive;
+  } // namespace archive
+} // namespace boost
+
 namespace Talus
 {
   namespace Coupling
@@ -69,6 +78,14 @@ namespace Talus
       /** Number of recorded windows (at most order + 1 are kept). */
       unsigned int
       n_stored() const;
+
+      /** Write the recorded windows into a checkpoint archive. */
+      void
+      save(boost::archive::binary_oarchive &archive) const;
+
+      /** Read the recorded windows of save(). */
+      void
+      load(boost::archive::binary_iarchive &archive);
 
     private:
       Order                              extrapolation_order;

@@ -68,6 +68,17 @@ namespace Talus
         return every_steps > 0 || every_minutes > 0.;
       }
 
+      /**
+       * The problem the checkpoints belong to (`mpm`, the default, or
+       * `coupled`), written into the manifest as the key `problem` and
+       * checked by find_and_check().
+       */
+      void
+      set_problem(const std::string &name)
+      {
+        problem = name;
+      }
+
       /** Whether `resume = true` was set in the file. */
       bool
       resume_requested() const
@@ -177,11 +188,15 @@ namespace Talus
       read_manifest(const std::string &path);
 
       /**
-       * find_newest() and read_manifest() on rank 0, the result (or the
-       * error, thrown on every rank) shared with all ranks. Collective.
+       * find_newest() and read_manifest() on rank 0, and that the
+       * checkpoint belongs to a run of @p problem (the manifest's key
+       * `problem`; `mpm` without it); the result (or the error, thrown on
+       * every rank) shared with all ranks. Collective.
        */
       static std::string
-      find_and_check(const std::string &path, const MPI_Comm communicator);
+      find_and_check(const std::string &path,
+                     const MPI_Comm     communicator,
+                     const std::string &problem = "mpm");
 
     private:
       unsigned int every_steps   = 0;
@@ -189,6 +204,7 @@ namespace Talus
       unsigned int keep          = 2;
       bool         resume        = false;
       std::string  checkpoint_directory;
+      std::string  problem = "mpm";
       /** Wall clock of the start or the last checkpoint (rank 0). */
       std::chrono::steady_clock::time_point last_write =
         std::chrono::steady_clock::now();

@@ -38,6 +38,18 @@ namespace Talus
            const bool                         root,
            const std::vector<std::string>    &extra_names = {});
 
+      /**
+       * Continue the series of a resumed run (doc/checkpoint.md): rewrite
+       * @p filename (only if @p root) with @p contents, the header and the
+       * rows up to the checkpoint, and append the next rows to it.
+       * @p n_extra_columns: the model's own columns, as in open().
+       */
+      void
+      resume(const std::string &filename,
+             const std::string &contents,
+             const bool         root,
+             const std::size_t  n_extra_columns);
+
       /** One row. */
       void
       write(const double                       time,

@@ -447,6 +447,15 @@ namespace Talus
                 const unsigned int            step,
                 const double                  time);
 
+      /** The records (time, file suffix) of the .pvd files of write_vtu(),
+       * for a checkpoint: a resumed run's .pvd files list the outputs
+       * before the checkpoint too. */
+      std::vector<std::pair<double, std::string>> &
+      vtu_records()
+      {
+        return pvd_records;
+      }
+
       dealii::types::global_dof_index
       n_dofs() const;
 

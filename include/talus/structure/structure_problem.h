@@ -12,6 +12,15 @@
 
 #include <vector>
 
+namespace boost
+{
+  namespace archive
+  {
+    class binary_oarchive;
+    class binary_iarchive;
+  } // namespace archive
+} // namespace boost
+
 namespace Talus
 {
   namespace Structure
@@ -144,6 +153,27 @@ namespace Talus
        * state again. */
       void
       restore_state();
+
+      /**
+       * Write the committed state, what save_state() keeps (time,
+       * displacement, velocity, acceleration, damping force and work of the
+       * dynamic solver, the element history of every line mesh, the
+       * static solver's history), into a checkpoint archive
+       * (doc/checkpoint.md).
+       */
+      void
+      save_committed_state(boost::archive::binary_oarchive &archive) const;
+
+      /**
+       * Make the state of save_committed_state() the committed and the
+       * current one. The structure must be the one that wrote it (the
+       * caller checks the model and the numbers of DoFs and elements);
+       * throws ExcInvalidInput (message @p where first) if the sizes do not
+       * match.
+       */
+      void
+      load_committed_state(boost::archive::binary_iarchive &archive,
+                           const std::string               &where);
 
       /** Interface forces [N] per global DoF (size n_dofs(); a tied DoF's
        * force acts on its node). */
