@@ -184,10 +184,13 @@ namespace Talus
         prm.declare_entry("linear solver",
                           "CG",
                           Patterns::Selection("CG|GMRES|direct"),
-                          "'CG' or 'GMRES' (Trilinos ML algebraic multigrid "
-                          "preconditioner with the rigid body modes as near "
-                          "null space), or 'direct' (Amesos KLU, for small "
-                          "problems).");
+                          "'CG' or 'GMRES' (with 'preconditioner': by "
+                          "default Trilinos ML algebraic multigrid with the "
+                          "rigid body modes as near null space; 'GMRES' with "
+                          "'preconditioner = ILU' for the non-symmetric "
+                          "tangents of plasticity with contact, "
+                          "doc/performance.md), or 'direct' (Amesos KLU or "
+                          "MUMPS, 'direct solver').");
         prm.declare_entry(
           "direct solver",
           "KLU",
