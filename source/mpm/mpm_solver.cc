@@ -184,10 +184,53 @@ namespace Talus
         prm.declare_entry("linear solver",
                           "CG",
                           Patterns::Selection("CG|GMRES|direct"),
-                          "'CG' or 'GMRES' (Trilinos ML algebraic multigrid "
-                          "preconditioner with the rigid body modes as near "
-                          "null space), or 'direct' (Amesos KLU, for small "
-                          "problems).");
+                          "'CG' or 'GMRES' (with 'preconditioner': by "
+                          "default Trilinos ML algebraic multigrid with the "
+                          "rigid body modes as near null space; 'GMRES' with "
+                          "'preconditioner = ILU' for the non-symmetric "
+                          "tangents of plasticity with contact, "
+                          "doc/performance.md), or 'direct' (Amesos KLU or "
+                          "MUMPS, 'direct solver').");
+        prm.declare_entry(
+          "direct solver",
+          "KLU",
+          Patterns::Selection("KLU|MUMPS"),
+          "Amesos package of 'linear solver = direct' [-]: 'KLU' (serial: "
+          "the matrix is gathered on rank 0; symbolic analysis reused while "
+          "the sparsity pattern stays, pivot sequence reused within a step) "
+          "or 'MUMPS' (distributed multifrontal LU over all ranks, symbolic "
+          "analysis reused like KLU's; for large 3D tangents and several "
+          "ranks, doc/performance.md).");
+        prm.declare_entry(
+          "preconditioner",
+          "AMG",
+          Patterns::Selection("AMG|ILU|Jacobi"),
+          "Preconditioner of 'linear solver = CG' or 'GMRES' [-]: 'AMG' "
+          "(Trilinos ML, see 'AMG smoother'), 'ILU' (Ifpack incomplete LU "
+          "of fill level 'ILU fill level', processor-local, additive Schwarz "
+          "across ranks) or 'Jacobi' (point Jacobi). Built once per step "
+          "with 'reuse preconditioner'.");
+        prm.declare_entry("GMRES restart length",
+                          "28",
+                          Patterns::Integer(1),
+                          "Krylov vectors of 'linear solver = GMRES' before "
+                          "it restarts [-] (deal.II's default 28).");
+        prm.declare_entry("AMG smoother sweeps",
+                          "2",
+                          Patterns::Integer(1),
+                          "Smoother sweeps per level of the ML algebraic "
+                          "multigrid [-].");
+        prm.declare_entry("AMG aggregation threshold",
+                          "0.02",
+                          Patterns::Double(0),
+                          "Strength-of-connection threshold of ML's "
+                          "aggregation [-]: couplings weaker than it "
+                          "relative to the diagonals are dropped.");
+        prm.declare_entry("ILU fill level",
+                          "0",
+                          Patterns::Integer(0),
+                          "Fill level k of ILU(k) for 'preconditioner = "
+                          "ILU' [-].");
         prm.declare_entry(
           "AMG smoother",
           "Chebyshev",
@@ -405,6 +448,13 @@ namespace Talus
       linear_solver_type   = prm.get("linear solver");
       reuse_preconditioner = prm.get_bool("reuse preconditioner");
       amg_smoother         = prm.get("AMG smoother");
+      direct_package =
+        prm.get("direct solver") == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu";
+      preconditioner_type = prm.get("preconditioner");
+      gmres_restart       = prm.get_integer("GMRES restart length");
+      amg_sweeps          = prm.get_integer("AMG smoother sweeps");
+      amg_threshold       = prm.get_double("AMG aggregation threshold");
+      ilu_fill            = prm.get_integer("ILU fill level");
       {
         const std::string s = prm.get("saddle-point solver");
         block_saddle_point =
@@ -503,6 +553,7 @@ namespace Talus
         grid.mpi_communicator,
         grid.locally_relevant_dofs);
       amg.reset();
+      ifpack_preconditioner.reset();
       direct_solver.reset();
       direct_problem.reset();
       matrix.reinit(grid.locally_owned_dofs,
@@ -825,6 +876,7 @@ namespace Talus
       // factorisation of the step pivots anew (solve_with_tangent())
       factorisation.reset();
       amg.reset();
+      ifpack_preconditioner.reset();
       amg_current     = false;
       direct_pivoting = true;
       std::vector<dealii::types::global_dof_index> blocks;

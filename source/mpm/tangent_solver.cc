@@ -30,9 +30,11 @@
 #include <Amesos.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_MultiVector.h>
+#include <Epetra_Vector.h>
 #include <Sacado.hpp>
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -45,6 +47,16 @@ namespace Talus
 {
   namespace MPM
   {
+    namespace
+    {
+      /** An Epetra linear problem that owns its operator. */
+      struct OwningLinearProblem : public Epetra_LinearProblem
+      {
+        std::unique_ptr<Epetra_CrsMatrix> matrix;
+      };
+    } // namespace
+
+
     template <int dim>
     unsigned int
     MPMSolver<dim>::solve_linear(dealii::TrilinosWrappers::MPI::Vector &x)
@@ -61,13 +73,35 @@ namespace Talus
     MPMSolver<dim>::build_amg()
     {
       dealii::TimerOutput::Scope s(timer, "AMG setup");
+      if (preconditioner_type == "ILU")
+        {
+          auto ilu =
+            std::make_unique<dealii::TrilinosWrappers::PreconditionILU>();
+          ilu->initialize(
+            matrix,
+            dealii::TrilinosWrappers::PreconditionILU::AdditionalData(
+              ilu_fill));
+          ifpack_preconditioner = std::move(ilu);
+          return;
+        }
+      if (preconditioner_type == "Jacobi")
+        {
+          auto jacobi =
+            std::make_unique<dealii::TrilinosWrappers::PreconditionJacobi>();
+          jacobi->initialize(matrix);
+          ifpack_preconditioner = std::move(jacobi);
+          return;
+        }
+      AssertThrow(preconditioner_type == "AMG",
+                  dealii::ExcMessage("unknown preconditioner '" +
+                                     preconditioner_type + "'"));
       dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
       data.constant_modes        = constant_modes;
       data.elliptic              = true;
       data.higher_order_elements = false;
-      data.smoother_sweeps       = 2;
+      data.smoother_sweeps       = amg_sweeps;
       data.smoother_type         = amg_smoother.c_str();
-      data.aggregation_threshold = 0.02;
+      data.aggregation_threshold = amg_threshold;
       // ML parameters with the rigid body modes (translations and
       // rotations) as near null space; deal.II 9.4's AdditionalData only
       // takes the translations.
@@ -112,6 +146,86 @@ namespace Talus
 
 
     template <int dim>
+    bool
+    MPMSolver<dim>::preconditioner_built() const
+    {
+      return preconditioner_type == "AMG" ? amg != nullptr :
+                                            ifpack_preconditioner != nullptr;
+    }
+
+
+    template <int dim>
+    const dealii::TrilinosWrappers::PreconditionBase &
+    MPMSolver<dim>::preconditioner() const
+    {
+      Assert(preconditioner_built(), dealii::ExcInternalError());
+      if (preconditioner_type == "AMG")
+        return *amg;
+      return *ifpack_preconditioner;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::print_linear_diagnostics(
+      const dealii::SolverControl                 &control,
+      const dealii::TrilinosWrappers::MPI::Vector &b,
+      const std::string                           &label) const
+    {
+      const MPI_Comm comm = grid.mpi_communicator;
+      // the diagonal of the rows that are not constrained
+      std::vector<double> diagonal;
+      for (const auto i : grid.locally_owned_dofs)
+        if (!constraints.is_constrained(i))
+          diagonal.push_back(matrix.diag_element(i));
+      const double d_max = dealii::Utilities::MPI::max(
+        diagonal.empty() ? 0. :
+                           *std::max_element(diagonal.begin(), diagonal.end()),
+        comm);
+      const double d_min = dealii::Utilities::MPI::min(
+        diagonal.empty() ? d_max :
+                           *std::min_element(diagonal.begin(), diagonal.end()),
+        comm);
+      unsigned int n_small = 0, n_negative = 0;
+      for (const double d : diagonal)
+        {
+          n_small += std::abs(d) < 1e-6 * d_max;
+          n_negative += d <= 0.;
+        }
+      n_small    = dealii::Utilities::MPI::sum(n_small, comm);
+      n_negative = dealii::Utilities::MPI::sum(n_negative, comm);
+      const unsigned int n_rows =
+        dealii::Utilities::MPI::sum<unsigned int>(diagonal.size(), comm);
+      // non-symmetry |(A - A^T) v| / |A v| for v = b
+      Epetra_Vector Av(matrix.trilinos_matrix().RangeMap()),
+        ATv(matrix.trilinos_matrix().DomainMap());
+      const Epetra_MultiVector &v = b.trilinos_vector();
+      matrix.trilinos_matrix().Multiply(false, v, Av);
+      matrix.trilinos_matrix().Multiply(true, v, ATv);
+      double norm_Av = 0., norm_diff = 0.;
+      Av.Norm2(&norm_Av);
+      ATv.Update(1., Av, -1.);
+      ATv.Norm2(&norm_diff);
+      const auto &history = control.get_history_data();
+      if (dealii::Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      std::cerr << "    Krylov failure (" << label << ", " << linear_solver_type
+                << ", " << preconditioner_type << "): |b| " << b.l2_norm()
+                << ", target " << control.tolerance() << ", last residual "
+                << control.last_value() << " after " << control.last_step()
+                << " iterations\n      free rows " << n_rows << ", diagonal "
+                << d_min << " .. " << d_max << ", " << n_small
+                << " below 1e-6 max, " << n_negative
+                << " not positive; |(A - A^T) b| / |A b| "
+                << norm_diff / std::max(norm_Av, 1e-300) << "\n      history:";
+      const std::size_t stride = std::max<std::size_t>(1, history.size() / 20);
+      for (std::size_t k = 0; k < history.size(); k += stride)
+        std::cerr << ' ' << k << ':' << history[k];
+      std::cerr << std::endl;
+    }
+
+
+    template <int dim>
     unsigned int
     MPMSolver<dim>::solve_with_tangent(
       dealii::TrilinosWrappers::MPI::Vector       &x,
@@ -124,17 +238,35 @@ namespace Talus
             factorisation->solve(x, b);
           else
             {
+              const bool mumps = direct_package == "Amesos_Mumps";
               if (!direct_solver)
                 {
-                  direct_problem = std::make_unique<Epetra_LinearProblem>();
-                  direct_problem->SetOperator(
-                    const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
+                  if (mumps)
+                    {
+                      // MUMPS releases its factors through the operator's
+                      // communicator, also when the solver is destroyed
+                      // after the matrix: the problem keeps its own copy
+                      // (refreshed before each factorisation)
+                      auto problem    = std::make_unique<OwningLinearProblem>();
+                      problem->matrix = std::make_unique<Epetra_CrsMatrix>(
+                        matrix.trilinos_matrix());
+                      problem->SetOperator(problem->matrix.get());
+                      direct_problem = std::move(problem);
+                    }
+                  else
+                    {
+                      direct_problem = std::make_unique<Epetra_LinearProblem>();
+                      direct_problem->SetOperator(
+                        const_cast<Epetra_CrsMatrix *>(
+                          &matrix.trilinos_matrix()));
+                    }
                   Amesos factory;
                   direct_solver.reset(
-                    factory.Create("Amesos_Klu", *direct_problem));
+                    factory.Create(direct_package.c_str(), *direct_problem));
                   AssertThrow(direct_solver != nullptr,
-                              dealii::ExcMessage(
-                                "Amesos KLU is not available"));
+                              dealii::ExcMessage(direct_package +
+                                                 " is not available in this "
+                                                 "Trilinos"));
                   // Later factorisations of the step reuse the pivot
                   // sequence of its first (klu_refactor); Amesos falls back
                   // to a factorisation with pivoting if that fails or if
@@ -147,8 +279,8 @@ namespace Talus
                   direct_solver->SetParameters(parameters);
                   AssertThrow(direct_solver->SymbolicFactorization() == 0,
                               dealii::ExcMessage(
-                                "the symbolic factorisation of the tangent "
-                                "(Amesos KLU) failed"));
+                                "the symbolic factorisation of the tangent (" +
+                                direct_package + ") failed"));
                 }
               direct_problem->SetLHS(&x.trilinos_vector());
               direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
@@ -164,6 +296,9 @@ namespace Talus
                 parameters.set("Refactorize", on);
                 direct_solver->SetParameters(parameters);
               };
+              if (mumps)
+                *static_cast<OwningLinearProblem &>(*direct_problem).matrix =
+                  matrix.trilinos_matrix();
               if (direct_pivoting)
                 refactorize(false);
               const int factorised = direct_solver->NumericFactorization();
@@ -172,15 +307,15 @@ namespace Talus
               direct_pivoting = false;
               AssertThrow(factorised == 0,
                           dealii::ExcMessage(
-                            "the factorisation of the tangent (Amesos KLU) "
-                            "failed with error code " +
+                            "the factorisation of the tangent (" +
+                            direct_package + ") failed with error code " +
                             std::to_string(factorised) +
                             " (a singular tangent?)"));
               const int solve_status = direct_solver->Solve();
               AssertThrow(solve_status == 0,
                           dealii::ExcMessage(
-                            "the direct solve with the tangent (Amesos KLU) "
-                            "failed with error code " +
+                            "the direct solve with the tangent (" +
+                            direct_package + ") failed with error code " +
                             std::to_string(solve_status)));
             }
           constraints.distribute(x);
@@ -191,7 +326,7 @@ namespace Talus
       // and reused by the later ones (the tangent changes little); if the
       // Krylov solver fails with a reused hierarchy, it is rebuilt once.
       bool fresh = false;
-      if (!amg || !reuse_preconditioner || !amg_current)
+      if (!preconditioner_built() || !reuse_preconditioner || !amg_current)
         {
           build_amg();
           amg_current = true;
@@ -200,11 +335,13 @@ namespace Talus
 
       const auto krylov = [&](dealii::SolverControl &control) {
         x = 0.;
+        const dealii::TrilinosWrappers::PreconditionBase &prec =
+          preconditioner();
         if (linear_solver_type == "CG")
           {
             dealii::SolverCG<dealii::TrilinosWrappers::MPI::Vector> solver(
               control);
-            solver.solve(matrix, x, b, *amg);
+            solver.solve(matrix, x, b, prec);
           }
         else
           {
@@ -215,23 +352,38 @@ namespace Talus
             dealii::SolverGMRES<
               dealii::TrilinosWrappers::MPI::Vector>::AdditionalData data;
             data.right_preconditioning = true;
+            data.max_n_tmp_vectors     = gmres_restart + 2;
             dealii::SolverGMRES<dealii::TrilinosWrappers::MPI::Vector> solver(
               control, data);
-            solver.solve(matrix, x, b, *amg);
+            solver.solve(matrix, x, b, prec);
           }
       };
       dealii::SolverControl control(max_linear_iterations,
                                     linear_tolerance * b.l2_norm());
+      const bool debug = std::getenv("TALUS_DEBUG_LINEAR") != nullptr;
+      if (debug)
+        control.enable_history_data();
       try
         {
-          krylov(control);
+          try
+            {
+              krylov(control);
+            }
+          catch (const dealii::SolverControl::NoConvergence &)
+            {
+              if (fresh)
+                throw;
+              if (debug)
+                print_linear_diagnostics(control, b, "reused preconditioner");
+              build_amg();
+              krylov(control);
+            }
         }
       catch (const dealii::SolverControl::NoConvergence &)
         {
-          if (fresh)
-            throw;
-          build_amg();
-          krylov(control);
+          if (debug)
+            print_linear_diagnostics(control, b, "fresh preconditioner");
+          throw;
         }
       if (std::getenv("TALUS_DEBUG_LINEAR") &&
           dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) == 0)
@@ -391,7 +543,9 @@ namespace Talus
         {
           factorisation =
             std::make_unique<dealii::TrilinosWrappers::SolverDirect>(
-              factorisation_control);
+              factorisation_control,
+              dealii::TrilinosWrappers::SolverDirect::AdditionalData(
+                false, direct_package));
           dealii::TimerOutput::Scope s(timer, "factorisation");
           factorisation->initialize(matrix);
         }
@@ -409,7 +563,8 @@ namespace Talus
               grid.locally_owned_dofs, owned};
             bool fresh_amg = false;
             if (linear_solver_type != "direct" &&
-                (!amg || !reuse_preconditioner || !amg_current))
+                (!preconditioner_built() || !reuse_preconditioner ||
+                 !amg_current))
               {
                 build_amg();
                 amg_current = true;
@@ -430,7 +585,7 @@ namespace Talus
               if (linear_solver_type == "direct")
                 factorisation->solve(dst, src);
               else
-                amg->vmult(dst, src);
+                this->preconditioner().vmult(dst, src);
               constraints.set_zero(dst);
             };
             struct BlockOperator
@@ -580,14 +735,21 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-#define TALUS_INSTANTIATE(dim)                              \
-  template unsigned int MPMSolver<dim>::solve_linear(       \
-    dealii::TrilinosWrappers::MPI::Vector &x);              \
-  template void         MPMSolver<dim>::build_amg();        \
-  template unsigned int MPMSolver<dim>::solve_with_tangent( \
-    dealii::TrilinosWrappers::MPI::Vector       &x,         \
-    const dealii::TrilinosWrappers::MPI::Vector &b);        \
-  template unsigned int MPMSolver<dim>::solve_saddle_point( \
+#define TALUS_INSTANTIATE(dim)                                \
+  template unsigned int MPMSolver<dim>::solve_linear(         \
+    dealii::TrilinosWrappers::MPI::Vector &x);                \
+  template void MPMSolver<dim>::build_amg();                  \
+  template bool MPMSolver<dim>::preconditioner_built() const; \
+  template const dealii::TrilinosWrappers::PreconditionBase               & \
+  MPMSolver<dim>::preconditioner() const;       \
+  template void MPMSolver<dim>::print_linear_diagnostics(     \
+    const dealii::SolverControl &,                            \
+    const dealii::TrilinosWrappers::MPI::Vector &,            \
+    const std::string &) const;                               \
+  template unsigned int MPMSolver<dim>::solve_with_tangent(   \
+    dealii::TrilinosWrappers::MPI::Vector       &x,           \
+    const dealii::TrilinosWrappers::MPI::Vector &b);          \
+  template unsigned int MPMSolver<dim>::solve_saddle_point(   \
     dealii::TrilinosWrappers::MPI::Vector &x);
 
     TALUS_INSTANTIATE(2)

@@ -871,11 +871,30 @@ namespace Talus
       solve_saddle_point(dealii::TrilinosWrappers::MPI::Vector &increment);
 
       /**
-       * Build the ML AMG hierarchy of the tangent @p matrix with the rigid
-       * body modes as near null space (into amg).
+       * Build the preconditioner of the tangent @p matrix: the ML AMG
+       * hierarchy with the rigid body modes as near null space (into amg),
+       * or the Ifpack ILU or Jacobi preconditioner ('preconditioner').
        */
       void
       build_amg();
+
+      /** Whether the preconditioner of 'preconditioner' exists. */
+      bool
+      preconditioner_built() const;
+
+      /** The preconditioner of 'preconditioner' (built). */
+      const dealii::TrilinosWrappers::PreconditionBase &
+      preconditioner() const;
+
+      /**
+       * With TALUS_DEBUG_LINEAR: the convergence history of a failed
+       * Krylov solve of A x = b and the tangent's diagonal range and
+       * non-symmetry, on stderr.
+       */
+      void
+      print_linear_diagnostics(const dealii::SolverControl &control,
+                               const dealii::TrilinosWrappers::MPI::Vector &b,
+                               const std::string &label) const;
 
       /**
        * Solve A x = b with the assembled tangent @p matrix (direct or
@@ -1026,6 +1045,18 @@ namespace Talus
       std::string  linear_solver_type;
       double       linear_tolerance;
       unsigned int max_linear_iterations;
+      /** Amesos package of 'linear solver = direct' ("Amesos_Klu" or
+       * "Amesos_Mumps"). */
+      std::string direct_package = "Amesos_Klu";
+      /** Preconditioner of CG and GMRES: "AMG", "ILU" or "Jacobi". */
+      std::string preconditioner_type = "AMG";
+      /** GMRES restart length (deal.II keeps it + 2 vectors). */
+      unsigned int gmres_restart = 28;
+      /** ML smoother sweeps per level and aggregation threshold. */
+      unsigned int amg_sweeps    = 2;
+      double       amg_threshold = 0.02;
+      /** Fill level (ILU(k)) of 'preconditioner = ILU'. */
+      unsigned int ilu_fill = 0;
 
       // Step data.
       double time;
@@ -1050,6 +1081,10 @@ namespace Talus
       std::vector<dealii::IndexSet>                              slip_dofs;
       dealii::TrilinosWrappers::SparseMatrix                     matrix;
       std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
+      /** The Ifpack preconditioner of 'preconditioner = ILU' or 'Jacobi'
+       * (built like the AMG hierarchy: once per step, in build_amg()). */
+      std::unique_ptr<dealii::TrilinosWrappers::PreconditionBase>
+           ifpack_preconditioner;
       bool amg_current = false;
       /** Whether a boundary particle's contact state changed in the last
        * assembly of the matrix (the AMG hierarchy is then rebuilt). */
