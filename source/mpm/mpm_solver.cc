@@ -271,6 +271,7 @@ namespace Talus
                           Patterns::Double(0),
                           "Relative residual reduction of the iterative "
                           "linear solver [-].");
+        EisenstatWalkerForcing::declare_parameters(prm);
         prm.declare_entry("maximum linear iterations",
                           "2000",
                           Patterns::Integer(1),
@@ -461,7 +462,14 @@ namespace Talus
           s == "block preconditioned" ||
           (s == "automatic" && linear_solver_type != "direct");
       }
-      linear_tolerance      = get_positive(prm, sub, "linear solver tolerance");
+      linear_tolerance = get_positive(prm, sub, "linear solver tolerance");
+      linear_forcing.parse_parameters(prm, sub);
+      if (linear_forcing.enabled() && linear_solver_type == "direct")
+        InputFile::reject(sub,
+                          "linear solver forcing",
+                          "Eisenstat-Walker",
+                          "'fixed' with 'linear solver = direct' (inexact "
+                          "Newton needs an iterative linear solver)");
       max_linear_iterations = prm.get_integer("maximum linear iterations");
       abort_on_lost_points  = prm.get_bool("abort on lost material points");
       use_fbar      = prm.get("volumetric locking treatment") == "F-bar";

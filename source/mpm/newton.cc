@@ -60,6 +60,7 @@ namespace Talus
             bp.frozen = -1;
         }
       contact_targets.clear();
+      linear_forcing.start();
       contact_jump_active   = false;
       displacement          = du;
       double last_increment = 0.;
@@ -340,9 +341,17 @@ namespace Talus
 
           unsigned int n_linear  = 0;
           residual_at_correction = r;
+          // inexact Newton: solve loosely while far from the solution
+          const double krylov_tolerance =
+            linear_forcing.enabled() ?
+              linear_forcing.next(r,
+                                  std::max(residual_tolerance * reference,
+                                           absolute_residual_tolerance),
+                                  linear_tolerance) :
+              linear_tolerance;
           try
             {
-              n_linear = solve_linear(increment);
+              n_linear = solve_linear(increment, krylov_tolerance);
             }
           catch (const dealii::SolverControl::NoConvergence &e)
             {

@@ -59,12 +59,13 @@ namespace Talus
 
     template <int dim>
     unsigned int
-    MPMSolver<dim>::solve_linear(dealii::TrilinosWrappers::MPI::Vector &x)
+    MPMSolver<dim>::solve_linear(dealii::TrilinosWrappers::MPI::Vector &x,
+                                 const double relative_tolerance)
     {
       dealii::TimerOutput::Scope scope(timer, "linear solver");
       if (with_lagrange_multipliers)
         return solve_saddle_point(x);
-      return solve_with_tangent(x, residual);
+      return solve_with_tangent(x, residual, relative_tolerance);
     }
 
 
@@ -229,7 +230,8 @@ namespace Talus
     unsigned int
     MPMSolver<dim>::solve_with_tangent(
       dealii::TrilinosWrappers::MPI::Vector       &x,
-      const dealii::TrilinosWrappers::MPI::Vector &b)
+      const dealii::TrilinosWrappers::MPI::Vector &b,
+      const double                                 relative_tolerance)
     {
       x = 0.;
       if (linear_solver_type == "direct")
@@ -359,7 +361,7 @@ namespace Talus
           }
       };
       dealii::SolverControl control(max_linear_iterations,
-                                    linear_tolerance * b.l2_norm());
+                                    relative_tolerance * b.l2_norm());
       const bool debug = std::getenv("TALUS_DEBUG_LINEAR") != nullptr;
       if (debug)
         control.enable_history_data();
@@ -491,7 +493,7 @@ namespace Talus
         };
       const Operator schur{[&](Vector &dst, const Vector &src) {
         spread(src, t);
-        n_iterations += solve_with_tangent(z, t);
+        n_iterations += solve_with_tangent(z, t, linear_tolerance);
         multiplier_rows(dst, src, interpolate(z));
       }};
       // Preconditioner: S with A replaced by its diagonal and only the
@@ -690,7 +692,7 @@ namespace Talus
       try
         {
           // x0 = A^-1 r and the right-hand side s - D N x0
-          n_iterations += solve_with_tangent(x, residual);
+          n_iterations += solve_with_tangent(x, residual, linear_tolerance);
           const auto Nx0 = interpolate(x);
           Vector     y(owned, comm), rhs(owned, comm);
           for (unsigned int p = 0; p < lm.size(); ++p)
@@ -708,7 +710,7 @@ namespace Talus
           gmres.solve(schur, y, rhs, preconditioner);
           // x = x0 + A^-1 N^T D y
           spread(y, t);
-          n_iterations += solve_with_tangent(z, t);
+          n_iterations += solve_with_tangent(z, t, linear_tolerance);
           x += z;
           if (std::getenv("TALUS_DEBUG_NEWTON"))
             {
@@ -737,7 +739,7 @@ namespace Talus
     // Explicit instantiation of the members defined in this file.
 #define TALUS_INSTANTIATE(dim)                                \
   template unsigned int MPMSolver<dim>::solve_linear(         \
-    dealii::TrilinosWrappers::MPI::Vector &x);                \
+    dealii::TrilinosWrappers::MPI::Vector &x, const double);  \
   template void MPMSolver<dim>::build_amg();                  \
   template bool MPMSolver<dim>::preconditioner_built() const; \
   template const dealii::TrilinosWrappers::PreconditionBase               & \
@@ -748,7 +750,8 @@ namespace Talus
     const std::string &) const;                               \
   template unsigned int MPMSolver<dim>::solve_with_tangent(   \
     dealii::TrilinosWrappers::MPI::Vector       &x,           \
-    const dealii::TrilinosWrappers::MPI::Vector &b);          \
+    const dealii::TrilinosWrappers::MPI::Vector &b,           \
+    const double);                                            \
   template unsigned int MPMSolver<dim>::solve_saddle_point(   \
     dealii::TrilinosWrappers::MPI::Vector &x);
 

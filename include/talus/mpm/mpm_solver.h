@@ -1,6 +1,7 @@
 #ifndef talus_mpm_mpm_solver_h
 #define talus_mpm_mpm_solver_h
 
+#include <talus/base/eisenstat_walker.h>
 #include <talus/base/time_control.h>
 #include <talus/boundaries/boundary_particles.h>
 #include <talus/materials/constitutive_model.h>
@@ -850,9 +851,13 @@ namespace Talus
        * Newton correction: solve the tangent system for @p increment (and,
        * with Lagrange multiplier boundaries, the multiplier corrections
        * dlambda of the boundary points); returns the linear iterations.
+       * The Krylov solve of the displacement system stops at the relative
+       * residual @p relative_tolerance (the multipliers' inner solves at
+       * 'linear solver tolerance').
        */
       unsigned int
-      solve_linear(dealii::TrilinosWrappers::MPI::Vector &increment);
+      solve_linear(dealii::TrilinosWrappers::MPI::Vector &increment,
+                   const double                           relative_tolerance);
 
       /**
        * Saddle-point system of the Lagrange multiplier boundaries,
@@ -899,11 +904,13 @@ namespace Talus
       /**
        * Solve A x = b with the assembled tangent @p matrix (direct or
        * AMG-preconditioned Krylov, see 'Linear solver'); returns the
-       * linear iterations.
+       * linear iterations. A Krylov solve stops at the relative residual
+       * @p relative_tolerance.
        */
       unsigned int
       solve_with_tangent(dealii::TrilinosWrappers::MPI::Vector       &x,
-                         const dealii::TrilinosWrappers::MPI::Vector &b);
+                         const dealii::TrilinosWrappers::MPI::Vector &b,
+                         const double relative_tolerance);
 
       /** Whether a boundary point of this step uses Lagrange multipliers
        * (all ranks). */
@@ -1041,10 +1048,12 @@ namespace Talus
       double       absolute_residual_tolerance;
       double       increment_tolerance;
       /** 'increment test = estimated error' (else 'last correction'). */
-      bool         estimated_increment_error = false;
-      std::string  linear_solver_type;
-      double       linear_tolerance;
-      unsigned int max_linear_iterations;
+      bool        estimated_increment_error = false;
+      std::string linear_solver_type;
+      double      linear_tolerance;
+      /** Inexact Newton: the tolerance of each Krylov solve. */
+      EisenstatWalkerForcing linear_forcing;
+      unsigned int           max_linear_iterations;
       /** Amesos package of 'linear solver = direct' ("Amesos_Klu" or
        * "Amesos_Mumps"). */
       std::string direct_package = "Amesos_Klu";
