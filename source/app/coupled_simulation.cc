@@ -7,6 +7,7 @@
 #include <talus/app/structure_models/factory.h>
 #include <talus/app/structure_models/model.h>
 #include <talus/base/input.h>
+#include <talus/base/memory_usage.h>
 #include <talus/base/time_control.h>
 #include <talus/coupling/coupling_parameters.h>
 #include <talus/coupling/gauss_seidel_coupling.h>
@@ -624,6 +625,10 @@ namespace Talus
         total_restarts += result.restarts;
 
         const auto lost = mpm.take_losses();
+        // the message of a stop by lost points: the run stops at the end
+        // of this step (its rows and output written), so that its
+        // checkpoint continues as a scheduled one would
+        std::string lost_points_stop;
         if (lost.n_points > 0)
           {
             std::ostringstream msg;
@@ -632,11 +637,11 @@ namespace Talus
                 << " kg left the background grid at t = " << time_control.time
                 << " s";
             if (mpm.solver().abort_on_lost_points)
-              throw ExcSimulationFailed(msg.str() +
-                                        "; 'abort on lost material points' "
-                                        "is set. Enlarge the background "
-                                        "grid.");
-            pcout << "  Warning: " << msg.str() << '\n';
+              lost_points_stop = msg.str() +
+                                 "; 'abort on lost material points' is set. "
+                                 "Enlarge the background grid.";
+            else
+              pcout << "  Warning: " << msg.str() << '\n';
           }
         for (unsigned int b = 0; b < lost.boundary_particles.size(); ++b)
           if (lost.boundary_particles[b] > 0)
@@ -748,6 +753,18 @@ namespace Talus
                       << "  wall " << std::setprecision(3) << wall << " s\n";
               }
           }
+        if (!lost_points_stop.empty())
+          {
+            if (checkpointing.enabled())
+              lost_points_stop +=
+                " The state after this step (" +
+                std::to_string(time_control.step) +
+                ", without the lost points) is in the checkpoint <" +
+                write_checkpoint("failure: material points lost") +
+                ">: resume from it with 'abort on lost material points = "
+                "false' to continue without them.";
+            throw ExcSimulationFailed(lost_points_stop);
+          }
         if (checkpointing.enabled() && !time_control.finished() &&
             checkpointing.due(time_control.step, communicator))
           write_checkpoint("scheduled");
@@ -789,6 +806,12 @@ namespace Talus
             << (change < 1e-14 ? std::string("< 1e-14") :
                                  std::to_string(change))
             << '\n';
+    }
+    // (not in test mode: the test outputs do not depend on the machine)
+    {
+      const std::string memory = memory_summary(communicator);
+      if (!test_mode)
+        pcout << memory;
     }
 
     if (std::getenv("TALUS_DEBUG_COUPLING") && root)
