@@ -12,8 +12,9 @@
 #            friction, a wall of boundary particles, 400 points), 5 ms
 #   coupled  tests/checkpoint/coupled_string.prm on a coarser grid (35 x 15
 #            cells, 50 points) and 10 string elements, IQN-ILS, 5 ms
-# Both write a checkpoint every 1000 steps (keep 2) and VTU output every
-# 500 steps, so that these paths are part of the measurement; the
+# Both write a checkpoint every 1000 steps (keep 2; the environment
+# variable CHECKPOINT_EVERY sets another interval, 0: none) and VTU
+# output every 500 steps, so that these paths are part of the measurement; the
 # coupled case has no verification (its energy balance drifts beyond
 # 1 % over 10^4 steps, which is not what is measured here).
 # 10^4 steps take about 3 min (mpm) and 6 min (coupled) on one core.
@@ -25,6 +26,7 @@ while [ $# -gt 0 ]; do
   if [ "$1" = "--" ]; then work=$2; shift 2; else steps_list+=("$1"); shift; fi
 done
 [ ${#steps_list[@]} -gt 0 ] || steps_list=(1000 10000)
+every=${CHECKPOINT_EVERY:-1000}
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 tests=$here/../../tests/checkpoint
 mkdir -p "$work"
@@ -39,14 +41,14 @@ make_case() {
     sed "s/set end time = .*/set end time = $end/;
          s/set output interval = .*/set output interval = $interval/;
          s/set test mode = true/set test mode = false/;
-         s/set every steps = 10/set every steps = 1000/" "$tests/block_floor.prm"
+         s/set every steps = 10/set every steps = $every/" "$tests/block_floor.prm"
   else
     sed "s/set end time = .*/set end time = $end/;
          s/set output interval = .*/set output interval = $interval/;
          s/set test mode = true/set test mode = false/;
          s/set subdivisions = 70, 30/set subdivisions = 35, 15/;
          s/set elements per member = 20/set elements per member = 10/;
-         s/set every steps = 10/set every steps = 1000/;
+         s/set every steps = 10/set every steps = $every/;
          /subsection Verification/,/^  end/d" "$tests/coupled_string.prm"
   fi
 }

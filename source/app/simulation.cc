@@ -729,20 +729,18 @@ namespace Talus
     const std::string loop_tag = "talus-time-loop";
     // Write a checkpoint of the committed state; returns its path.
     const auto write_checkpoint = [&](const std::string &reason) {
-      std::string csv  = series.contents();
-      const auto  path = checkpointing.write(
+      const auto path = checkpointing.write(
         time_control.step,
         time_control.time,
         reason,
         [&](const std::string &directory) {
           problem.save_checkpoint(directory);
+          // (a file copy: the memory does not grow with the series)
+          series.copy_to(directory + "/time_series.csv");
           if (root)
             IO::Checkpointing::save_archive(directory + "/time_loop",
                                             loop_tag,
-                                            [&](auto &archive) {
-                                              archive &csv;
-                                              loop_state(archive);
-                                            });
+                                            loop_state);
         },
         communicator);
       pcout << "  checkpoint (" << reason << ") at step " << time_control.step
@@ -751,17 +749,13 @@ namespace Talus
     };
     if (resuming)
       {
-        std::string csv;
         IO::Checkpointing::load_archive(resume_path,
                                         resume_path + "/time_loop",
                                         loop_tag,
-                                        [&](auto &archive) {
-                                          archive &csv;
-                                          loop_state(archive);
-                                        });
+                                        loop_state);
         series.resume(output.directory() + "/time_series.csv",
                       communicator,
-                      csv,
+                      resume_path + "/time_series.csv",
                       time_control.error_control.enabled());
         output.write_index(communicator);
         pcout << "  resumed from " << resume_path << " at step "
