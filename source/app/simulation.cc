@@ -990,6 +990,18 @@ namespace Talus
                 "false' to continue without them.";
             throw ExcSimulationFailed(lost_points_stop);
           }
+        if (checkpointing.stop_due(communicator) && !time_control.finished())
+          {
+            std::ostringstream msg;
+            msg << "The run stopped at its wall-time limit ('stop after "
+                   "minutes' = "
+                << checkpointing.stop_minutes()
+                << " in subsection <Checkpoint>) after step "
+                << time_control.step << ", t = " << time_control.time << " s.";
+            msg << " The state after this step is in the checkpoint <"
+                << write_checkpoint("wall-time limit") << ">: resume from it.";
+            throw ExcSimulationFailed(msg.str());
+          }
         if (!time_control.finished())
           balance_load();
         if (checkpointing.enabled() && !time_control.finished() &&

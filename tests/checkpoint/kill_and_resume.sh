@@ -15,6 +15,8 @@
 #            run whose Newton iteration fails: clear errors, non-zero exit
 #   coupled_errors  (a coupled INPUT) a checkpoint of another structure,
 #            accelerator or problem: clear errors, non-zero exit
+#   wall_limit  stopped by 'stop after minutes' after step 1, the
+#            checkpoint named; resumed from it: identical to 1e-10
 #   lost_points  (an INPUT with 'abort on lost material points = true')
 #            the run stops with a checkpoint and names it; resumed from it
 #            without the abort: identical to the run without the abort
@@ -264,6 +266,33 @@ case $mode in
     grep "resumed from" run/log.txt || fail "not resumed"
     python3 "$here/compare_runs.py" ref/output run/output 1e-10 \
       "stopped by lost points and resumed" 18,19 "$csv_files" ||
+      fail "resumed run differs"
+    ;;
+  wall_limit)
+    # 'stop after minutes' of 60 microseconds: the run stops after its
+    # first step with a checkpoint and names it; resumed from it without
+    # the limit, identical to the uninterrupted run
+    reference
+    sed 's/set keep = 2/set keep = 2\n  set stop after minutes = 1e-6/' \
+      case.prm > limited.prm
+    mkdir -p run
+    ( cd run && timeout 300 "$talus" ../limited.prm > log_stopped.txt 2>&1 )
+    code=$?
+    tail -n 1 run/log_stopped.txt
+    [ $code -eq 1 ] || fail "exit code $code of the run stopped by its limit"
+    grep -q "stopped at its wall-time limit" run/log_stopped.txt ||
+      fail "no message of the wall-time limit"
+    checkpoint=$(sed -n 's/.*The state after this step is in the checkpoint <\([^>]*\)>.*/\1/p' \
+      run/log_stopped.txt | head -n 1)
+    [ "$checkpoint" = output/checkpoints/checkpoint-00000001 ] ||
+      fail "the message names <$checkpoint>, not the checkpoint of step 1"
+    grep -q "^key reason = wall-time limit" "run/$checkpoint/manifest" ||
+      fail "no checkpoint of the wall-time limit"
+    run run 1 --resume "$checkpoint" ||
+      { cat run/log.txt; fail "the resumed run failed"; }
+    grep "resumed from" run/log.txt || fail "not resumed"
+    python3 "$here/compare_runs.py" ref/output run/output 1e-10 \
+      "stopped by the wall-time limit and resumed" 18,19 "$csv_files" ||
       fail "resumed run differs"
     ;;
   *) fail "unknown mode $mode" ;;
