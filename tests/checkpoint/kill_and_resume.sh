@@ -229,6 +229,21 @@ case $mode in
       failing.prm
     [ -f output/checkpoints/checkpoint-00000000/structure_state ] ||
       fail "no failure checkpoint"
+    # ... from which the run with the parameters that work continues (for
+    # 10 steps: the end time is not part of the checkpoint; without the
+    # verification, whose mean coupling iterations a run this short with
+    # the halved first steps exceeds)
+    sed 's/set end time = .*/set end time = 0.05/;
+         /subsection Verification/,/^  end/d' case.prm > short.prm
+    timeout 300 "$talus" --resume output/checkpoints/checkpoint-00000000 \
+      short.prm > log_failure_resumed.txt 2>&1 ||
+      { tail -n 5 log_failure_resumed.txt;
+        fail "the run resumed from the failure checkpoint failed"; }
+    grep -q "resumed from output/checkpoints/checkpoint-00000000 at step 0" \
+      log_failure_resumed.txt || fail "not resumed from the failure checkpoint"
+    grep -q "^Done:" log_failure_resumed.txt ||
+      fail "the resumed run did not finish"
+    echo "ok: resumed from the failure checkpoint and finished"
     ;;
   lost_points)
     # (an INPUT with 'abort on lost material points = true') the run
