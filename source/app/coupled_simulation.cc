@@ -7,6 +7,7 @@
 #include <talus/app/structure_models/factory.h>
 #include <talus/app/structure_models/model.h>
 #include <talus/base/input.h>
+#include <talus/base/memory_usage.h>
 #include <talus/base/time_control.h>
 #include <talus/coupling/coupling_parameters.h>
 #include <talus/coupling/gauss_seidel_coupling.h>
@@ -31,8 +32,10 @@
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 
 namespace Talus
@@ -62,14 +65,16 @@ namespace Talus
       return {!v.empty(), t};
     }
 
-    /** The text of the file @p filename (empty if it cannot be read). */
-    std::string
-    file_contents(const std::string &filename)
+    /** Copy the file @p from to @p to (replacing it); false if that
+     * fails. A checkpoint keeps the CSV files as copies, so that the memory
+     * of a long run does not grow with them. */
+    bool
+    copy_file(const std::string &from, const std::string &to)
     {
-      std::ifstream      in(filename, std::ios::binary);
-      std::ostringstream text;
-      text << in.rdbuf();
-      return text.str();
+      std::error_code error;
+      std::filesystem::copy_file(
+        from, to, std::filesystem::copy_options::overwrite_existing, error);
+      return !error;
     }
   } // namespace
 
@@ -460,7 +465,6 @@ namespace Talus
     // (checkpoints): the time control, the visualization records, the
     // CSV files up to the checkpoint and the running quantities of the
     // summary and the verification.
-    std::string   coupling_csv, structure_csv;
     unsigned long total_iterations = 0, total_rejected = 0, total_restarts = 0;
     double        max_u       = 0.; // the structure's largest nodal |u| [m]
     double        max_balance = 0., max_released = 0.;
@@ -468,10 +472,10 @@ namespace Talus
     double        final_kinetic    = 0.; // both fields, at the end [J]
     double        final_mass       = initial_diagnostics.mass;
     const auto    loop_state       = [&](auto &archive) {
-      archive &coupling_csv &structure_csv &time_control &output
-        &initial_diagnostics &initial_total &total_iterations &total_rejected
-          &total_restarts &max_u &max_balance &max_released &max_conservation
-            &final_kinetic &final_mass &S.vtu_records();
+      archive &time_control &output &initial_diagnostics &initial_total
+        &total_iterations &total_rejected &total_restarts &max_u &max_balance
+          &max_released &max_conservation &final_kinetic &final_mass &S
+            .vtu_records();
     };
     const std::string loop_tag = "talus-coupled-time-loop";
     if (resuming)
@@ -487,12 +491,14 @@ namespace Talus
     if (root && resuming)
       {
         // the rows up to the checkpoint (a killed run's later rows go)
-        csv.open(output.directory() + "/coupling.csv");
-        if (!csv)
+        if (copy_file(resume_path + "/coupling.csv",
+                      output.directory() + "/coupling.csv"))
+          csv.open(output.directory() + "/coupling.csv", std::ios::app);
+        if (!csv.is_open() || !csv)
           throw ExcSimulationFailed("cannot write <" + output.directory() +
-                                    "/coupling.csv>");
-        csv << coupling_csv << std::setprecision(12);
-        csv.flush();
+                                    "/coupling.csv> (a copy of <" +
+                                    resume_path + "/coupling.csv>)");
+        csv << std::setprecision(12);
       }
     else if (root)
       {
@@ -533,7 +539,7 @@ namespace Talus
     if (resuming)
       {
         barrier_series.resume(output.directory() + "/structure.csv",
-                              structure_csv,
+                              resume_path + "/structure.csv",
                               root,
                               impact_columns().first.size());
         output.write_index(communicator);
@@ -555,11 +561,6 @@ namespace Talus
 
     // Write a checkpoint of the committed state; returns its path.
     const auto write_checkpoint = [&](const std::string &reason) {
-      if (root)
-        {
-          coupling_csv  = file_contents(output.directory() + "/coupling.csv");
-          structure_csv = file_contents(output.directory() + "/structure.csv");
-        }
       const auto path = checkpointing.write(
         time_control.step,
         time_control.time,
@@ -567,13 +568,23 @@ namespace Talus
         [&](const std::string &directory) {
           coupling.save_checkpoint(directory, sp.model_text);
           if (root)
-            IO::Checkpointing::save_archive(directory + "/time_loop",
-                                            loop_tag,
-                                            loop_state);
+            {
+              // (the rows up to this step: both files are flushed by row)
+              csv.flush();
+              // (a failed copy leaves the file out: the resume says so;
+              // no exception on one rank inside the collective write)
+              for (const std::string name : {"coupling.csv", "structure.csv"})
+                if (!copy_file(output.directory() + "/" + name,
+                               directory + "/" + name))
+                  std::cerr << "Warning: cannot copy <" << output.directory()
+                            << "/" << name << "> into the checkpoint <"
+                            << directory << ">\n";
+              IO::Checkpointing::save_archive(directory + "/time_loop",
+                                              loop_tag,
+                                              loop_state);
+            }
         },
         communicator);
-      coupling_csv.clear();
-      structure_csv.clear();
       pcout << "  checkpoint (" << reason << ") at step " << time_control.step
             << ", t = " << time_control.time << " s: " << path << '\n';
       return path;
@@ -624,6 +635,10 @@ namespace Talus
         total_restarts += result.restarts;
 
         const auto lost = mpm.take_losses();
+        // the message of a stop by lost points: the run stops at the end
+        // of this step (its rows and output written), so that its
+        // checkpoint continues as a scheduled one would
+        std::string lost_points_stop;
         if (lost.n_points > 0)
           {
             std::ostringstream msg;
@@ -632,11 +647,11 @@ namespace Talus
                 << " kg left the background grid at t = " << time_control.time
                 << " s";
             if (mpm.solver().abort_on_lost_points)
-              throw ExcSimulationFailed(msg.str() +
-                                        "; 'abort on lost material points' "
-                                        "is set. Enlarge the background "
-                                        "grid.");
-            pcout << "  Warning: " << msg.str() << '\n';
+              lost_points_stop = msg.str() +
+                                 "; 'abort on lost material points' is set. "
+                                 "Enlarge the background grid.";
+            else
+              pcout << "  Warning: " << msg.str() << '\n';
           }
         for (unsigned int b = 0; b < lost.boundary_particles.size(); ++b)
           if (lost.boundary_particles[b] > 0)
@@ -748,6 +763,30 @@ namespace Talus
                       << "  wall " << std::setprecision(3) << wall << " s\n";
               }
           }
+        if (!lost_points_stop.empty())
+          {
+            if (checkpointing.enabled())
+              lost_points_stop +=
+                " The state after this step (" +
+                std::to_string(time_control.step) +
+                ", without the lost points) is in the checkpoint <" +
+                write_checkpoint("failure: material points lost") +
+                ">: resume from it with 'abort on lost material points = "
+                "false' to continue without them.";
+            throw ExcSimulationFailed(lost_points_stop);
+          }
+        if (checkpointing.stop_due(communicator) && !time_control.finished())
+          {
+            std::ostringstream msg;
+            msg << "The run stopped at its wall-time limit ('stop after "
+                   "minutes' = "
+                << checkpointing.stop_minutes()
+                << " in subsection <Checkpoint>) after step "
+                << time_control.step << ", t = " << time_control.time << " s.";
+            msg << " The state after this step is in the checkpoint <"
+                << write_checkpoint("wall-time limit") << ">: resume from it.";
+            throw ExcSimulationFailed(msg.str());
+          }
         if (checkpointing.enabled() && !time_control.finished() &&
             checkpointing.due(time_control.step, communicator))
           write_checkpoint("scheduled");
@@ -789,6 +828,12 @@ namespace Talus
             << (change < 1e-14 ? std::string("< 1e-14") :
                                  std::to_string(change))
             << '\n';
+    }
+    // (not in test mode: the test outputs do not depend on the machine)
+    {
+      const std::string memory = memory_summary(communicator);
+      if (!test_mode)
+        pcout << memory;
     }
 
     if (std::getenv("TALUS_DEBUG_COUPLING") && root)

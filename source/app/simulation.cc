@@ -1,6 +1,7 @@
 #include <talus/app/run_console.h>
 #include <talus/app/simulation.h>
 #include <talus/base/input.h>
+#include <talus/base/memory_usage.h>
 #include <talus/base/parsed_functions.h>
 #include <talus/base/time_control.h>
 #include <talus/boundaries/boundary_particles.h>
@@ -728,20 +729,18 @@ namespace Talus
     const std::string loop_tag = "talus-time-loop";
     // Write a checkpoint of the committed state; returns its path.
     const auto write_checkpoint = [&](const std::string &reason) {
-      std::string csv  = series.contents();
-      const auto  path = checkpointing.write(
+      const auto path = checkpointing.write(
         time_control.step,
         time_control.time,
         reason,
         [&](const std::string &directory) {
           problem.save_checkpoint(directory);
+          // (a file copy: the memory does not grow with the series)
+          series.copy_to(directory + "/time_series.csv");
           if (root)
             IO::Checkpointing::save_archive(directory + "/time_loop",
                                             loop_tag,
-                                            [&](auto &archive) {
-                                              archive &csv;
-                                              loop_state(archive);
-                                            });
+                                            loop_state);
         },
         communicator);
       pcout << "  checkpoint (" << reason << ") at step " << time_control.step
@@ -750,17 +749,13 @@ namespace Talus
     };
     if (resuming)
       {
-        std::string csv;
         IO::Checkpointing::load_archive(resume_path,
                                         resume_path + "/time_loop",
                                         loop_tag,
-                                        [&](auto &archive) {
-                                          archive &csv;
-                                          loop_state(archive);
-                                        });
+                                        loop_state);
         series.resume(output.directory() + "/time_series.csv",
                       communicator,
-                      csv,
+                      resume_path + "/time_series.csv",
                       time_control.error_control.enabled());
         output.write_index(communicator);
         pcout << "  resumed from " << resume_path << " at step "
@@ -859,6 +854,10 @@ namespace Talus
         const auto         lost_region = points.take_lost_region();
         const unsigned int n_lost      = points.take_lost_count();
         const double       lost_mass   = points.take_lost_mass();
+        // the message of a stop by lost points: the run stops at the end
+        // of this step (its rows, output and records written), so that
+        // its checkpoint continues as a scheduled one would
+        std::string lost_points_stop;
         if (n_lost > 0)
           {
             total_lost_mass += lost_mass;
@@ -870,17 +869,11 @@ namespace Talus
                 << "] m and were removed (lost so far: " << total_lost_mass
                 << " kg)";
             if (solver.abort_on_lost_points)
-              {
-                msg << "; 'abort on lost material points' is set. Enlarge "
-                       "the background grid.";
-                if (checkpointing.enabled())
-                  msg << " The state after this step (" << time_control.step
-                      << ", without the lost points) is in the checkpoint <"
-                      << write_checkpoint("failure: material points lost")
-                      << ">.";
-                throw ExcSimulationFailed(msg.str());
-              }
-            pcout << "  Warning: " << msg.str() << '\n';
+              lost_points_stop = msg.str() +
+                                 "; 'abort on lost material points' is set. "
+                                 "Enlarge the background grid.";
+            else
+              pcout << "  Warning: " << msg.str() << '\n';
           }
         {
           const auto lost_boundary = boundaries.take_lost_per_boundary();
@@ -985,6 +978,30 @@ namespace Talus
             ++next_report;
           }
 
+        if (!lost_points_stop.empty())
+          {
+            if (checkpointing.enabled())
+              lost_points_stop +=
+                " The state after this step (" +
+                std::to_string(time_control.step) +
+                ", without the lost points) is in the checkpoint <" +
+                write_checkpoint("failure: material points lost") +
+                ">: resume from it with 'abort on lost material points = "
+                "false' to continue without them.";
+            throw ExcSimulationFailed(lost_points_stop);
+          }
+        if (checkpointing.stop_due(communicator) && !time_control.finished())
+          {
+            std::ostringstream msg;
+            msg << "The run stopped at its wall-time limit ('stop after "
+                   "minutes' = "
+                << checkpointing.stop_minutes()
+                << " in subsection <Checkpoint>) after step "
+                << time_control.step << ", t = " << time_control.time << " s.";
+            msg << " The state after this step is in the checkpoint <"
+                << write_checkpoint("wall-time limit") << ">: resume from it.";
+            throw ExcSimulationFailed(msg.str());
+          }
         if (!time_control.finished())
           balance_load();
         if (checkpointing.enabled() && !time_control.finished() &&
@@ -1125,6 +1142,12 @@ namespace Talus
               std::string())
         << "wall time " << format_seconds(wall_seconds()) << "\n"
         << "Output in " << output.directory() << "/\n";
+    // (not in test mode: the test outputs do not depend on the machine)
+    {
+      const std::string memory = memory_summary(communicator);
+      if (!test_mode)
+        pcout << memory;
+    }
     if (track_imbalance && imbalance_steps > 0)
       pcout << "  imbalance of the material points (largest rank / mean) "
                "at the start of the steps: mean "

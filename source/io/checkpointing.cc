@@ -123,6 +123,15 @@ namespace Talus
           "Write a checkpoint after the first step that ends this much wall "
           "time after the start or the last checkpoint [min]; 0: not by "
           "wall time. Both criteria may be set.");
+        prm.declare_entry(
+          "stop after minutes",
+          "0",
+          Patterns::Double(0),
+          "Stop the run after the first step that ends this much wall time "
+          "after its start [min], with a checkpoint of that step (also if "
+          "'every steps' and 'every minutes' are 0) named in the message, "
+          "so that a batch job ends before its limit and the next one "
+          "resumes; exit code 1. 0: no limit.");
         prm.declare_entry("keep",
                           "2",
                           Patterns::Integer(1),
@@ -155,6 +164,7 @@ namespace Talus
       prm.enter_subsection("Checkpoint");
       every_steps          = prm.get_integer("every steps");
       every_minutes        = prm.get_double("every minutes");
+      stop_after_minutes   = prm.get_double("stop after minutes");
       keep                 = prm.get_integer("keep");
       checkpoint_directory = prm.get("directory");
       resume               = prm.get_bool("resume");
@@ -162,6 +172,22 @@ namespace Talus
       if (checkpoint_directory.empty())
         checkpoint_directory = output_directory + "/checkpoints";
       last_write = std::chrono::steady_clock::now();
+      start      = last_write;
+    }
+
+
+    bool
+    Checkpointing::stop_due(const MPI_Comm communicator) const
+    {
+      if (stop_after_minutes <= 0.)
+        return false;
+      const double minutes =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count() /
+        60.;
+      return dealii::Utilities::MPI::broadcast(communicator,
+                                               minutes >= stop_after_minutes,
+                                               0);
     }
 
 

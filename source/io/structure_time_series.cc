@@ -2,6 +2,7 @@
 #include <talus/structure/line_elements.h>
 
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <stdexcept>
 
@@ -49,18 +50,24 @@ namespace Talus
 
     void
     StructureTimeSeries::resume(const std::string &filename,
-                                const std::string &contents,
+                                const std::string &saved,
                                 const bool         root,
                                 const std::size_t  n_extra_columns)
     {
       n_extra = n_extra_columns;
       if (!root)
         return;
-      file.open(filename);
-      if (!file)
-        throw std::runtime_error("cannot write <" + filename + ">");
-      file << contents;
-      file.flush();
+      std::error_code error;
+      std::filesystem::copy_file(
+        saved,
+        filename,
+        std::filesystem::copy_options::overwrite_existing,
+        error);
+      if (!error)
+        file.open(filename, std::ios::app);
+      if (error || !file)
+        throw std::runtime_error("cannot write <" + filename +
+                                 "> (a copy of <" + saved + ">)");
       file << std::setprecision(10);
     }
 

@@ -1,7 +1,9 @@
 #include <talus/base/input.h>
 #include <talus/io/time_series.h>
 
+#include <filesystem>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 
 namespace Talus
@@ -63,16 +65,23 @@ namespace Talus
 
 
     template <int dim>
-    std::string
-    TimeSeries<dim>::contents()
+    void
+    TimeSeries<dim>::copy_to(const std::string &target)
     {
       if (!is_root)
-        return std::string();
+        return;
       file.flush();
-      std::ifstream      in(file_name);
-      std::ostringstream text;
-      text << in.rdbuf();
-      return text.str();
+      // (a failed copy leaves the file out of the checkpoint, which its
+      // resume reports; no exception on one rank inside a collective write)
+      std::error_code error;
+      std::filesystem::copy_file(
+        file_name,
+        target,
+        std::filesystem::copy_options::overwrite_existing,
+        error);
+      if (error)
+        std::cerr << "Warning: cannot copy <" << file_name << "> to <" << target
+                  << ">: " << error.message() << '\n';
     }
 
 
@@ -80,24 +89,31 @@ namespace Talus
     void
     TimeSeries<dim>::resume(const std::string &filename,
                             const MPI_Comm     communicator,
-                            const std::string &contents,
+                            const std::string &saved,
                             const bool         error_column)
     {
       with_error = error_column;
       is_root    = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
       file_name  = filename;
+      int ok     = 1;
       if (is_root)
         {
           file.close();
-          file.open(filename, std::ios::out | std::ios::trunc);
-          file << contents;
-          file.flush();
+          std::error_code error;
+          std::filesystem::copy_file(
+            saved,
+            filename,
+            std::filesystem::copy_options::overwrite_existing,
+            error);
+          if (!error)
+            file.open(filename, std::ios::out | std::ios::app);
+          ok = !error && file ? 1 : 0;
         }
-      const int ok =
-        dealii::Utilities::MPI::min(is_root ? (file ? 1 : 0) : 1, communicator);
+      ok = dealii::Utilities::MPI::min(ok, communicator);
       if (!ok)
         throw ExcInvalidInput("Cannot write the time series file <" + filename +
-                              ">: check 'output directory' in subsection "
+                              "> (a copy of <" + saved +
+                              ">): check 'output directory' in subsection "
                               "<Output>.");
       file << std::setprecision(12);
     }

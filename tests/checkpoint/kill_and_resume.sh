@@ -15,6 +15,11 @@
 #            run whose Newton iteration fails: clear errors, non-zero exit
 #   coupled_errors  (a coupled INPUT) a checkpoint of another structure,
 #            accelerator or problem: clear errors, non-zero exit
+#   wall_limit  stopped by 'stop after minutes' after step 1, the
+#            checkpoint named; resumed from it: identical to 1e-10
+#   lost_points  (an INPUT with 'abort on lost material points = true')
+#            the run stops with a checkpoint and names it; resumed from it
+#            without the abort: identical to the run without the abort
 # CSV_FILES: the CSV files compared (comma-separated; default
 # time_series.csv, a coupled run coupling.csv,structure.csv);
 # RANKS_TOLERANCE: of ranks12 and ranks21 (default 1e-6); SKIPPED_COLUMNS:
@@ -160,6 +165,18 @@ case $mode in
       failing.prm
     [ -f output/checkpoints/checkpoint-00000000/manifest ] ||
       fail "no failure checkpoint"
+    # ... from which the run with the parameters that work continues (for
+    # 10 steps: the end time is not part of the checkpoint)
+    sed 's/set end time = .*/set end time = 0.05/' case.prm > short.prm
+    timeout 300 "$talus" --resume output/checkpoints/checkpoint-00000000 \
+      short.prm > log_failure_resumed.txt 2>&1 ||
+      { tail -n 5 log_failure_resumed.txt;
+        fail "the run resumed from the failure checkpoint failed"; }
+    grep -q "resumed from output/checkpoints/checkpoint-00000000 at step 0" \
+      log_failure_resumed.txt || fail "not resumed from the failure checkpoint"
+    grep -q "^Summary" log_failure_resumed.txt ||
+      fail "the resumed run did not finish"
+    echo "ok: resumed from the failure checkpoint and finished"
     ;;
   coupled_errors)
     killed 1
@@ -182,6 +199,10 @@ case $mode in
     sed 's/set dynamic = true/set dynamic = false/' case.prm > static.prm
     expect "it holds a dynamic structure, the parameter file's is static" \
       --resume $good static.prm
+    # another structure model (a coupled file of the plane solid): the
+    # model's name is checked before anything else of the structure
+    expect "$good/structure_state> does not fit the parameter file: it holds the state of the structure model 'plane string', the parameter file sets 'plane solid'" \
+      --resume $good "$here/../coupled/split_cantilever.prm"
     # another accelerator (its history does not fit)
     sed 's/set acceleration = IQN-ILS/set acceleration = Aitken/' case.prm \
       > aitken.prm
@@ -208,6 +229,86 @@ case $mode in
       failing.prm
     [ -f output/checkpoints/checkpoint-00000000/structure_state ] ||
       fail "no failure checkpoint"
+    # ... from which the run with the parameters that work continues (for
+    # 10 steps: the end time is not part of the checkpoint; without the
+    # verification, whose mean coupling iterations a run this short with
+    # the halved first steps exceeds)
+    sed 's/set end time = .*/set end time = 0.05/;
+         /subsection Verification/,/^  end/d' case.prm > short.prm
+    timeout 300 "$talus" --resume output/checkpoints/checkpoint-00000000 \
+      short.prm > log_failure_resumed.txt 2>&1 ||
+      { tail -n 5 log_failure_resumed.txt;
+        fail "the run resumed from the failure checkpoint failed"; }
+    grep -q "resumed from output/checkpoints/checkpoint-00000000 at step 0" \
+      log_failure_resumed.txt || fail "not resumed from the failure checkpoint"
+    grep -q "^Done:" log_failure_resumed.txt ||
+      fail "the resumed run did not finish"
+    echo "ok: resumed from the failure checkpoint and finished"
+    ;;
+  lost_points)
+    # (an INPUT with 'abort on lost material points = true') the run
+    # stops with a checkpoint of the step that lost points and names it;
+    # resumed from it without the abort, identical to the uninterrupted
+    # run without the abort
+    sed 's/set abort on lost material points = true/set abort on lost material points = false/' \
+      case.prm > continue.prm
+    grep -q "abort on lost material points = false" continue.prm ||
+      fail "the input does not set 'abort on lost material points = true'"
+    mkdir -p ref
+    ( cd ref && TALUS_DEBUG_DUMP_POINTS=output/points.txt timeout 300 \
+        "$talus" ../continue.prm > log.txt 2>&1 ) ||
+      { cat ref/log.txt; fail "the uninterrupted run failed"; }
+    mkdir -p run
+    ( cd run && timeout 300 "$talus" ../case.prm > log_stopped.txt 2>&1 )
+    code=$?
+    tail -n 2 run/log_stopped.txt
+    [ $code -ne 0 ] || fail "exit code 0 of the run that loses points"
+    [ $code -lt 124 ] || fail "exit code $code (crash or signal)"
+    checkpoint=$(sed -n 's/.*without the lost points) is in the checkpoint <\([^>]*\)>.*/\1/p' \
+      run/log_stopped.txt | head -n 1)
+    [ -n "$checkpoint" ] ||
+      fail "the stop message does not name a checkpoint"
+    grep -q "left the background grid" run/log_stopped.txt ||
+      fail "the stop message does not say that points left the grid"
+    [ -f "run/$checkpoint/manifest" ] || fail "no checkpoint <$checkpoint>"
+    grep -q "^key reason = failure: material points lost" \
+      "run/$checkpoint/manifest" || fail "the manifest gives another reason"
+    echo "stopped with the checkpoint $checkpoint"
+    ( cd run && rm -f output/points.txt &&
+        TALUS_DEBUG_DUMP_POINTS=output/points.txt timeout 300 \
+        "$talus" --resume "$checkpoint" ../continue.prm > log.txt 2>&1 ) ||
+      { cat run/log.txt; fail "the run resumed from <$checkpoint> failed"; }
+    grep "resumed from" run/log.txt || fail "not resumed"
+    python3 "$here/compare_runs.py" ref/output run/output 1e-10 \
+      "stopped by lost points and resumed" 18,19 "$csv_files" ||
+      fail "resumed run differs"
+    ;;
+  wall_limit)
+    # 'stop after minutes' of 60 microseconds: the run stops after its
+    # first step with a checkpoint and names it; resumed from it without
+    # the limit, identical to the uninterrupted run
+    reference
+    sed 's/set keep = 2/set keep = 2\n  set stop after minutes = 1e-6/' \
+      case.prm > limited.prm
+    mkdir -p run
+    ( cd run && timeout 300 "$talus" ../limited.prm > log_stopped.txt 2>&1 )
+    code=$?
+    tail -n 1 run/log_stopped.txt
+    [ $code -eq 1 ] || fail "exit code $code of the run stopped by its limit"
+    grep -q "stopped at its wall-time limit" run/log_stopped.txt ||
+      fail "no message of the wall-time limit"
+    checkpoint=$(sed -n 's/.*The state after this step is in the checkpoint <\([^>]*\)>.*/\1/p' \
+      run/log_stopped.txt | head -n 1)
+    [ "$checkpoint" = output/checkpoints/checkpoint-00000001 ] ||
+      fail "the message names <$checkpoint>, not the checkpoint of step 1"
+    grep -q "^key reason = wall-time limit" "run/$checkpoint/manifest" ||
+      fail "no checkpoint of the wall-time limit"
+    run run 1 --resume "$checkpoint" ||
+      { cat run/log.txt; fail "the resumed run failed"; }
+    grep "resumed from" run/log.txt || fail "not resumed"
+    python3 "$here/compare_runs.py" ref/output run/output 1e-10 \
+      "stopped by the wall-time limit and resumed" 18,19 "$csv_files" ||
+      fail "resumed run differs"
     ;;
   *) fail "unknown mode $mode" ;;
 esac

@@ -48,7 +48,7 @@ namespace Talus
       /** Format name in the first line of every manifest. */
       static const std::string format_name;
       /** Version of the checkpoint format (manifest line 1). */
-      static constexpr unsigned int format_version = 3;
+      static constexpr unsigned int format_version = 4;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
@@ -101,6 +101,24 @@ namespace Talus
        */
       bool
       due(const unsigned int step, const MPI_Comm communicator) const;
+
+      /**
+       * Whether the run must stop after this step: `stop after minutes`
+       * of wall time have passed since the start (rank 0's clock, the
+       * same answer on every rank; never with `stop after minutes` = 0).
+       * The time loop then writes a checkpoint and stops with an error
+       * naming it, also if checkpoints are not written otherwise.
+       * Collective.
+       */
+      bool
+      stop_due(const MPI_Comm communicator) const;
+
+      /** The value of `stop after minutes` [min] (0: no limit). */
+      double
+      stop_minutes() const
+      {
+        return stop_after_minutes;
+      }
 
       /**
        * Write checkpoint number @p step at time @p time: make
@@ -199,14 +217,18 @@ namespace Talus
                      const std::string &problem = "mpm");
 
     private:
-      unsigned int every_steps   = 0;
-      double       every_minutes = 0.;
-      unsigned int keep          = 2;
-      bool         resume        = false;
+      unsigned int every_steps        = 0;
+      double       every_minutes      = 0.;
+      double       stop_after_minutes = 0.;
+      unsigned int keep               = 2;
+      bool         resume             = false;
       std::string  checkpoint_directory;
       std::string  problem = "mpm";
       /** Wall clock of the start or the last checkpoint (rank 0). */
       std::chrono::steady_clock::time_point last_write =
+        std::chrono::steady_clock::now();
+      /** Wall clock of the start (rank 0). */
+      std::chrono::steady_clock::time_point start =
         std::chrono::steady_clock::now();
     };
   } // namespace IO

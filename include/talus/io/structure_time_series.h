@@ -39,14 +39,15 @@ namespace Talus
            const std::vector<std::string>    &extra_names = {});
 
       /**
-       * Continue the series of a resumed run (doc/checkpoint.md): rewrite
-       * @p filename (only if @p root) with @p contents, the header and the
-       * rows up to the checkpoint, and append the next rows to it.
-       * @p n_extra_columns: the model's own columns, as in open().
+       * Continue the series of a resumed run (doc/checkpoint.md): replace
+       * @p filename (only if @p root) by a copy of the file @p saved, the
+       * header and the rows up to the checkpoint (the checkpoint's copy of
+       * the file), and append the next rows to it. @p n_extra_columns: the
+       * model's own columns, as in open().
        */
       void
       resume(const std::string &filename,
-             const std::string &contents,
+             const std::string &saved,
              const bool         root,
              const std::size_t  n_extra_columns);
 

@@ -55,22 +55,26 @@ namespace Talus
             const double                 error = 0.);
 
       /**
-       * Everything written so far (rank 0, after a flush; empty on the
-       * other ranks): what a checkpoint keeps of the time series.
+       * Copy everything written so far to the file @p target (rank 0,
+       * after a flush; nothing on the other ranks): what a checkpoint
+       * keeps of the time series. A file copy, so that the memory of a
+       * long run does not grow with its series (doc/performance.md,
+       * "Memory over long runs").
        */
-      std::string
-      contents();
+      void
+      copy_to(const std::string &target);
 
       /**
        * Continue the time series of a resumed run: replace the file
-       * @p filename by @p contents (rows written after the checkpoint by
-       * the run that stopped are dropped) and append to it;
-       * @p error_column as in open().
+       * @p filename by a copy of the file @p saved (what copy_to() wrote
+       * into the checkpoint; rows written after the checkpoint by the run
+       * that stopped are dropped) and append to it; @p error_column as in
+       * open().
        */
       void
       resume(const std::string &filename,
              const MPI_Comm     communicator,
-             const std::string &contents,
+             const std::string &saved,
              const bool         error_column = false);
 
     private:
