@@ -6,6 +6,7 @@
 #include <talus/app/simulation.h>
 #include <talus/app/structure_models/factory.h>
 #include <talus/app/structure_models/model.h>
+#include <talus/base/contact_onset.h>
 #include <talus/base/input.h>
 #include <talus/base/memory_usage.h>
 #include <talus/base/time_control.h>
@@ -19,6 +20,7 @@
 #include <talus/mpm/material_points.h>
 #include <talus/mpm/mpm_problem.h>
 #include <talus/structure/structure_problem.h>
+#include <talus/structure/truncation_error.h>
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -36,6 +38,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace Talus
@@ -217,22 +220,29 @@ namespace Talus
     // The MPM.
     TimeControl time_control;
     time_control.parse_parameters(prm);
-    if (time_control.error_control.enabled())
-      {
-        prm.enter_subsection("Time");
-        const std::string tolerance = prm.get("error tolerance");
-        prm.leave_subsection();
-        InputFile::reject("Time",
-                          "error tolerance",
-                          tolerance,
-                          "0: the step chosen by the error exists only for "
-                          "'problem = mpm' so far, not for 'problem = "
-                          "coupled'");
-      }
+    ContactOnsetEvent contact_onset;
+    contact_onset.parse_parameters(prm, time_control.initial_dt);
     MPM::MPMProblem<dim> mpm(communicator, time_control.newmark, timer);
     mpm.parse_parameters(prm);
     IO::VisualizationOutput<dim> output;
     output.parse_parameters(prm);
+    if (time_control.error_control.enabled())
+      {
+        if (mpm.solver().is_quasi_static())
+          {
+            prm.enter_subsection("Time");
+            const std::string tolerance = prm.get("error tolerance");
+            prm.leave_subsection();
+            InputFile::reject("Time",
+                              "error tolerance",
+                              tolerance,
+                              "0 with a quasi-static MPM (subsection "
+                              "<Solver>: there are no accelerations to "
+                              "estimate the error from)");
+          }
+        // the steps land on the output times
+        time_control.set_event_interval(output.output_interval);
+      }
 
     // Checkpoints (doc/checkpoint.md), and the one to resume from (checked
     // on rank 0 first: a complete checkpoint of a coupled run).
@@ -471,11 +481,18 @@ namespace Talus
     double        max_conservation = 0.;
     double        final_kinetic    = 0.; // both fields, at the end [J]
     double        final_mass       = initial_diagnostics.mass;
-    const auto    loop_state       = [&](auto &archive) {
+    // the step chosen by the error: the smallest and largest step
+    double smallest_dt = std::numeric_limits<double>::max(), largest_dt = 0.;
+    const auto loop_state = [&](auto &archive) {
       archive &time_control &output &initial_diagnostics &initial_total
         &total_iterations &total_rejected &total_restarts &max_u &max_balance
           &max_released &max_conservation &final_kinetic &final_mass &S
             .vtu_records();
+      // the step chosen by the error and the contact onset event
+      double       &last_error       = time_control.last_error;
+      unsigned int &error_rejections = time_control.error_rejections;
+      archive &last_error &error_rejections &smallest_dt &largest_dt
+        &contact_onset;
     };
     const std::string loop_tag = "talus-coupled-time-loop";
     if (resuming)
@@ -592,14 +609,73 @@ namespace Talus
 
     const auto wall_start = std::chrono::steady_clock::now();
     Coupling::CoupledStepResult<dim> result;
+    // the structure's committed displacement (its error estimate)
+    dealii::Vector<double> structure_committed = structure.displacement();
+    // The estimated truncation error of the solved coupled step of size
+    // dt: the larger of the MPM's and the dynamic structure's.
+    const auto step_error = [&](const double dt) {
+      const auto  &control = time_control.error_control;
+      const double e_mpm = control.error(mpm.solver().truncation_error_norms(),
+                                         dt,
+                                         time_control.newmark.beta);
+      const double e_structure =
+        structure.is_dynamic() ?
+          control.error(Structure::truncation_error_norms(structure,
+                                                          structure_committed,
+                                                          dt),
+                        dt,
+                        Structure::newmark_beta(structure)) :
+          0.;
+      if (std::getenv("TALUS_DEBUG_ERROR_ESTIMATE") && root)
+        std::cerr << "t = " << time_control.time << " dt = " << dt
+                  << " error: MPM " << e_mpm << " structure " << e_structure
+                  << '\n';
+      return std::max(e_mpm, e_structure);
+    };
+    double dt_taken = 0.;
     while (!time_control.finished())
       {
         while (true)
           {
             const double dt = time_control.next_step();
             result          = coupling.solve_step(time_control.time, dt);
+            dt_taken        = dt;
             if (result.converged)
-              break;
+              {
+                // the contact onset event (ContactOnsetEvent)
+                if (contact_onset.enabled() &&
+                    contact_onset.assess(
+                      time_control,
+                      dt,
+                      count_active_contacts(mpm.solver().boundary_reactions(),
+                                            communicator)))
+                  {
+                    ++total_rejected;
+                    coupling.reject_step();
+                    if (!test_mode)
+                      pcout << "  step " << time_control.step + 1
+                            << " at t = " << time_control.time
+                            << " s rejected (dt = " << dt
+                            << " s): contact onset; retrying with dt = "
+                            << time_control.next_step() << " s\n";
+                    continue;
+                  }
+                if (!time_control.error_control.enabled())
+                  break;
+                // the step chosen by the error (TruncationErrorControl)
+                const double error = step_error(dt);
+                if (time_control.assess_error(dt, error))
+                  break;
+                ++total_rejected;
+                coupling.reject_step();
+                if (!test_mode)
+                  pcout << "  step " << time_control.step + 1
+                        << " at t = " << time_control.time
+                        << " s rejected (dt = " << dt << " s): estimated error "
+                        << error << " above the tolerance; retrying with dt = "
+                        << time_control.next_step() << " s\n";
+                continue;
+              }
             ++total_rejected;
             coupling.reject_step();
             pcout << "  step " << time_control.step + 1
@@ -626,9 +702,16 @@ namespace Talus
                 throw ExcSimulationFailed(msg.str());
               }
           }
-        const double dt = time_control.next_step();
+        const double dt = dt_taken;
         coupling.commit_step();
+        structure_committed = structure.displacement();
         time_control.accept(dt);
+        contact_onset.accepted(time_control);
+        if (time_control.error_control.enabled() || contact_onset.enabled())
+          {
+            smallest_dt = std::min(smallest_dt, dt);
+            largest_dt  = std::max(largest_dt, dt);
+          }
         if (!time_control.finished())
           mpm.balance_load(time_control.step, pcout);
         total_iterations += result.iterations;
@@ -811,8 +894,19 @@ namespace Talus
           << "\n"
           << std::setprecision(8)
           << "  interface force at the end: " << result.interface_force
-          << " N\n"
-          << "  largest energy change " << std::setprecision(3) << max_balance
+          << " N\n";
+    if (time_control.error_control.enabled())
+      pcout << "  steps chosen by the error: " << time_control.step
+            << " steps, " << time_control.error_rejections
+            << " rejected for their error, dt " << std::setprecision(4)
+            << smallest_dt << " .. " << largest_dt << " s\n";
+    if (contact_onset.enabled())
+      pcout << "  contact onset: " << contact_onset.rejections
+            << " steps rejected at a sharp change of the active set (onset "
+               "step "
+            << contact_onset.onset_dt << " s), dt " << std::setprecision(4)
+            << smallest_dt << " .. " << largest_dt << " s\n";
+    pcout << "  largest energy change " << std::setprecision(3) << max_balance
           << " J (largest released gravitational energy " << max_released
           << " J)\n"
           << "  interface work, structure vs points: largest relative "

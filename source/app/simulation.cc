@@ -1,5 +1,6 @@
 #include <talus/app/run_console.h>
 #include <talus/app/simulation.h>
+#include <talus/base/contact_onset.h>
 #include <talus/base/input.h>
 #include <talus/base/memory_usage.h>
 #include <talus/base/parsed_functions.h>
@@ -347,6 +348,8 @@ namespace Talus
     // Build everything from the file.
     TimeControl time_control;
     time_control.parse_parameters(prm);
+    ContactOnsetEvent contact_onset;
+    contact_onset.parse_parameters(prm, time_control.initial_dt);
     prm.enter_subsection("Convergence study");
     if (prm.get_bool("refine time step") && refinement > 0)
       {
@@ -725,6 +728,8 @@ namespace Talus
       double       &last_error       = time_control.last_error;
       unsigned int &error_rejections = time_control.error_rejections;
       archive &last_error &error_rejections &smallest_dt &largest_dt;
+      // the contact onset event
+      archive &contact_onset;
     };
     const std::string loop_tag = "talus-time-loop";
     // Write a checkpoint of the committed state; returns its path.
@@ -782,6 +787,23 @@ namespace Talus
             problem.prepare_step(time_control.time + dt_try, dt_try);
             result   = problem.solve_step();
             dt_taken = dt_try;
+            // the contact onset event (ContactOnsetEvent)
+            if (result.converged && contact_onset.enabled() &&
+                contact_onset.assess(
+                  time_control,
+                  dt_try,
+                  count_active_contacts(solver.boundary_reactions(),
+                                        communicator)))
+              {
+                ++total_rejected;
+                if (!test_mode)
+                  pcout << "  step " << time_control.step + 1
+                        << " at t = " << time_control.time
+                        << " s rejected (dt = " << dt_try
+                        << " s): contact onset; retrying with dt = "
+                        << time_control.next_step() << " s\n";
+                continue;
+              }
             if (result.converged && !time_control.error_control.enabled())
               break;
             if (result.converged)
@@ -840,7 +862,8 @@ namespace Talus
           }
         problem.commit_step();
         time_control.accept(dt_taken);
-        if (time_control.error_control.enabled())
+        contact_onset.accepted(time_control);
+        if (time_control.error_control.enabled() || contact_onset.enabled())
           {
             smallest_dt = std::min(smallest_dt, dt_taken);
             largest_dt  = std::max(largest_dt, dt_taken);
@@ -1091,6 +1114,13 @@ namespace Talus
           pcout << "  steps chosen by the error: " << time_control.step
                 << " steps, " << time_control.error_rejections
                 << " rejected for their error, dt " << std::setprecision(4)
+                << smallest_dt << " .. " << largest_dt << " s"
+                << std::setprecision(6) << '\n';
+        if (contact_onset.enabled())
+          pcout << "  contact onset: " << contact_onset.rejections
+                << " steps rejected at a sharp change of the active set "
+                   "(onset step "
+                << contact_onset.onset_dt << " s), dt " << std::setprecision(4)
                 << smallest_dt << " .. " << largest_dt << " s"
                 << std::setprecision(6) << '\n';
         if (total_without_descent > 0)

@@ -25,8 +25,9 @@ namespace Talus
       "unless 'maximum time step' is set, and the steps land on the output "
       "and report times and the end time. The global error follows the "
       "tolerance about linearly; 1e-3 is a period error of about 0.1 % per "
-      "radian. Not with 'adaptive time step', a quasi-static analysis or "
-      "a coupled problem.");
+      "radian. Not with 'adaptive time step' or a quasi-static analysis. "
+      "A coupled problem: the larger of the estimates of the MPM and of "
+      "a dynamic structure (its Bossak-Newmark step, lumped mass).");
     prm.declare_entry("error safety factor",
                       "0.9",
                       Double(),

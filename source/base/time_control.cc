@@ -1,3 +1,4 @@
+#include <talus/base/contact_onset.h>
 #include <talus/base/input.h>
 #include <talus/base/time_control.h>
 
@@ -101,6 +102,7 @@ namespace Talus
                         "step grows again [-], >= 1.");
       NewmarkBeta::declare_parameters(prm);
       TruncationErrorControl::declare_parameters(prm);
+      ContactOnsetEvent::declare_parameters(prm);
     }
     prm.leave_subsection();
   }

@@ -12,7 +12,8 @@ the same grid and points, only the time integration differs) and once per
 tolerance of the comma-separated TOLERANCES, each run writing its final
 material points (TALUS_DEBUG_DUMP_POINTS). The global time-integration
 error of a run is the RMS over the points of |x - x_ref| at the end time
-(points matched by id; one rank). Prints the table tolerance / error /
+(points matched by id; one rank). Also for 'problem = coupled' (the
+points of the MPM; the structure follows from them). Prints the table tolerance / error /
 steps / rejected steps / smallest and largest step, and the least-squares
 slopes of log(error) and log(steps) against log(tolerance); exits 1 unless
 the error slope lies in [MIN_SLOPE, MAX_SLOPE] and the error falls with
@@ -48,7 +49,9 @@ def run(talus, text, directory):
         print(p.stdout)
         sys.exit("FAIL: talus exited with %d in %s" % (p.returncode,
                                                        directory))
-    steps = int(re.search(r"after (\d+) steps", p.stdout).group(1))
+    # 'problem = mpm': "... after N steps"; coupled: "Done: N coupled steps"
+    m = re.search(r"after (\d+) steps|Done: (\d+) coupled steps", p.stdout)
+    steps = int(m.group(1) or m.group(2))
     m = re.search(r"steps chosen by the error: \d+ steps, (\d+) rejected "
                   r"for their error, dt (\S+) \.\. (\S+) s", p.stdout)
     rejected, smallest, largest = (int(m.group(1)), float(m.group(2)),
