@@ -306,12 +306,13 @@ namespace Talus
             {
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
-                  du_local[i] = du(c.dofs[i]);
+                  du_local[i] = conforming_value(du, c.dofs[i]);
                   a_local[i]  = with_inertia ?
-                                  newmark.acceleration(du_local[i],
-                                                      velocity_n(c.dofs[i]),
-                                                      acceleration_n(c.dofs[i]),
-                                                      dt) :
+                                  newmark.acceleration(
+                                   du_local[i],
+                                   conforming_value(velocity_n, c.dofs[i]),
+                                   conforming_value(acceleration_n, c.dofs[i]),
+                                   dt) :
                                   0.;
                 }
               k_local = 0.;

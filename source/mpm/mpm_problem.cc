@@ -41,6 +41,7 @@ namespace Talus
       MPMSolver<dim>::declare_parameters(prm);
       Boundaries::BoundaryParticles<dim>::declare_parameters(prm, n_boundaries);
       LoadBalancing<dim>::declare_parameters(prm);
+      AdaptiveGrid<dim>::declare_parameters(prm);
       MemoryEstimate<dim>::declare_parameters(prm);
     }
 
@@ -95,12 +96,18 @@ namespace Talus
                                   dealii::GridTools::volume(tria));
           memory.check(prm);
         }
-      if (refinement > 0)
+      // the adaptive grid starts at its finest level (setup() coarsens)
+      adaptive.parse_parameters(prm);
+      base_refinement = refinement;
+      const unsigned int total_level =
+        refinement + adaptive.initial_refinement();
+      if (total_level > 0)
         {
           auto &grid = *background_grid;
-          grid.triangulation.refine_global(refinement);
-          grid.cell_extent /= std::pow(2., refinement);
-          grid.minimal_cell_diameter /= std::pow(2., refinement);
+          grid.triangulation.refine_global(total_level);
+          grid.cell_extent /= std::pow(2., total_level);
+          grid.cell_extent_level = total_level;
+          grid.minimal_cell_diameter /= std::pow(2., total_level);
           grid.setup_dofs();
         }
 
@@ -180,6 +187,44 @@ namespace Talus
       // the penalty of the boundaries from the stiffest material
       boundary_particles->generate(p_wave_modulus);
       mpm_solver->attach_boundary_particles(*boundary_particles);
+      if (adaptive.enabled())
+        {
+          if (boundary_particles->n_boundaries() > 0)
+            InputFile::reject("Adaptive grid",
+                              "enable",
+                              "true",
+                              "boundary particles (subsection Boundary "
+                              "particles) are not implemented on an adaptive "
+                              "grid; use the grid's fixed or slip boundaries");
+          mpm_solver->check_local_refinement_support();
+          // coarsen the empty cells of the uniform initial grid
+          for (unsigned int pass = 0; pass < adaptive.initial_passes(); ++pass)
+            if (!adapt_grid())
+              break;
+        }
+    }
+
+
+    template <int dim>
+    bool
+    MPMProblem<dim>::adapt_grid()
+    {
+      auto &grid = *background_grid;
+      if (!adaptive.flag_cells(grid,
+                               material_points->particle_handler(),
+                               base_refinement))
+        return false;
+      CommittedStateTransfer<dim> transfer(
+        grid,
+        *material_points,
+        *boundary_particles,
+        *mpm_solver,
+        CommittedStateTransfer<dim>::Mode::repartition);
+      transfer.prepare();
+      grid.triangulation.execute_coarsening_and_refinement();
+      transfer.unpack();
+      saved_state_valid = false;
+      return true;
     }
 
 
@@ -468,6 +513,15 @@ namespace Talus
                                   const dealii::ConditionalOStream &log)
     {
       RepartitionRecord record;
+      if (adaptive.due(step))
+        {
+          dealii::TimerOutput::Scope scope(timer, "adaptive grid");
+          if (adapt_grid())
+            log << "  adaptive grid at step " << step << ": "
+                << background_grid->triangulation.n_global_active_cells()
+                << " cells, " << background_grid->dof_handler.n_dofs()
+                << " DoFs\n";
+        }
       if (!balancing.enabled())
         return record;
       const auto &handler = material_points->particle_handler();

@@ -550,11 +550,25 @@ namespace Talus
       if (gimp)
         setup_gimp_lattice();
 
+      // hanging-node constraints of a locally refined grid
+      hanging_constraints.clear();
+      hanging_constraints.reinit(grid.locally_relevant_dofs);
+      dealii::DoFTools::make_hanging_node_constraints(dof_handler,
+                                                      hanging_constraints);
+      hanging_constraints.close();
+      has_hanging_nodes = dealii::Utilities::MPI::logical_or(
+        hanging_constraints.n_constraints() > 0, grid.mpi_communicator);
+      if (has_hanging_nodes)
+        check_local_refinement_support();
+
       dealii::DynamicSparsityPattern dsp(grid.locally_relevant_dofs);
       if (ghost_penalty_factor > 0.)
         dealii::DoFTools::make_flux_sparsity_pattern(dof_handler, dsp);
       else
-        dealii::DoFTools::make_sparsity_pattern(dof_handler, dsp);
+        dealii::DoFTools::make_sparsity_pattern(dof_handler,
+                                                dsp,
+                                                hanging_constraints,
+                                                true);
       dealii::SparsityTools::distribute_sparsity_pattern(
         dsp,
         grid.locally_owned_dofs,
@@ -666,6 +680,45 @@ namespace Talus
 
     template <int dim>
     void
+    MPMSolver<dim>::check_local_refinement_support() const
+    {
+      const std::string why =
+        "is not implemented on a locally refined background grid "
+        "(subsection Adaptive grid, 'enable = true')";
+      if (gimp)
+        InputFile::reject("Solver",
+                          "shape functions",
+                          "uGIMP",
+                          "uGIMP " + why + "; use 'shape functions = linear'");
+      if (apic)
+        InputFile::reject("Solver",
+                          "velocity update",
+                          "APIC",
+                          "APIC " + why + "; use FLIP/PIC or XPIC");
+      if (consistent_mass)
+        InputFile::reject("Solver",
+                          "mass matrix",
+                          "consistent",
+                          "the consistent mass matrix " + why +
+                            "; use 'mass matrix = lumped'");
+      if (ghost_penalty_factor > 0.)
+        InputFile::reject("Solver",
+                          "ghost penalty factor",
+                          std::to_string(ghost_penalty_factor),
+                          "the ghost penalty " + why + "; set it to 0");
+      if (!grid.friction_boundaries.empty())
+        InputFile::reject("Background grid",
+                          "friction boundaries",
+                          "(not empty)",
+                          "grid friction boundaries are not implemented on a "
+                          "locally refined background grid (subsection "
+                          "Adaptive grid, 'enable = true'); use fixed or "
+                          "slip boundaries");
+    }
+
+
+    template <int dim>
+    void
     MPMSolver<dim>::setup_gimp_lattice()
     {
       if (!grid.is_cartesian)
@@ -737,6 +790,15 @@ namespace Talus
       n_active = 0;
       for (const auto i : grid.locally_relevant_dofs)
         {
+          // a hanging node follows its masters (whatever else holds it:
+          // its masters lie on the same boundary or have no mass either)
+          if (has_hanging_nodes && hanging_constraints.is_constrained(i))
+            {
+              constraints.add_line(i);
+              constraints.add_entries(
+                i, *hanging_constraints.get_constraint_entries(i));
+              continue;
+            }
           bool constrained = nodal_mass(i) <= 0. || fixed_dofs.is_element(i) ||
                              friction_corner_dofs.is_element(i);
           for (unsigned int d = 0; d < dim && !constrained; ++d)
@@ -909,11 +971,14 @@ namespace Talus
       for (const auto i : grid.locally_owned_dofs)
         dsp.add(i, i);
       const auto add_block =
-        [&dsp](const std::vector<dealii::types::global_dof_index> &dofs) {
+        [&dsp, this](const std::vector<dealii::types::global_dof_index> &dofs) {
           std::vector<dealii::types::global_dof_index> sorted(dofs);
           std::sort(sorted.begin(), sorted.end());
           for (const auto i : sorted)
             dsp.add_entries(i, sorted.begin(), sorted.end(), true);
+          // the couplings of the hanging nodes' masters
+          if (has_hanging_nodes)
+            hanging_constraints.add_entries_local_to_global(dofs, dsp, true);
         };
       for (const auto &c : cells)
         add_block(c.dofs);
@@ -1098,7 +1163,7 @@ namespace Talus
               {
                 const auto ci = internal::component_and_node<dim>(i);
                 a_p[ci.first] += shape_values[k * n_nodes + ci.second] *
-                                 acceleration_new(c.dofs[i]);
+                                 conforming_value(acceleration_new, c.dofs[i]);
               }
             auto props = particles[k]->get_properties();
             for (unsigned int d = 0; d < dim; ++d)

@@ -86,6 +86,8 @@ namespace Talus
       std::vector<dealii::TrilinosWrappers::MPI::Vector> ghosted(2);
       for (unsigned int i = 0; i < 2; ++i)
         {
+          // (a locally refined grid: the hanging nodes from their masters)
+          solver.hanging_node_constraints().distribute(owned[i]);
           ghosted[i].reinit(grid.locally_owned_dofs,
                             grid.locally_relevant_dofs,
                             grid.mpi_communicator);

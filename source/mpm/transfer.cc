@@ -96,13 +96,20 @@ namespace Talus
               cache_gimp_cell(cell, reference_points, c);
             else if (grid.is_cartesian)
               {
+                // the extent of this cell: that of the finest level,
+                // doubled per level above it (locally refined grids)
+                dealii::Tensor<1, dim> h = grid.cell_extent;
+                if (cell->level() != grid.cell_extent_level)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    h[d] = std::ldexp(grid.cell_extent[d],
+                                      grid.cell_extent_level - cell->level());
                 for (const auto &xi : reference_points)
                   for (unsigned int k = 0; k < n_nodes; ++k)
                     {
                       shape_values.push_back(base.shape_value(k, xi));
                       dealii::Tensor<1, dim> g = base.shape_grad(k, xi);
                       for (unsigned int d = 0; d < dim; ++d)
-                        g[d] /= grid.cell_extent[d];
+                        g[d] /= h[d];
                       shape_gradients.push_back(g);
                     }
               }
@@ -270,10 +277,12 @@ namespace Talus
                   f_local[i] += N * m * b[comp];
                 }
             }
-          mass.add(c.dofs, m_local);
-          momentum.add(c.dofs, p_local);
-          mass_acc.add(c.dofs, a_local);
-          external_force.add(c.dofs, f_local);
+          // (on a locally refined grid: condensed to the masters of the
+          // hanging nodes, the conforming shape functions' sums)
+          add_condensed(c.dofs, m_local, mass);
+          add_condensed(c.dofs, p_local, momentum);
+          add_condensed(c.dofs, a_local, mass_acc);
+          add_condensed(c.dofs, f_local, external_force);
         }
       mass.compress(dealii::VectorOperation::add);
       momentum.compress(dealii::VectorOperation::add);
@@ -337,7 +346,7 @@ namespace Talus
                                     w[k][ci.first];
                     }
                 }
-              grid_velocity.add(c.dofs, p_local);
+              add_condensed(c.dofs, p_local, grid_velocity);
             }
           grid_velocity.compress(dealii::VectorOperation::add);
           for (const auto i : grid.locally_owned_dofs)
@@ -353,7 +362,7 @@ namespace Talus
                   {
                     const auto ci = internal::component_and_node<dim>(i);
                     w[k][ci.first] -= shape_values[k * n_nodes + ci.second] *
-                                      ghosted(c.dofs[i]);
+                                      conforming_value(ghosted, c.dofs[i]);
                   }
               }
         }
@@ -534,10 +543,11 @@ namespace Talus
           v_local.resize(dofs_per_cell);
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             {
-              du_local[i] = displacement(c.dofs[i]);
-              a_local[i]  = acceleration_new(c.dofs[i]);
-              dv_local[i] = dv_flip(c.dofs[i]);
-              v_local[i]  = velocity_n(c.dofs[i]) + dv_ghosted(c.dofs[i]);
+              du_local[i] = conforming_value(displacement, c.dofs[i]);
+              a_local[i]  = conforming_value(acceleration_new, c.dofs[i]);
+              dv_local[i] = conforming_value(dv_flip, c.dofs[i]);
+              v_local[i]  = conforming_value(velocity_n, c.dofs[i]) +
+                           conforming_value(dv_ghosted, c.dofs[i]);
             }
           cell_deformation_gradients(c, du_local, F_cell);
           for (unsigned int q = 0; q < c.n; ++q)
@@ -695,7 +705,7 @@ namespace Talus
                 }
             }
           for (unsigned int j = 0; j < dim; ++j)
-            sum[j].add(c.dofs, local[j]);
+            add_condensed(c.dofs, local[j], sum[j]);
         }
       nodal_stress.resize(dim);
       for (unsigned int j = 0; j < dim; ++j)

@@ -72,8 +72,12 @@ namespace Talus
        * directly from the cell extent. */
       bool is_cartesian;
 
-      /** Cell extent per direction on a box grid [m]. */
+      /** Cell extent per direction on a box grid [m], of the cells of
+       * level cell_extent_level (the finest level of a refined grid). */
       dealii::Tensor<1, dim> cell_extent;
+
+      /** The refinement level whose cells have the extent cell_extent. */
+      int cell_extent_level = 0;
 
       /** Smallest cell diameter [m]. */
       double minimal_cell_diameter;

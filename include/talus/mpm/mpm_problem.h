@@ -4,6 +4,7 @@
 #include <talus/base/time_control.h>
 #include <talus/boundaries/boundary_particles.h>
 #include <talus/materials/constitutive_model.h>
+#include <talus/mpm/adaptive_grid.h>
 #include <talus/mpm/background_grid.h>
 #include <talus/mpm/initial_stress.h>
 #include <talus/mpm/load_balancing.h>
@@ -225,6 +226,26 @@ namespace Talus
       balance_load(const unsigned int                step,
                    const dealii::ConditionalOStream &log);
 
+      /**
+       * One pass of the adaptive grid (subsection `Adaptive grid`,
+       * AdaptiveGrid): flag the cells, refine and coarsen them, carrying
+       * the committed state like repartition() (CommittedStateTransfer:
+       * both particle handlers and the committed grid vectors, whose
+       * hanging nodes are then interpolated from their masters) and
+       * rebuilding the solver's grid-dependent data (hanging-node
+       * constraints included). Returns whether the grid changed. Between
+       * steps only; a copy of save_state() is discarded. Collective.
+       */
+      bool
+      adapt_grid();
+
+      /** The parameters of subsection `Adaptive grid`. */
+      const AdaptiveGrid<dim> &
+      adaptive_grid() const
+      {
+        return adaptive;
+      }
+
       /** The parameters of subsection `Load balancing`. */
       const LoadBalancing<dim> &
       load_balancing() const
@@ -351,7 +372,11 @@ namespace Talus
       std::unique_ptr<MPMSolver<dim>>      mpm_solver;
       std::unique_ptr<Boundaries::BoundaryParticles<dim>> boundary_particles;
       LoadBalancing<dim>                                  balancing;
-      MemoryEstimate<dim>                                 memory;
+      AdaptiveGrid<dim>                                   adaptive;
+      /** The global refinement of the background grid (convergence
+       * studies), the level the adaptive grid counts from. */
+      unsigned int        base_refinement = 0;
+      MemoryEstimate<dim> memory;
       /** Whether save_state() holds a copy on the present partition. */
       bool saved_state_valid = false;
     };

@@ -467,6 +467,31 @@ namespace Talus
       bool abort_on_lost_points = false;
 
       /**
+       * The hanging-node constraints of the present grid (closed, on the
+       * locally relevant dofs; empty on a conforming grid), built by
+       * setup(). On a locally refined grid the MPM system lives on the
+       * conforming space: P2G condenses the nodal masses, momenta and
+       * forces of hanging nodes to their masters, the tangent and residual
+       * are condensed with them (they are part of the step's constraints)
+       * and every value a point reads at a hanging node is interpolated
+       * from its masters.
+       */
+      const dealii::AffineConstraints<double> &
+      hanging_node_constraints() const
+      {
+        return hanging_constraints;
+      }
+
+      /**
+       * Reject the options that are not implemented on a locally refined
+       * (adaptive) background grid, naming the parameters: uGIMP, APIC,
+       * the consistent mass matrix, grid friction boundaries and the ghost
+       * penalty. (Boundary particles are rejected by MPMProblem.)
+       */
+      void
+      check_local_refinement_support() const;
+
+      /**
        * Impose the boundaries of @p boundaries (weakly, on their particles)
        * from the next step on. Call after setup().
        */
@@ -1085,7 +1110,40 @@ namespace Talus
       std::vector<dealii::Tensor<1, dim>>                shape_gradients;
       std::vector<dealii::Tensor<1, dim>> particle_forces; ///< m_p b_p [N]
 
-      dealii::AffineConstraints<double>                          constraints;
+      dealii::AffineConstraints<double> constraints;
+      /** See hanging_node_constraints(). */
+      dealii::AffineConstraints<double> hanging_constraints;
+      /** Whether any rank's grid has hanging nodes. */
+      bool has_hanging_nodes = false;
+
+      /**
+       * The value of the ghosted grid vector @p v at @p dof, interpolated
+       * from the masters if @p dof is a hanging node (its own entry is
+       * not used: the solver's vectors hold values at the free dofs).
+       */
+      double
+      conforming_value(const dealii::TrilinosWrappers::MPI::Vector &v,
+                       const dealii::types::global_dof_index        dof) const
+      {
+        if (!has_hanging_nodes || !hanging_constraints.is_constrained(dof))
+          return v(dof);
+        double value = 0.;
+        for (const auto &e : *hanging_constraints.get_constraint_entries(dof))
+          value += e.second * v(e.first);
+        return value;
+      }
+
+      /** Add the cell vector @p local to @p v, condensing hanging nodes. */
+      void
+      add_condensed(const std::vector<dealii::types::global_dof_index> &dofs,
+                    const dealii::Vector<double>                       &local,
+                    dealii::TrilinosWrappers::MPI::Vector              &v) const
+      {
+        if (has_hanging_nodes)
+          hanging_constraints.distribute_local_to_global(local, dofs, v);
+        else
+          v.add(dofs, local);
+      }
       dealii::IndexSet                                           fixed_dofs;
       std::vector<dealii::IndexSet>                              slip_dofs;
       dealii::TrilinosWrappers::SparseMatrix                     matrix;

@@ -1,0 +1,106 @@
+#ifndef talus_mpm_adaptive_grid_h
+#define talus_mpm_adaptive_grid_h
+
+#include <talus/mpm/background_grid.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    /**
+     * Adaptive refinement of the MPM background grid (subsection `Adaptive
+     * grid`, issue 39): the grid is fine where the material is and coarse
+     * where it is not.
+     *
+     * Levels count from the grid of subsection `Background grid` (after
+     * the global refinement of a convergence study). The run starts on the
+     * grid refined uniformly to the maximum level, where the material
+     * points are generated (the same points as the uniform run at that
+     * level), and coarsens the empty cells down to the minimum level
+     * before the first step. Afterwards, every `refine every steps`
+     * accepted steps, one pass of the criterion
+     *
+     *  - a cell is *occupied* if it holds a material point;
+     *  - a cell is *near* the material if it shares a vertex with an
+     *    occupied cell, or, with `neighbour layers` n > 1, with a cell
+     *    near the material at layer n - 1 (n = 0: occupied cells only);
+     *  - near cells below the maximum level are refined, cells below the
+     *    minimum level are refined, all other cells above the minimum
+     *    level are coarsened (p4est coarsens a parent only if all its
+     *    children are flagged and keeps the 2:1 balance across faces);
+     *
+     * flags the cells; MPMProblem::adapt_grid() then carries the committed
+     * state (points with all properties, grid vectors) to the new grid,
+     * like a repartition. One pass changes a cell by one level; a point
+     * never reaches a coarse cell if it moves less than `neighbour layers`
+     * fine cells between two passes.
+     *
+     * On the locally refined grid the MPM system uses the hanging-node
+     * constraints (MPMSolver::hanging_node_constraints()). Off by default.
+     */
+    template <int dim>
+    class AdaptiveGrid
+    {
+    public:
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /** Parse subsection "Adaptive grid". */
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+
+      bool
+      enabled() const
+      {
+        return enable;
+      }
+
+      /** Levels of refinement of the initial grid beyond the background
+       * grid (the maximum level); 0 when disabled. */
+      unsigned int
+      initial_refinement() const
+      {
+        return enable ? max_level : 0;
+      }
+
+      /** Passes that bring the initial (uniform) grid to its final state. */
+      unsigned int
+      initial_passes() const
+      {
+        return enable ? max_level - min_level + 1 : 0;
+      }
+
+      /** Whether a pass is due after accepted step @p step. */
+      bool
+      due(const unsigned int step) const
+      {
+        return enable && every > 0 && step > 0 && step % every == 0;
+      }
+
+      /**
+       * Set the refine and coarsen flags of the criterion (class
+       * documentation) on the locally owned cells, with the levels offset
+       * by @p base_level (the global refinement of the background grid),
+       * and let the triangulation prepare them. Returns whether any rank's
+       * grid changes. Collective.
+       */
+      bool
+      flag_cells(BackgroundGrid<dim>                           &grid,
+                 const dealii::Particles::ParticleHandler<dim> &points,
+                 const unsigned int base_level) const;
+
+    private:
+      bool         enable    = false;
+      unsigned int min_level = 0;
+      unsigned int max_level = 0;
+      unsigned int every     = 1;
+      unsigned int layers    = 1;
+    };
+  } // namespace MPM
+} // namespace Talus
+
+#endif

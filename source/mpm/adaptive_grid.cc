@@ -1,0 +1,151 @@
+#include <talus/base/input.h>
+#include <talus/mpm/adaptive_grid.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/lac/trilinos_vector.h>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    template <int dim>
+    void
+    AdaptiveGrid<dim>::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii;
+      prm.enter_subsection("Adaptive grid");
+      {
+        prm.declare_entry(
+          "enable",
+          "false",
+          Patterns::Bool(),
+          "Refine the background grid where the material points are and "
+          "coarsen it where they are not (see doc/adaptive_grids.md) [-]. "
+          "The run starts on the background grid refined uniformly to the "
+          "maximum level, generates the points there and coarsens the empty "
+          "cells before the first step. Needs linear shape functions, the "
+          "lumped mass, no APIC, no ghost penalty, no grid friction "
+          "boundaries and no boundary particles.");
+        prm.declare_entry("minimum level",
+                          "0",
+                          Patterns::Integer(0, 10),
+                          "Coarsest refinement level of the cells far from "
+                          "the material, counted from the background grid "
+                          "of subsection Background grid [-].");
+        prm.declare_entry("maximum level",
+                          "2",
+                          Patterns::Integer(0, 10),
+                          "Refinement level of the cells with material "
+                          "points and their neighbours, counted from the "
+                          "background grid [-]; at least the minimum level. "
+                          "The uniform grid with the same cell size is the "
+                          "background grid refined this many times.");
+        prm.declare_entry("refine every steps",
+                          "1",
+                          Patterns::Integer(0),
+                          "Adapt the grid after every this many accepted "
+                          "time steps [-] (one level per cell and pass); 0: "
+                          "only at the start.");
+        prm.declare_entry("neighbour layers",
+                          "1",
+                          Patterns::Integer(0, 8),
+                          "Layers of cells around the cells with material "
+                          "points that are refined as well (cells that "
+                          "share a vertex with them, layer by layer) [-]. "
+                          "The points may move this many fine cells between "
+                          "two adaptations without reaching a coarse cell.");
+      }
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    AdaptiveGrid<dim>::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Adaptive grid");
+      enable    = prm.get_bool("enable");
+      min_level = prm.get_integer("minimum level");
+      max_level = prm.get_integer("maximum level");
+      every     = prm.get_integer("refine every steps");
+      layers    = prm.get_integer("neighbour layers");
+      prm.leave_subsection();
+      if (enable && max_level < min_level)
+        InputFile::reject("Adaptive grid",
+                          "maximum level",
+                          std::to_string(max_level),
+                          "it must be at least the minimum level (" +
+                            std::to_string(min_level) + ")");
+    }
+
+
+    template <int dim>
+    bool
+    AdaptiveGrid<dim>::flag_cells(
+      BackgroundGrid<dim>                           &grid,
+      const dealii::Particles::ParticleHandler<dim> &points,
+      const unsigned int                             base_level) const
+    {
+      using Vector     = dealii::TrilinosWrappers::MPI::Vector;
+      const auto &dofs = grid.dof_handler;
+      // marks at the vertices (their x dof) of the occupied/near cells
+      Vector            marks(grid.locally_owned_dofs, grid.mpi_communicator);
+      Vector            ghosted(grid.locally_owned_dofs,
+                     grid.locally_relevant_dofs,
+                     grid.mpi_communicator);
+      std::vector<bool> near(grid.triangulation.n_active_cells(), false);
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const typename dealii::Triangulation<dim>::active_cell_iterator
+              tria_cell(cell);
+            near[cell->active_cell_index()] =
+              points.n_particles_in_cell(tria_cell) > 0;
+          }
+      for (unsigned int layer = 0; layer < layers; ++layer)
+        {
+          marks = 0.;
+          std::vector<dealii::types::global_dof_index> indices;
+          for (const auto &cell : dofs.active_cell_iterators())
+            if (cell->is_locally_owned() && near[cell->active_cell_index()])
+              for (const unsigned int v : cell->vertex_indices())
+                indices.push_back(cell->vertex_dof_index(v, 0));
+          const std::vector<double> ones(indices.size(), 1.);
+          marks.add(indices, ones);
+          marks.compress(dealii::VectorOperation::add);
+          ghosted = marks;
+          for (const auto &cell : dofs.active_cell_iterators())
+            if (cell->is_locally_owned())
+              for (const unsigned int v : cell->vertex_indices())
+                if (ghosted(cell->vertex_dof_index(v, 0)) > 0.)
+                  near[cell->active_cell_index()] = true;
+        }
+      const int lowest  = base_level + min_level;
+      const int highest = base_level + max_level;
+      for (const auto &cell : grid.triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->clear_refine_flag();
+            cell->clear_coarsen_flag();
+            const int level = cell->level();
+            if (level < lowest ||
+                (near[cell->active_cell_index()] && level < highest))
+              cell->set_refine_flag();
+            else if (!near[cell->active_cell_index()] && level > lowest)
+              cell->set_coarsen_flag();
+          }
+      grid.triangulation.prepare_coarsening_and_refinement();
+      bool changed = false;
+      for (const auto &cell : grid.triangulation.active_cell_iterators())
+        if (cell->is_locally_owned() &&
+            (cell->refine_flag_set() || cell->coarsen_flag_set()))
+          changed = true;
+      return dealii::Utilities::MPI::logical_or(changed, grid.mpi_communicator);
+    }
+
+
+    template class AdaptiveGrid<2>;
+    template class AdaptiveGrid<3>;
+  } // namespace MPM
+} // namespace Talus
