@@ -33,14 +33,13 @@ usage: contrib/bui_wall_force_study.py [--talus PATH] [--work DIR]
 import argparse
 import os
 import re
-import subprocess
 import sys
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from flexible_barrier_2d_study import moving_average, read_csv, resample  # noqa: E402
+from flexible_barrier_2d_study import (moving_average, read_csv,  # noqa: E402
+                                       resample, run_in)
 
 BASE = os.path.join(ROOT, "tests", "granular",
                     "bui_collapse_20mm_boundary_particles_ugimp.prm.in")
@@ -96,25 +95,12 @@ def run(talus, work, h, shape, barrier, reuse):
                           h * 1e3)
     out = os.path.join(work, tag)
     os.makedirs(out, exist_ok=True)
-    prm = os.path.join(out, "run.prm")
-    with open(prm, "w") as f:
-        f.write(prm_text(h, shape, barrier, out))
-    done = os.path.join(out, "exit_code_and_wall")
-    if not (reuse and os.path.exists(done)):
-        start = time.time()
-        with open(os.path.join(out, "log"), "w") as log:
-            rc = subprocess.call(["nice", talus, prm], stdout=log,
-                                 stderr=subprocess.STDOUT, cwd=out)
-        with open(done, "w") as f:
-            f.write("%d %.1f\n" % (rc, time.time() - start))
-    with open(done) as f:
-        rc, wall = f.read().split()
-    with open(os.path.join(out, "log")) as f:
-        log = f.read()
-    if int(rc) != 0:
-        sys.exit("%s failed (exit %s): %s" % (tag, rc,
+    rc, wall, log = run_in(talus, out, prm_text(h, shape, barrier, out),
+                           reuse)
+    if rc != 0:
+        sys.exit("%s failed (exit %d): %s" % (tag, rc,
                                               log.strip().splitlines()[-1]))
-    return out, log, float(wall)
+    return out, log, wall
 
 
 def wall_force(t, f):

@@ -167,18 +167,13 @@ def ringing(t, f, dt=0.01, width=0.1):
     return (sum(squares) / len(squares)) ** 0.5 if squares else 0.
 
 
-def run(talus, work, name, extra, reuse):
-    """Run one variant, return its row of results (or an error string)."""
-    tag = re.sub(r"[^A-Za-z0-9.=-]+", "_", name)
-    out = os.path.join(work, tag)
-    os.makedirs(out, exist_ok=True)
-    with open(os.path.join(ROOT, "prm", "flexible_barrier_2d.prm")) as f:
-        text = f.read()
-    text = re.sub(r"set output directory = .*",
-                  "set output directory = %s" % out, text)
+def run_in(talus, out, text, reuse):
+    """Write the input text to out/run.prm and run talus on it in out
+    (log in out/log), unless reuse is set and it ran there before; return
+    the exit code, the wall time [s] and the log."""
     prm = os.path.join(out, "run.prm")
     with open(prm, "w") as f:
-        f.write(text + "\n" + extra)
+        f.write(text)
     done = os.path.join(out, "exit_code_and_wall")
     if not (reuse and os.path.exists(done)):
         start = time.time()
@@ -189,9 +184,21 @@ def run(talus, work, name, extra, reuse):
             f.write("%d %.1f\n" % (rc, time.time() - start))
     with open(done) as f:
         rc, wall = f.read().split()
-        rc, wall = int(rc), float(wall)
     with open(os.path.join(out, "log")) as f:
         log = f.read()
+    return int(rc), float(wall), log
+
+
+def run(talus, work, name, extra, reuse):
+    """Run one variant, return its row of results (or an error string)."""
+    tag = re.sub(r"[^A-Za-z0-9.=-]+", "_", name)
+    out = os.path.join(work, tag)
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(ROOT, "prm", "flexible_barrier_2d.prm")) as f:
+        text = f.read()
+    text = re.sub(r"set output directory = .*",
+                  "set output directory = %s" % out, text)
+    rc, wall, log = run_in(talus, out, text + "\n" + extra, reuse)
     if rc != 0:
         return "failed (exit %d): %s" % (rc, log.strip().splitlines()[-1])
     s = read_csv(os.path.join(out, "structure.csv"))

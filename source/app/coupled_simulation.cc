@@ -849,26 +849,17 @@ namespace Talus
         if (!lost_points_stop.empty())
           {
             if (checkpointing.enabled())
-              lost_points_stop +=
-                " The state after this step (" +
-                std::to_string(time_control.step) +
-                ", without the lost points) is in the checkpoint <" +
-                write_checkpoint("failure: material points lost") +
-                ">: resume from it with 'abort on lost material points = "
-                "false' to continue without them.";
+              lost_points_stop += IO::Checkpointing::lost_points_note(
+                time_control.step,
+                write_checkpoint("failure: material points lost"));
             throw ExcSimulationFailed(lost_points_stop);
           }
         if (checkpointing.stop_due(communicator) && !time_control.finished())
           {
-            std::ostringstream msg;
-            msg << "The run stopped at its wall-time limit ('stop after "
-                   "minutes' = "
-                << checkpointing.stop_minutes()
-                << " in subsection <Checkpoint>) after step "
-                << time_control.step << ", t = " << time_control.time << " s.";
-            msg << " The state after this step is in the checkpoint <"
-                << write_checkpoint("wall-time limit") << ">: resume from it.";
-            throw ExcSimulationFailed(msg.str());
+            throw ExcSimulationFailed(checkpointing.wall_limit_message(
+              time_control.step,
+              time_control.time,
+              write_checkpoint("wall-time limit")));
           }
         if (checkpointing.enabled() && !time_control.finished() &&
             checkpointing.due(time_control.step, communicator))

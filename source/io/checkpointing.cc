@@ -191,6 +191,33 @@ namespace Talus
     }
 
 
+    std::string
+    Checkpointing::wall_limit_message(const unsigned int step,
+                                      const double       time,
+                                      const std::string &path) const
+    {
+      std::ostringstream msg;
+      msg << "The run stopped at its wall-time limit ('stop after "
+             "minutes' = "
+          << stop_after_minutes << " in subsection <Checkpoint>) after step "
+          << step << ", t = " << time << " s.";
+      msg << " The state after this step is in the checkpoint <" << path
+          << ">: resume from it.";
+      return msg.str();
+    }
+
+
+    std::string
+    Checkpointing::lost_points_note(const unsigned int step,
+                                    const std::string &path)
+    {
+      return " The state after this step (" + std::to_string(step) +
+             ", without the lost points) is in the checkpoint <" + path +
+             ">: resume from it with 'abort on lost material points = "
+             "false' to continue without them.";
+    }
+
+
     bool
     Checkpointing::due(const unsigned int step,
                        const MPI_Comm     communicator) const

@@ -121,6 +121,25 @@ namespace Talus
       }
 
       /**
+       * The message of a run stopped at its wall-time limit after step
+       * @p step at time @p time [s], its state in the checkpoint
+       * @p path.
+       */
+      std::string
+      wall_limit_message(const unsigned int step,
+                         const double       time,
+                         const std::string &path) const;
+
+      /**
+       * What a run stopped by lost material points ('abort on lost
+       * material points') adds to its message: the state after step
+       * @p step, without the lost points, is in the checkpoint @p path,
+       * and how to resume from it.
+       */
+      static std::string
+      lost_points_note(const unsigned int step, const std::string &path);
+
+      /**
        * Write checkpoint number @p step at time @p time: make
        * `tmp-checkpoint-<step>`, let @p writer (collective) put its files
        * there, write the manifest with the step, time, @p reason, number
