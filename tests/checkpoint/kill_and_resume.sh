@@ -36,6 +36,32 @@ cp "$input" case.prm
 
 fail() { echo "FAIL: $*"; exit 1; }
 
+# expect WHAT TALUS-ARGS...: talus exits non-zero (no crash) with message WHAT
+expect() {
+  local what=$1; shift
+  local out code
+  out=$(timeout 120 "$talus" "$@" 2>&1); code=$?
+  echo "$out" | tail -n 3
+  [ $code -ne 0 ] || fail "exit code 0 for: $*"
+  [ $code -lt 124 ] || fail "exit code $code (crash or signal) for: $*"
+  grep -qF -- "$what" <<<"$out" || fail "no message '$what' for: $*"
+  echo "ok: exit code $code, '$what'"
+}
+
+# resume_failure_checkpoint FILE SUMMARY: resumed from the checkpoint a
+# failed run wrote, FILE runs to its end and prints the line SUMMARY
+resume_failure_checkpoint() {
+  timeout 300 "$talus" --resume output/checkpoints/checkpoint-00000000 \
+    "$1" > log_failure_resumed.txt 2>&1 ||
+    { tail -n 5 log_failure_resumed.txt;
+      fail "the run resumed from the failure checkpoint failed"; }
+  grep -q "resumed from output/checkpoints/checkpoint-00000000 at step 0" \
+    log_failure_resumed.txt || fail "not resumed from the failure checkpoint"
+  grep -q "^$2" log_failure_resumed.txt ||
+    fail "the resumed run did not finish"
+  echo "ok: resumed from the failure checkpoint and finished"
+}
+
 # run DIR RANKS [talus arguments before the file...]: talus in DIR
 run() {
   local dir=$1 ranks=$2; shift 2
@@ -120,16 +146,6 @@ case $mode in
   errors)
     killed 1
     good=run/output/checkpoints/checkpoint-00000020
-    expect() { # expect WHAT TALUS-ARGS...: non-zero exit, message WHAT
-      local what=$1; shift
-      local out code
-      out=$(timeout 120 "$talus" "$@" 2>&1); code=$?
-      echo "$out" | tail -n 3
-      [ $code -ne 0 ] || fail "exit code 0 for: $*"
-      [ $code -lt 124 ] || fail "exit code $code (crash or signal) for: $*"
-      grep -qF -- "$what" <<<"$out" || fail "no message '$what' for: $*"
-      echo "ok: exit code $code, '$what'"
-    }
     cp -r $good truncated
     size=$(stat -c %s truncated/mpm_grid_fixed.data)
     truncate -s $((size / 2)) truncated/mpm_grid_fixed.data
@@ -168,29 +184,11 @@ case $mode in
     # ... from which the run with the parameters that work continues (for
     # 10 steps: the end time is not part of the checkpoint)
     sed 's/set end time = .*/set end time = 0.05/' case.prm > short.prm
-    timeout 300 "$talus" --resume output/checkpoints/checkpoint-00000000 \
-      short.prm > log_failure_resumed.txt 2>&1 ||
-      { tail -n 5 log_failure_resumed.txt;
-        fail "the run resumed from the failure checkpoint failed"; }
-    grep -q "resumed from output/checkpoints/checkpoint-00000000 at step 0" \
-      log_failure_resumed.txt || fail "not resumed from the failure checkpoint"
-    grep -q "^Summary" log_failure_resumed.txt ||
-      fail "the resumed run did not finish"
-    echo "ok: resumed from the failure checkpoint and finished"
+    resume_failure_checkpoint short.prm "Summary"
     ;;
   coupled_errors)
     killed 1
     good=run/output/checkpoints/checkpoint-00000020
-    expect() { # as in errors
-      local what=$1; shift
-      local out code
-      out=$(timeout 120 "$talus" "$@" 2>&1); code=$?
-      echo "$out" | tail -n 3
-      [ $code -ne 0 ] || fail "exit code 0 for: $*"
-      [ $code -lt 124 ] || fail "exit code $code (crash or signal) for: $*"
-      grep -qF -- "$what" <<<"$out" || fail "no message '$what' for: $*"
-      echo "ok: exit code $code, '$what'"
-    }
     # another structure: fewer elements, static instead of dynamic
     sed 's/set elements per member = 20/set elements per member = 10/' \
       case.prm > coarser.prm
@@ -235,15 +233,7 @@ case $mode in
     # the halved first steps exceeds)
     sed 's/set end time = .*/set end time = 0.05/;
          /subsection Verification/,/^  end/d' case.prm > short.prm
-    timeout 300 "$talus" --resume output/checkpoints/checkpoint-00000000 \
-      short.prm > log_failure_resumed.txt 2>&1 ||
-      { tail -n 5 log_failure_resumed.txt;
-        fail "the run resumed from the failure checkpoint failed"; }
-    grep -q "resumed from output/checkpoints/checkpoint-00000000 at step 0" \
-      log_failure_resumed.txt || fail "not resumed from the failure checkpoint"
-    grep -q "^Done:" log_failure_resumed.txt ||
-      fail "the resumed run did not finish"
-    echo "ok: resumed from the failure checkpoint and finished"
+    resume_failure_checkpoint short.prm "Done:"
     ;;
   lost_points)
     # (an INPUT with 'abort on lost material points = true') the run
