@@ -1,6 +1,7 @@
 // The coupled application: MPM + barrier structure, partitioned
 // (set problem = coupled).
 
+#include <talus/app/accepted_step.h>
 #include <talus/app/coupled_simulation.h>
 #include <talus/app/run_console.h>
 #include <talus/app/simulation.h>
@@ -846,28 +847,14 @@ namespace Talus
                       << "  wall " << std::setprecision(3) << wall << " s\n";
               }
           }
-        if (!lost_points_stop.empty())
-          {
-            if (checkpointing.enabled())
-              lost_points_stop += IO::Checkpointing::lost_points_note(
-                time_control.step,
-                write_checkpoint("failure: material points lost"));
-            throw ExcSimulationFailed(lost_points_stop);
-          }
-        if (checkpointing.stop_due(communicator) && !time_control.finished())
-          {
-            throw ExcSimulationFailed(checkpointing.wall_limit_message(
-              time_control.step,
-              time_control.time,
-              write_checkpoint("wall-time limit")));
-          }
-        if (checkpointing.enabled() && !time_control.finished() &&
-            checkpointing.due(time_control.step, communicator))
-          write_checkpoint("scheduled");
-        // (the kill-and-resume test: die as if killed after this step)
-        if (const char *kill = std::getenv("TALUS_DEBUG_KILL_AFTER_STEP"))
-          if (std::to_string(time_control.step) == kill)
-            std::raise(SIGKILL);
+        end_accepted_step(checkpointing,
+                          time_control.step,
+                          time_control.time,
+                          time_control.finished(),
+                          lost_points_stop,
+                          write_checkpoint,
+                          std::function<void()>(),
+                          communicator);
       }
 
     // (debugging and the checkpoint tests: every point in full precision)

@@ -1,0 +1,40 @@
+#ifndef talus_app_accepted_step_h
+#define talus_app_accepted_step_h
+
+#include <talus/io/checkpointing.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <functional>
+#include <string>
+
+namespace Talus
+{
+  /**
+   * The end of an accepted step, the same in the MPM and the coupled time
+   * loop (doc/checkpoint.md):
+   * - material points were lost and `abort on lost material points` is set
+   *   (@p lost_points_stop holds the message): write a checkpoint of the
+   *   step, name it in the message and throw ExcSimulationFailed;
+   * - `stop after minutes` is reached before the end: the same with the
+   *   wall-time limit;
+   * - otherwise call @p before_checkpoint (load balancing of the MPM loop;
+   *   not after the last step) and write the scheduled checkpoint when one
+   *   is due.
+   * @p write_checkpoint writes one and returns its path. The checkpoint
+   * tests' TALUS_DEBUG_KILL_AFTER_STEP = n kills the process here, after
+   * step n, as SIGKILL would.
+   */
+  void
+  end_accepted_step(const IO::Checkpointing &checkpointing,
+                    const unsigned int       step,
+                    const double             time,
+                    const bool               finished,
+                    std::string              lost_points_stop,
+                    const std::function<std::string(const std::string &reason)>
+                                                &write_checkpoint,
+                    const std::function<void()> &before_checkpoint,
+                    const MPI_Comm               communicator);
+} // namespace Talus
+
+#endif
