@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
 # Configure and build the talus executable.
-#   usage: bash contrib/build.sh [Release|Debug] [builddir]
+#   usage: bash contrib/build.sh [Release|Debug] [builddir] [cmake options...]
 # Defaults: Release in <repo>/build, Debug in <repo>/build-debug.
 # A relative builddir is taken relative to the repository top.
+# A build from scratch is a unity build (CMAKE_UNITY_BUILD, 8 sources per
+# unit: about half the compile time on 2 cores, doc/testing.md); for
+# incremental work configure with cmake directly, without it. Further
+# options go to cmake (e.g. -DTALUS_DEBUG_INFO=OFF).
 set -euo pipefail
 
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -14,12 +18,14 @@ case "$build_type" in
      exit 2 ;;
 esac
 build_dir=${2:-$default_dir}
+shift $(( $# < 2 ? $# : 2 ))
 [[ "$build_dir" = /* ]] || build_dir="$top/$build_dir"
 
 bash "$top/contrib/setup.sh"
 
 jobs=$(nproc 2>/dev/null || echo 2)
 echo "build.sh: $build_type build of talus in $build_dir with $jobs jobs"
-cmake -S "$top" -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
+cmake -S "$top" -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" \
+  -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8 "$@"
 make -C "$build_dir" -j"$jobs" talus
 echo "build.sh: built $build_dir/talus"
