@@ -1,8 +1,12 @@
 #include <talus/app/accepted_step.h>
 #include <talus/app/simulation.h>
+#include <talus/base/input.h>
+
+#include <deal.II/base/exceptions.h>
 
 #include <csignal>
 #include <cstdlib>
+#include <sstream>
 
 namespace Talus
 {
@@ -36,5 +40,77 @@ namespace Talus
     if (const char *kill = std::getenv("TALUS_DEBUG_KILL_AFTER_STEP"))
       if (std::to_string(step) == kill)
         std::raise(SIGKILL);
+  }
+
+
+  void
+  solve_or_checkpoint(
+    const std::function<void()> &solve,
+    const IO::Checkpointing     &checkpointing,
+    const unsigned int           step,
+    const double                 time,
+    const std::function<std::string(const std::string &reason)>
+                  &write_checkpoint,
+    const MPI_Comm communicator)
+  {
+    std::string what;
+    try
+      {
+        solve();
+        return;
+      }
+    catch (const ExcSimulationFailed &)
+      {
+        throw;
+      }
+    catch (const ExcInvalidInput &)
+      {
+        throw;
+      }
+    catch (const ExcVerificationFailed &)
+      {
+        throw;
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        std::ostringstream info;
+        e.print_info(info);
+        what = info.str();
+        while (!what.empty() && (what.back() == '\n' || what.back() == ' '))
+          what.pop_back();
+      }
+    catch (const std::exception &e)
+      {
+        what = e.what();
+      }
+
+    std::ostringstream msg;
+    msg << "The step after step " << step << " (t = " << time
+        << " s) stopped with an exception: " << what << '.';
+    if (checkpointing.enabled())
+      {
+        if (dealii::Utilities::MPI::n_mpi_processes(communicator) == 1)
+          {
+            try
+              {
+                msg << " The last accepted step (" << step << ", t = " << time
+                    << " s) is in the checkpoint <"
+                    << write_checkpoint("failure: exception in the step")
+                    << ">: resume from it once the cause is removed.";
+              }
+            catch (const std::exception &e)
+              {
+                msg << " Writing a checkpoint of the last accepted step "
+                       "failed too: "
+                    << e.what();
+              }
+          }
+        else
+          msg << " No checkpoint is written after an exception on more "
+                 "than one rank (it may be one rank's alone while the others "
+                 "wait); the scheduled checkpoints are in <"
+              << checkpointing.directory() << ">.";
+      }
+    throw ExcSimulationFailed(msg.str());
   }
 } // namespace Talus

@@ -636,73 +636,95 @@ namespace Talus
     double dt_taken = 0.;
     while (!time_control.finished())
       {
-        while (true)
-          {
-            const double dt = time_control.next_step();
-            result          = coupling.solve_step(time_control.time, dt);
-            dt_taken        = dt;
-            if (result.converged)
+        // an exception in the attempts stops the run with a checkpoint of
+        // the last accepted step (the attempts change trial state only;
+        // the accelerator's window is dropped as for a rejected step)
+        solve_or_checkpoint(
+          [&]() {
+            while (true)
               {
-                // the contact onset event (ContactOnsetEvent)
-                if (contact_onset.enabled() &&
-                    contact_onset.assess(
-                      time_control,
-                      dt,
-                      count_active_contacts(mpm.solver().boundary_reactions(),
-                                            communicator)))
+                const double dt = time_control.next_step();
+                try
                   {
+                    result = coupling.solve_step(time_control.time, dt);
+                  }
+                catch (...)
+                  {
+                    coupling.reject_step();
+                    throw;
+                  }
+                dt_taken = dt;
+                if (result.converged)
+                  {
+                    // the contact onset event (ContactOnsetEvent)
+                    if (contact_onset.enabled() &&
+                        contact_onset.assess(
+                          time_control,
+                          dt,
+                          count_active_contacts(
+                            mpm.solver().boundary_reactions(), communicator)))
+                      {
+                        ++total_rejected;
+                        coupling.reject_step();
+                        if (!test_mode)
+                          pcout << "  step " << time_control.step + 1
+                                << " at t = " << time_control.time
+                                << " s rejected (dt = " << dt
+                                << " s): contact onset; retrying with dt = "
+                                << time_control.next_step() << " s\n";
+                        continue;
+                      }
+                    if (!time_control.error_control.enabled())
+                      break;
+                    // the step chosen by the error (TruncationErrorControl)
+                    const double error = step_error(dt);
+                    if (time_control.assess_error(dt, error))
+                      break;
                     ++total_rejected;
                     coupling.reject_step();
                     if (!test_mode)
                       pcout << "  step " << time_control.step + 1
                             << " at t = " << time_control.time
                             << " s rejected (dt = " << dt
-                            << " s): contact onset; retrying with dt = "
+                            << " s): estimated error " << error
+                            << " above the tolerance; retrying with dt = "
                             << time_control.next_step() << " s\n";
                     continue;
                   }
-                if (!time_control.error_control.enabled())
-                  break;
-                // the step chosen by the error (TruncationErrorControl)
-                const double error = step_error(dt);
-                if (time_control.assess_error(dt, error))
-                  break;
                 ++total_rejected;
                 coupling.reject_step();
-                if (!test_mode)
-                  pcout << "  step " << time_control.step + 1
-                        << " at t = " << time_control.time
-                        << " s rejected (dt = " << dt << " s): estimated error "
-                        << error << " above the tolerance; retrying with dt = "
-                        << time_control.next_step() << " s\n";
-                continue;
+                pcout << "  step " << time_control.step + 1
+                      << " at t = " << time_control.time
+                      << " s rejected (dt = " << dt << " s): " << result.failure
+                      << '\n';
+                if (!time_control.reject())
+                  {
+                    std::ostringstream msg;
+                    msg << "The coupled step from t = " << time_control.time
+                        << " s could not be solved after "
+                        << time_control.halvings
+                        << " halvings of the time step (last dt = " << dt
+                        << " s): " << result.failure
+                        << ". Raise 'maximum coupling iterations' or change "
+                           "'acceleration' in subsection <Coupling>, reduce "
+                           "'time step' or raise 'maximum step halvings' in "
+                           "subsection <Time>.";
+                    if (checkpointing.enabled())
+                      msg << " The last accepted step (" << time_control.step
+                          << ", t = " << time_control.time
+                          << " s) is in the checkpoint <"
+                          << write_checkpoint(
+                               "failure: coupled step not solved")
+                          << ">: change the parameters and resume from it.";
+                    throw ExcSimulationFailed(msg.str());
+                  }
               }
-            ++total_rejected;
-            coupling.reject_step();
-            pcout << "  step " << time_control.step + 1
-                  << " at t = " << time_control.time
-                  << " s rejected (dt = " << dt << " s): " << result.failure
-                  << '\n';
-            if (!time_control.reject())
-              {
-                std::ostringstream msg;
-                msg << "The coupled step from t = " << time_control.time
-                    << " s could not be solved after " << time_control.halvings
-                    << " halvings of the time step (last dt = " << dt
-                    << " s): " << result.failure
-                    << ". Raise 'maximum coupling iterations' or change "
-                       "'acceleration' in subsection <Coupling>, reduce "
-                       "'time step' or raise 'maximum step halvings' in "
-                       "subsection <Time>.";
-                if (checkpointing.enabled())
-                  msg << " The last accepted step (" << time_control.step
-                      << ", t = " << time_control.time
-                      << " s) is in the checkpoint <"
-                      << write_checkpoint("failure: coupled step not solved")
-                      << ">: change the parameters and resume from it.";
-                throw ExcSimulationFailed(msg.str());
-              }
-          }
+          },
+          checkpointing,
+          time_control.step,
+          time_control.time,
+          write_checkpoint,
+          communicator);
         const double dt = dt_taken;
         coupling.commit_step();
         structure_committed = structure.displacement();

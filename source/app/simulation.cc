@@ -782,85 +782,97 @@ namespace Talus
           }
         MPM::NewtonResult result;
         double            dt_taken = 0.;
-        while (true)
-          {
-            const double dt_try = time_control.next_step();
-            problem.prepare_step(time_control.time + dt_try, dt_try);
-            result   = problem.solve_step();
-            dt_taken = dt_try;
-            // the contact onset event (ContactOnsetEvent)
-            if (result.converged && contact_onset.enabled() &&
-                contact_onset.assess(
-                  time_control,
-                  dt_try,
-                  count_active_contacts(solver.boundary_reactions(),
-                                        communicator)))
+        // an exception in the attempts stops the run with a checkpoint of
+        // the last accepted step (solve_step() leaves it whole)
+        solve_or_checkpoint(
+          [&]() {
+            while (true)
               {
-                ++total_rejected;
-                if (!test_mode)
-                  pcout << "  step " << time_control.step + 1
-                        << " at t = " << time_control.time
-                        << " s rejected (dt = " << dt_try
-                        << " s): contact onset; retrying with dt = "
-                        << time_control.next_step() << " s\n";
-                continue;
-              }
-            if (result.converged && !time_control.error_control.enabled())
-              break;
-            if (result.converged)
-              {
-                // the step chosen by the error (TruncationErrorControl)
-                const double error = time_control.error_control.error(
-                  solver.truncation_error_norms(),
-                  dt_try,
-                  time_control.newmark.beta);
-                if (time_control.assess_error(dt_try, error))
+                const double dt_try = time_control.next_step();
+                problem.prepare_step(time_control.time + dt_try, dt_try);
+                result   = problem.solve_step();
+                dt_taken = dt_try;
+                // the contact onset event (ContactOnsetEvent)
+                if (result.converged && contact_onset.enabled() &&
+                    contact_onset.assess(
+                      time_control,
+                      dt_try,
+                      count_active_contacts(solver.boundary_reactions(),
+                                            communicator)))
+                  {
+                    ++total_rejected;
+                    if (!test_mode)
+                      pcout << "  step " << time_control.step + 1
+                            << " at t = " << time_control.time
+                            << " s rejected (dt = " << dt_try
+                            << " s): contact onset; retrying with dt = "
+                            << time_control.next_step() << " s\n";
+                    continue;
+                  }
+                if (result.converged && !time_control.error_control.enabled())
                   break;
+                if (result.converged)
+                  {
+                    // the step chosen by the error (TruncationErrorControl)
+                    const double error = time_control.error_control.error(
+                      solver.truncation_error_norms(),
+                      dt_try,
+                      time_control.newmark.beta);
+                    if (time_control.assess_error(dt_try, error))
+                      break;
+                    ++total_rejected;
+                    if (!test_mode)
+                      pcout << "  step " << time_control.step + 1
+                            << " at t = " << time_control.time
+                            << " s rejected (dt = " << dt_try
+                            << " s): estimated error " << error
+                            << " above the tolerance; retrying with dt = "
+                            << time_control.next_step() << " s\n";
+                    continue;
+                  }
                 ++total_rejected;
-                if (!test_mode)
-                  pcout << "  step " << time_control.step + 1
-                        << " at t = " << time_control.time
-                        << " s rejected (dt = " << dt_try
-                        << " s): estimated error " << error
-                        << " above the tolerance; retrying with dt = "
-                        << time_control.next_step() << " s\n";
-                continue;
+                pcout << "  step " << time_control.step + 1
+                      << " at t = " << time_control.time
+                      << " s rejected (dt = " << dt_try
+                      << " s): " << result.failure << '\n';
+                if (!time_control.reject())
+                  {
+                    std::ostringstream msg;
+                    msg << "The step from t = " << time_control.time
+                        << " s could not be solved after "
+                        << time_control.halvings
+                        << " halvings of the time step (last dt = " << dt_try
+                        << " s";
+                    if (time_control.halvings < time_control.max_halvings)
+                      msg << "; half of it is below the 'minimum time step' of "
+                          << time_control.min_dt << " s";
+                    msg
+                      << "): " << result.failure
+                      << ". Raise 'maximum Newton iterations' (or 'maximum "
+                         "Newton iterations with state changes', the cap "
+                         "including the iterations that change the return "
+                         "branch of material points) in subsection "
+                         "<Solver>, reduce 'time step' or 'minimum time step' "
+                         "or raise 'maximum step halvings' in subsection "
+                         "<Time>, or check the material parameters.";
+                    if (checkpointing.enabled())
+                      msg << " The last accepted step (" << time_control.step
+                          << ", t = " << time_control.time
+                          << " s) is in the checkpoint <"
+                          << write_checkpoint(
+                               "failure: the step could not be solved")
+                          << ">: change the parameters and resume from it.";
+                    throw ExcSimulationFailed(msg.str());
+                  }
+                pcout << "    retrying with dt = " << time_control.next_step()
+                      << " s\n";
               }
-            ++total_rejected;
-            pcout << "  step " << time_control.step + 1
-                  << " at t = " << time_control.time
-                  << " s rejected (dt = " << dt_try << " s): " << result.failure
-                  << '\n';
-            if (!time_control.reject())
-              {
-                std::ostringstream msg;
-                msg << "The step from t = " << time_control.time
-                    << " s could not be solved after " << time_control.halvings
-                    << " halvings of the time step (last dt = " << dt_try
-                    << " s";
-                if (time_control.halvings < time_control.max_halvings)
-                  msg << "; half of it is below the 'minimum time step' of "
-                      << time_control.min_dt << " s";
-                msg << "): " << result.failure
-                    << ". Raise 'maximum Newton iterations' (or 'maximum "
-                       "Newton iterations with state changes', the cap "
-                       "including the iterations that change the return "
-                       "branch of material points) in subsection "
-                       "<Solver>, reduce 'time step' or 'minimum time step' "
-                       "or raise 'maximum step halvings' in subsection "
-                       "<Time>, or check the material parameters.";
-                if (checkpointing.enabled())
-                  msg << " The last accepted step (" << time_control.step
-                      << ", t = " << time_control.time
-                      << " s) is in the checkpoint <"
-                      << write_checkpoint(
-                           "failure: the step could not be solved")
-                      << ">: change the parameters and resume from it.";
-                throw ExcSimulationFailed(msg.str());
-              }
-            pcout << "    retrying with dt = " << time_control.next_step()
-                  << " s\n";
-          }
+          },
+          checkpointing,
+          time_control.step,
+          time_control.time,
+          write_checkpoint,
+          communicator);
         problem.commit_step();
         time_control.accept(dt_taken);
         contact_onset.accepted(time_control);

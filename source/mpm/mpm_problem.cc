@@ -11,9 +11,11 @@
 #include <boost/serialization/vector.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
 
 namespace Talus
 {
@@ -240,6 +242,7 @@ namespace Talus
     void
     MPMProblem<dim>::prepare_step(const double new_time, const double dt)
     {
+      step_end_time = new_time;
       mpm_solver->prepare_step(new_time, dt);
     }
 
@@ -256,7 +259,17 @@ namespace Talus
     NewtonResult
     MPMProblem<dim>::solve_step()
     {
-      return mpm_solver->solve_step();
+      const NewtonResult result = mpm_solver->solve_step();
+      // (the test of an exception inside a step, doc/debugging.md: a solve
+      // of a step that ends after the given time throws, its trial state
+      // left as the Newton iteration made it)
+      if (const char *after = std::getenv("TALUS_DEBUG_THROW_AFTER_TIME"))
+        if (step_end_time > std::atof(after))
+          throw std::runtime_error(
+            "TALUS_DEBUG_THROW_AFTER_TIME: an exception thrown on purpose "
+            "after the Newton iteration of the step to t = " +
+            std::to_string(step_end_time) + " s");
+      return result;
     }
 
 

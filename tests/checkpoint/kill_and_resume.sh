@@ -17,6 +17,12 @@
 #            accelerator or problem: clear errors, non-zero exit
 #   wall_limit  stopped by 'stop after minutes' after step 1, the
 #            checkpoint named; resumed from it: identical to 1e-10
+#   exception  an exception inside step 15 (TALUS_DEBUG_THROW_AFTER_TIME,
+#            after the step's Newton iteration): the run stops, names the
+#            checkpoint of step 14; resumed from it: identical to 1e-10
+#            (a coupled INPUT: to RANKS_TOLERANCE without SKIPPED_COLUMNS,
+#            since the accelerator's reused windows are dropped as after
+#            any rejected step)
 #   lost_points  (an INPUT with 'abort on lost material points = true')
 #            the run stops with a checkpoint and names it; resumed from it
 #            without the abort: identical to the run without the abort
@@ -299,6 +305,29 @@ case $mode in
     python3 "$here/compare_runs.py" ref/output run/output 1e-10 \
       "stopped by the wall-time limit and resumed" 18,19 "$csv_files" ||
       fail "resumed run differs"
+    ;;
+  exception)
+    reference
+    mkdir -p run
+    ( cd run && TALUS_DEBUG_THROW_AFTER_TIME=0.0725 timeout 300 \
+        "$talus" ../case.prm > log_stopped.txt 2>&1 )
+    code=$?
+    tail -n 2 run/log_stopped.txt
+    [ $code -eq 1 ] || fail "exit code $code of the run stopped by the exception"
+    grep -q "The step after step 14 (t = 0.07 s) stopped with an exception: TALUS_DEBUG_THROW_AFTER_TIME" \
+      run/log_stopped.txt || fail "no message of the exception in step 15"
+    checkpoint=$(sed -n 's/.*The last accepted step (14, t = 0.07 s) is in the checkpoint <\([^>]*\)>.*/\1/p' \
+      run/log_stopped.txt | head -n 1)
+    [ "$checkpoint" = output/checkpoints/checkpoint-00000014 ] ||
+      fail "the message names <$checkpoint>, not the checkpoint of step 14"
+    grep -q "^key reason = failure: exception in the step" \
+      "run/$checkpoint/manifest" || fail "no checkpoint of the exception"
+    run run 1 --resume "$checkpoint" ||
+      { cat run/log.txt; fail "the resumed run failed"; }
+    grep "resumed from" run/log.txt || fail "not resumed"
+    python3 "$here/compare_runs.py" ref/output run/output "${6:-1e-10}" \
+      "stopped by an exception and resumed" 18,19 "$csv_files" \
+      "$skipped_columns" || fail "resumed run differs"
     ;;
   *) fail "unknown mode $mode" ;;
 esac

@@ -35,6 +35,31 @@ namespace Talus
                                                 &write_checkpoint,
                     const std::function<void()> &before_checkpoint,
                     const MPI_Comm               communicator);
+
+  /**
+   * Call @p solve (the attempts at the step after step @p step, with their
+   * retries). An exception that leaves it, other than the ones with their
+   * own message (ExcSimulationFailed, ExcInvalidInput,
+   * ExcVerificationFailed), e.g. from deal.II, Trilinos, a material model
+   * or the memory, becomes ExcSimulationFailed naming the step, the
+   * exception's text and a checkpoint of the last accepted step written by
+   * @p write_checkpoint (when checkpoints are enabled): the attempts change
+   * only trial state (MPMProblem::solve_step(),
+   * GaussSeidelCoupling::solve_step() and the coupled step's rejection), so
+   * the committed state is still whole. On more than one rank no
+   * checkpoint is written, because the exception may be one rank's alone
+   * while the others wait in a collective call; the message then names the
+   * directory of the scheduled checkpoints instead.
+   */
+  void
+  solve_or_checkpoint(
+    const std::function<void()> &solve,
+    const IO::Checkpointing     &checkpointing,
+    const unsigned int           step,
+    const double                 time,
+    const std::function<std::string(const std::string &reason)>
+                  &write_checkpoint,
+    const MPI_Comm communicator);
 } // namespace Talus
 
 #endif

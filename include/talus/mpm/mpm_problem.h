@@ -379,6 +379,8 @@ namespace Talus
       MemoryEstimate<dim> memory;
       /** Whether save_state() holds a copy on the present partition. */
       bool saved_state_valid = false;
+      /** The end of the step of the last prepare_step() [s]. */
+      double step_end_time = 0.;
     };
   } // namespace MPM
 } // namespace Talus
