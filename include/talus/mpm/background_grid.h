@@ -89,10 +89,10 @@ namespace Talus
       std::set<dealii::types::boundary_id> fixed_boundaries;
 
       /**
-       * Whether the fixed boundaries hold only their nodes inside the box
-       * [fixed_region_lower, fixed_region_upper] ('fixed region lower
-       * corner', 'fixed region upper corner'), e.g. the root face of a
-       * clamped beam instead of the whole wall.
+       * Whether every grid node inside the box [fixed_region_lower,
+       * fixed_region_upper] is fixed ('fixed region lower corner', 'fixed
+       * region upper corner'), in addition to the fixed boundaries: e.g.
+       * the root face of a clamped beam inside the grid.
        */
       bool fixed_region_given = false;
 
