@@ -14,12 +14,35 @@
 # cantilever_fe.prm: Q1 on 32 x 8 and 64 x 16 cells, Q2 on 16 x 4), prints
 # its convergence and rewrites the reference file from Q1 64 x 16.
 #
-# usage: bash contrib/cantilever_convergence.sh [path/to/talus] [levels] [--reference]
+# Options (after the levels): --reference; --root-clamp fixes only the
+# nodes of the root face (x = 0, 0 <= y <= 1: 'fixed region lower/upper
+# corner') instead of the whole wall x = 0, in a grid that extends to
+# x = -1 m so that the beam can swing past the plane of the root; --from-forces starts each step
+# from the acceleration of the forces ('start acceleration = from forces')
+# instead of the projected one; --shapes "linear uGIMP" chooses the shape
+# functions (default both).
+#
+# usage: bash contrib/cantilever_convergence.sh [path/to/talus] [levels] [options]
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 talus=$(readlink -f "${1:-$here/build/talus}")
 levels=${2:-3}
-reference=${3:-}
+reference=
+extra=()
+shapes="linear uGIMP"
+nx=20
+shift $(($# < 2 ? $# : 2))
+while [ $# -gt 0 ]; do
+  case $1 in
+    --reference) reference=--reference ;;
+    --root-clamp) nx=24; extra+=(-e "s|set lower corner = 0, -5|set lower corner = -1, -5|"
+                    -e "s|set fixed boundaries = 0|set fixed region lower corner = 0, 0\n  set fixed region upper corner = 0, 1|") ;;
+    --from-forces) extra+=(-e "s|set linear solver = direct|set linear solver = direct\n  set start acceleration = from forces|") ;;
+    --shapes) shift; shapes=$1 ;;
+    *) echo "unknown option $1"; exit 1 ;;
+  esac
+  shift
+done
 ref_csv=$here/tests/mpm/cantilever_fe_reference.csv
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -79,24 +102,25 @@ fi
 # run SHAPE LEVEL: writes $work/SHAPE-LEVEL.log and its output directory
 run() {
   local shape=$1 level=$2 f=$((1 << $2)) prm=$work/$1-$2.prm
-  sed -e "s|set subdivisions = 20, 26|set subdivisions = $((20 * f)), $((26 * f))|" \
+  sed -e "s|set subdivisions = 20, 26|set subdivisions = $((nx * f)), $((26 * f))|" \
       -e "s|set shape functions = linear|set shape functions = $shape|" \
       -e "s|set output directory = .*|set output directory = $work/out-$shape-$level|" \
       -e "s|set test mode = true|set test mode = false|" \
       -e "s|set tolerance = .*||" -e "s|set peak tolerance = .*||" \
-      -e "s|@SOURCE_DIR@|$here/tests/mpm|" \
+      -e "s|@SOURCE_DIR@|$here/tests/mpm|" ${extra[@]+"${extra[@]}"} \
       "$here/tests/mpm/cantilever_neo_hookean.prm.in" > "$prm"
   (cd "$work" && /usr/bin/time -f "wall %e s" nice "$talus" "$prm") > "$work/$shape-$level.log" 2>&1 || {
     echo "talus failed on $shape level $level:"; tail -20 "$work/$shape-$level.log"; exit 1; }
 }
 
-for s in linear uGIMP; do
+for s in $shapes; do
   for l in $(seq 0 $((levels - 1))); do run $s $l; done
 done
 
-python3 - "$work" "$levels" "$ref_csv" <<'PY'
+python3 - "$work" "$levels" "$ref_csv" "$shapes" <<'PY'
 import bisect, csv, math, re, sys
 work, levels, ref_csv = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+shapes = sys.argv[4].split()
 ref = [tuple(float(x) for x in l.split(',')) for l in open(ref_csv)
        if l[0].isdigit()]
 rt = [r[0] for r in ref]
@@ -118,7 +142,7 @@ def rate(a, b):
 print('\nMPM, 2 x 2 points per cell, dt = 0.01 s: mean deflection of the points of x >= 3.75 m')
 print('| shape | h [m] | peak [m] | t_peak [s] | peak error | L2 error [0, 1 s] | rate | L2 error [0, 2 s] | rate | rejected steps | energy lost | booked | unbooked | wall [s] |')
 print('|---|---|---|---|---|---|---|---|---|---|---|---|---|---|')
-for s in ('linear', 'uGIMP'):
+for s in shapes:
     prev = prev1 = None
     for l in range(levels):
         log = open('%s/%s-%d.log' % (work, s, l)).read()

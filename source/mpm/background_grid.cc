@@ -130,6 +130,26 @@ namespace Talus
           "(conforming Dirichlet condition). Box ids: 0/1 x-min/x-max, "
           "2/3 y-min/y-max, 4/5 z-min/z-max.");
         prm.declare_entry(
+          "fixed region lower corner",
+          "",
+          Anything(),
+          "Lower corner of a box of fixed grid nodes [m], one coordinate per "
+          "dimension separated by commas: if given (with 'fixed region upper "
+          "corner'), every grid node inside the box, on the grid's boundary "
+          "or inside it, is fixed (all displacement components zero), in "
+          "addition to the nodes of the 'fixed boundaries'. Example: the "
+          "root face of a clamped beam, x = 0 and 0 <= y <= H, in a grid "
+          "that extends to x < 0 (only the root is held, not a whole wall). "
+          "A box of zero width in a direction (lower = upper coordinate) is "
+          "a line or face of nodes. Empty (default): none. The box must "
+          "enclose at least one grid node.");
+        prm.declare_entry("fixed region upper corner",
+                          "",
+                          Anything(),
+                          "Upper corner of the box of fixed nodes [m] (see "
+                          "'fixed region lower corner'); no coordinate below "
+                          "the lower corner's.");
+        prm.declare_entry(
           "slip boundaries",
           "",
           List(Integer(0, 255), 0, 255, ","),
@@ -225,6 +245,33 @@ namespace Talus
         return result;
       };
       fixed_boundaries = ids("fixed boundaries");
+      {
+        const std::string lower = prm.get("fixed region lower corner");
+        const std::string upper = prm.get("fixed region upper corner");
+        fixed_region_given      = !lower.empty() || !upper.empty();
+        if (fixed_region_given)
+          {
+            if (lower.empty() || upper.empty())
+              InputFile::reject(sub,
+                                lower.empty() ? "fixed region lower corner" :
+                                                "fixed region upper corner",
+                                "",
+                                "give both corners of the box of fixed nodes "
+                                "or neither");
+            fixed_region_lower =
+              parse_point<dim>(prm, sub, "fixed region lower corner");
+            fixed_region_upper =
+              parse_point<dim>(prm, sub, "fixed region upper corner");
+            for (unsigned int d = 0; d < dim; ++d)
+              if (!(fixed_region_upper[d] >= fixed_region_lower[d]))
+                InputFile::reject(sub,
+                                  "fixed region upper corner",
+                                  upper,
+                                  "no coordinate may be below the 'fixed "
+                                  "region lower corner' (" +
+                                    lower + ")");
+          }
+      }
       friction_separation_by_velocity =
         prm.get("friction separation") == "velocity";
       separation_lift_height = prm.get_double("separation lift height");

@@ -313,7 +313,8 @@ namespace Talus
           "'zero'. Either way the convergence reference is the residual at "
           "du = 0 (one extra residual assembly per step with the predictor), "
           "so the tolerances mean the same. 'automatic': 'constant "
-          "acceleration' without boundary particles, 'zero' with them. "
+          "acceleration' without boundary particles and with 'start "
+          "acceleration = projected', else 'zero'. "
           "Measured (doc/performance.md, 'Granular collapse: time to "
           "solution'): the Bui "
           "collapse at 5 mm needs 4.4 instead of 5.8 Newton iterations per "
@@ -323,6 +324,26 @@ namespace Talus
           "(benchmarks/granular_3d/block_on_rotated_plane.prm) is slower "
           "with it (more rejected steps), hence 'zero' there. Quasi-static "
           "analyses always start from zero.");
+        prm.declare_entry(
+          "start acceleration",
+          "projected",
+          Patterns::Selection("projected|from forces"),
+          "Grid acceleration a_n at the start of a dynamic step, which the "
+          "Newmark update v_{n+1} = v_n + dt ((1 - gamma) a_n + gamma "
+          "a_{n+1}) weighs [no unit]. 'projected': the points' accelerations "
+          "projected to the nodes like their velocities (standard implicit "
+          "MPM). 'from forces': a_n = (f_ext - f_int) / m_I at the free nodes "
+          "from the points' stresses at the start of the step (one extra "
+          "residual assembly per step), the acceleration for which the "
+          "trapezoidal rule conserves the grid's energy; with 'projected' the "
+          "difference does work du (m a_n - f_n) / 2 per step that no "
+          "energy account books (doc/theory.md, 'Newton's method: line search "
+          "and energy balance', the start acceleration). Lumped "
+          "mass only, not with friction boundaries or boundary particles. "
+          "'predictor = automatic' starts its Newton iterations from zero: "
+          "the force acceleration of nodes with little mass is large, and "
+          "the Newmark predictor inverted points of the cantilever of "
+          "tests/mpm/cantilever_neo_hookean_energy (10 rejected steps).");
         prm.declare_entry("maximum line search halvings",
                           "4",
                           Patterns::Integer(1, 20),
@@ -472,9 +493,17 @@ namespace Talus
                           "Newton needs an iterative linear solver)");
       max_linear_iterations = prm.get_integer("maximum linear iterations");
       abort_on_lost_points  = prm.get_bool("abort on lost material points");
-      use_fbar      = prm.get("volumetric locking treatment") == "F-bar";
-      line_search   = prm.get_bool("line search");
-      predictor     = prm.get("predictor");
+      use_fbar    = prm.get("volumetric locking treatment") == "F-bar";
+      line_search = prm.get_bool("line search");
+      predictor   = prm.get("predictor");
+      start_acceleration_from_forces =
+        prm.get("start acceleration") == "from forces";
+      if (start_acceleration_from_forces && consistent_mass)
+        InputFile::reject(sub,
+                          "start acceleration",
+                          "from forces",
+                          "'projected' with 'mass matrix = consistent' "
+                          "('from forces' needs the lumped mass)");
       flip_fraction = prm.get_double("FLIP fraction");
       apic          = prm.get("velocity update") == "APIC";
       xpic_order    = prm.get("velocity update") == "XPIC" ?
@@ -606,6 +635,44 @@ namespace Talus
       if (!grid.fixed_boundaries.empty())
         fixed_dofs = dealii::DoFTools::extract_boundary_dofs(
           dof_handler, dealii::ComponentMask(dim, true), grid.fixed_boundaries);
+      if (grid.fixed_region_given)
+        {
+          // every grid node inside the fixed region, on the boundary or not
+          const double tolerance = 1e-10 * grid.minimal_cell_diameter;
+          const auto   inside    = [&](const dealii::Point<dim> &x) {
+            for (unsigned int d = 0; d < dim; ++d)
+              if (x[d] < grid.fixed_region_lower[d] - tolerance ||
+                  x[d] > grid.fixed_region_upper[d] + tolerance)
+                return false;
+            return true;
+          };
+          std::vector<dealii::types::global_dof_index> dofs;
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (!cell->is_artificial())
+              for (const unsigned int v : cell->vertex_indices())
+                if (inside(cell->vertex(v)))
+                  for (unsigned int d = 0; d < dim; ++d)
+                    dofs.push_back(cell->vertex_dof_index(v, d));
+          std::sort(dofs.begin(), dofs.end());
+          dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+          const unsigned int n_found =
+            dealii::Utilities::MPI::max(static_cast<unsigned int>(dofs.size()),
+                                        comm);
+          if (n_found == 0)
+            InputFile::reject("Background grid",
+                              "fixed region lower corner",
+                              "(with 'fixed region upper corner')",
+                              "the box of fixed nodes contains no node of the "
+                              "grid; it must enclose at least one");
+          fixed_dofs.add_indices(dofs.begin(), dofs.end());
+        }
+      if (start_acceleration_from_forces && !grid.friction_boundaries.empty())
+        InputFile::reject("Solver",
+                          "start acceleration",
+                          "from forces",
+                          "'projected' with grid friction boundaries "
+                          "('from forces' is implemented for fixed and "
+                          "slip boundaries)");
       slip_dofs.assign(dim, dealii::IndexSet(dof_handler.n_dofs()));
       for (const auto id : grid.slip_boundaries)
         {
@@ -1021,13 +1088,36 @@ namespace Talus
 
       dealii::TrilinosWrappers::MPI::Vector du(grid.locally_owned_dofs,
                                                grid.mpi_communicator);
-      displacement            = du;
+      displacement = du;
+      if (start_acceleration_from_forces && !quasi_static)
+        {
+          // a_n = (f_ext - f_int(u_n)) / m_I at the free nodes with mass
+          // (the residual without inertia at du = 0; zero at the
+          // constrained nodes, as prepare_step() left them)
+          std::string failure;
+          {
+            dealii::TimerOutput::Scope s(timer, "assembly");
+            if (!assemble(displacement, false, false, failure))
+              {
+                result.failure = failure;
+                return result;
+              }
+          }
+          dealii::TrilinosWrappers::MPI::Vector a(grid.locally_owned_dofs,
+                                                  grid.mpi_communicator);
+          for (const auto i : grid.locally_owned_dofs)
+            if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
+              a(i) = residual(i) / nodal_mass(i);
+          a.compress(dealii::VectorOperation::insert);
+          acceleration_n = a;
+        }
       const double f_ext_norm = external_force.l2_norm();
       double       reference  = 0.;
       const bool   warm = warm_start && last_increment.size() == du.size();
       const bool   newmark_predictor =
         predictor == "constant acceleration" ||
-        (predictor == "automatic" && boundary_particles == nullptr);
+        (predictor == "automatic" && boundary_particles == nullptr &&
+         !start_acceleration_from_forces);
       if (warm || (newmark_predictor && !quasi_static))
         {
           // The reference of the convergence test stays the residual at
@@ -1181,6 +1271,13 @@ namespace Talus
     {
       p2g_current        = false;
       boundary_particles = boundaries.empty() ? nullptr : &boundaries;
+      if (boundary_particles != nullptr && start_acceleration_from_forces)
+        InputFile::reject("Solver",
+                          "start acceleration",
+                          "from forces",
+                          "'projected' with boundary particles ('from "
+                          "forces' is implemented for the grid's fixed and "
+                          "slip boundaries)");
       // (resize: a checkpoint restored before keeps its values)
       accounts.boundary_friction_dissipation.resize(boundaries.n_boundaries(),
                                                     0.);

@@ -88,6 +88,17 @@ namespace Talus
       /** Boundary ids where all displacement components are zero. */
       std::set<dealii::types::boundary_id> fixed_boundaries;
 
+      /**
+       * Whether every grid node inside the box [fixed_region_lower,
+       * fixed_region_upper] is fixed ('fixed region lower corner', 'fixed
+       * region upper corner'), in addition to the fixed boundaries: e.g.
+       * the root face of a clamped beam inside the grid.
+       */
+      bool fixed_region_given = false;
+
+      /** Corners of the box of fixed nodes [m] (if fixed_region_given). */
+      dealii::Point<dim> fixed_region_lower, fixed_region_upper;
+
       /** Boundary ids where the normal displacement is zero (the boundary
        * must be axis aligned). */
       std::set<dealii::types::boundary_id> slip_boundaries;

@@ -1234,6 +1234,14 @@ namespace Talus
        */
       std::string predictor = "automatic";
       /**
+       * Start acceleration a_n of the grid's Newmark step: "projected" (the
+       * points' accelerations projected like their velocities) or "from
+       * forces" (a_n = M^-1 (f_ext - f_int) at the start of the step, the
+       * acceleration the trapezoidal rule's energy identity needs; lumped
+       * mass only).
+       */
+      bool start_acceleration_from_forces = false;
+      /**
        * Grid dofs whose friction contact state changed in the current Newton
        * iteration, with the value their increment must take in the new state
        * (normal 0; tangential: the resting increment of a stuck node).
