@@ -48,6 +48,16 @@ namespace Talus
                           "Depth of the material layer of 'Robin stiffness "
                           "= inertia' [background cells], > 0.");
         prm.declare_entry(
+          "Robin directions",
+          "all",
+          dealii::Patterns::Selection("all|normal|automatic"),
+          "Components of the interface DoFs that carry Robin springs: all, "
+          "normal (a point's spring k n n^T, lumped to its diagonal k "
+          "n_d^2, n the direction of the point's reaction: no spring along "
+          "an interface that transmits no tangential force) or automatic "
+          "(normal when every interface boundary has condition slip or "
+          "contact, all otherwise).");
+        prm.declare_entry(
           "warm start",
           "false",
           dealii::Patterns::Bool(),
@@ -90,6 +100,12 @@ namespace Talus
                             "Robin depth",
                             prm.get("Robin depth"),
                             "a number > 0 [cells]");
+      }
+      {
+        const std::string text = prm.get("Robin directions");
+        robin_directions       = (text == "normal" ? RobinDirections::normal :
+                                  text == "automatic" ? RobinDirections::automatic :
+                                                        RobinDirections::all);
       }
       warm_start = prm.get_bool("warm start");
       acceleration.parse_parameters(prm, "Coupling");

@@ -138,7 +138,8 @@ namespace Talus
             {
               springs = interface.covered_area(reactions,
                                                committed.size(),
-                                               communicator);
+                                               communicator,
+                                               normal_springs());
               springs *= robin_stiffness(dt);
             }
         }
@@ -153,12 +154,21 @@ namespace Talus
           {
             dealii::Vector<double> r(x_tilde);
             r -= x;
+            // the residual at the interface points by component (root of
+            // the sum of squares over the points)
+            double r_component[3] = {0., 0., 0.};
+            for (const auto &u : interface.point_displacements(r))
+              for (unsigned int d = 0; d < dim; ++d)
+                r_component[d] += u[d] * u[d];
             std::cerr << "coupling t = " << t + dt << "  |x| " << x.l2_norm()
                       << "  |x~| " << x_tilde.l2_norm() << "  |r| "
-                      << r.l2_norm() << "  |F| " << force.l2_norm()
-                      << "  MPM Newton " << result.mpm.iterations
-                      << "  structure Newton " << its << "  springs "
-                      << springs.l1_norm() << '\n';
+                      << r.l2_norm() << "  points: |r_x| "
+                      << std::sqrt(r_component[0]) << "  |r_y| "
+                      << std::sqrt(r_component[1]) << "  |r_z| "
+                      << std::sqrt(r_component[2]) << "  |F| "
+                      << force.l2_norm() << "  MPM Newton "
+                      << result.mpm.iterations << "  structure Newton " << its
+                      << "  springs " << springs.l1_norm() << '\n';
           }
       };
 
@@ -268,6 +278,24 @@ namespace Talus
       if (beta == std::numeric_limits<double>::max() || !(layer > 0.))
         return layer;
       return 1. / (1. / layer + 1. / beta);
+    }
+
+
+    template <int dim>
+    bool
+    GaussSeidelCoupling<dim>::normal_springs() const
+    {
+      using Directions = CouplingParameters::RobinDirections;
+      if (parameters.robin_directions != Directions::automatic)
+        return parameters.robin_directions == Directions::normal;
+      for (const unsigned int b : interface.boundary_indices())
+        {
+          const auto condition = mpm.boundaries().boundary(b).condition;
+          if (condition != Boundaries::Condition::slip &&
+              condition != Boundaries::Condition::contact)
+            return false;
+        }
+      return true;
     }
 
 

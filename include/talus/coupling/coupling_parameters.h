@@ -85,6 +85,21 @@ namespace Talus
       bool   robin_elastic   = false; ///< add M / d ('automatic')
       double robin_stiffness = 0.;    ///< k_R [Pa/m] when not 'inertia'
       double robin_depth     = 4.;    ///< d [cells] for 'inertia'
+      /**
+       * Directions of the Robin springs ('Robin directions'): every
+       * component of the interface DoFs, or only the normal one (k n n^T,
+       * lumped to its diagonal k n_d^2 with n the direction of the
+       * point's reaction), where the interface transmits no tangential
+       * force (slip, frictionless contact): a tangential spring there has
+       * no counterpart in the material and only slows the iteration.
+       */
+      enum class RobinDirections
+      {
+        all,
+        normal,
+        automatic ///< normal if every interface boundary is slip or contact
+      };
+      RobinDirections robin_directions = RobinDirections::all;
       /** The MPM's Newton of an iteration starts from the last increment. */
       bool warm_start = false;
 

@@ -178,6 +178,11 @@ namespace Talus
       double
       robin_stiffness(const double dt) const;
 
+      /** Whether the Robin springs act along the reactions only
+       * (CouplingParameters::robin_directions). */
+      bool
+      normal_springs() const;
+
       /** The structure's step from @p t to @p t + @p dt with @p F; adds
        * its Newton iterations (returned) to @p result, throws when it
        * does not converge. */
