@@ -58,6 +58,17 @@ namespace Talus
           "(normal when every interface boundary has condition slip or "
           "contact, all otherwise).");
         prm.declare_entry(
+          "restart at contact change",
+          "false",
+          dealii::Patterns::Bool(),
+          "Restart the accelerator (forget its quasi-Newton columns, those "
+          "of past windows and IQN-IMVJ's Jacobian; the next step relaxes "
+          "with 'initial relaxation') whenever the set of interface points "
+          "that carry a force changes between two iterations of a window: "
+          "a contact interface whose active set switches makes the "
+          "iteration a different affine map on each set, and a model mixing "
+          "them stalls (doc/coupling.md, 'Iterations at contact').");
+        prm.declare_entry(
           "warm start",
           "false",
           dealii::Patterns::Bool(),
@@ -107,7 +118,8 @@ namespace Talus
                                   text == "automatic" ? RobinDirections::automatic :
                                                         RobinDirections::all);
       }
-      warm_start = prm.get_bool("warm start");
+      restart_at_contact_change = prm.get_bool("restart at contact change");
+      warm_start                = prm.get_bool("warm start");
       acceleration.parse_parameters(prm, "Coupling");
       criterion.parse_parameters(prm, "Coupling");
       predictor.parse_parameters(prm);

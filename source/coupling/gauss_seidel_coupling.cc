@@ -89,6 +89,8 @@ namespace Talus
       step_end = t + dt;
       mpm.solver().set_warm_start(false);
       dealii::Vector<double> springs, last_x;
+      // the interface points loaded in the last iteration of this window
+      std::vector<bool> active_set;
       structure.set_interface_springs(dealii::Vector<double>(),
                                       dealii::Vector<double>());
       const bool strong =
@@ -127,6 +129,17 @@ namespace Talus
           force                = interface.structure_forces(reactions,
                                              committed.size(),
                                              communicator);
+          if (parameters.restart_at_contact_change)
+            {
+              // the same on every rank: the loaded points are gathered
+              auto loaded = interface.loaded_points();
+              if (!active_set.empty() && loaded != active_set)
+                {
+                  acceleration->reset();
+                  ++result.contact_restarts;
+                }
+              active_set = std::move(loaded);
+            }
           // Robin springs where this MPM solve transmits force: a contact
           // interface that opens in an iterate must not be held by them
           // (with springs fixed from the first solve of the window, an

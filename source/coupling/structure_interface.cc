@@ -527,6 +527,17 @@ namespace Talus
 
 
     template <int dim>
+    std::vector<bool>
+    StructureInterface<dim>::loaded_points() const
+    {
+      std::vector<bool> loaded(last_point_forces.size());
+      for (unsigned int p = 0; p < loaded.size(); ++p)
+        loaded[p] = last_point_forces[p].norm() > 0.;
+      return loaded;
+    }
+
+
+    template <int dim>
     std::pair<double, double>
     StructureInterface<dim>::interface_work(
       const dealii::Vector<double> &U,

@@ -100,6 +100,17 @@ namespace Talus
         automatic ///< normal if every interface boundary is slip or contact
       };
       RobinDirections robin_directions = RobinDirections::all;
+      /**
+       * Restart the accelerator when the active set changes within a window
+       * ('restart at contact change'): the set of interface points that
+       * carry a force differs from that of the window's previous
+       * iteration. The map x -> x~ is then another (piecewise) affine map
+       * and the Robin springs change with it, so the quasi-Newton columns
+       * of the iterates before the change (and of past windows, and
+       * IQN-IMVJ's Jacobian) describe another operator; after the restart
+       * the model is built from iterates of the present active set only.
+       */
+      bool restart_at_contact_change = false;
       /** The MPM's Newton of an iteration starts from the last increment. */
       bool warm_start = false;
 

@@ -39,6 +39,9 @@ namespace Talus
       unsigned int mpm_newton = 0, structure_newton = 0;
       /** Safeguarded restarts of the accelerator (iterate_window()). */
       unsigned int restarts = 0;
+      /** Restarts of the accelerator at a change of the active set
+       * (CouplingParameters::restart_at_contact_change). */
+      unsigned int contact_restarts = 0;
       /** The MPM's result of the last iteration (the accepted one). */
       MPM::NewtonResult mpm;
       /** Sum of the interface forces on the structure [N]. */

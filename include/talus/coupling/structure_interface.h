@@ -149,6 +149,12 @@ namespace Talus
         const MPI_Comm                                        communicator,
         const bool normal_only = false) const;
 
+      /** Which interface points carried a force in the last
+       * structure_forces() (all ranks; order of the points): the active
+       * set of a contact interface. */
+      std::vector<bool>
+      loaded_points() const;
+
       /** The summed point force of the last structure_forces() [N]. */
       const dealii::Tensor<1, dim> &
       total_particle_force() const
