@@ -64,10 +64,13 @@ namespace Talus
           "Restart the accelerator (forget its quasi-Newton columns, those "
           "of past windows and IQN-IMVJ's Jacobian; the next step relaxes "
           "with 'initial relaxation') whenever the set of interface points "
-          "that carry a force changes between two iterations of a window: "
-          "a contact interface whose active set switches makes the "
-          "iteration a different affine map on each set, and a model mixing "
-          "them stalls (doc/coupling.md, 'Iterations at contact').");
+          "that carry a force changes between two iterations of a window "
+          "(at most 6 times per window): a contact interface whose active "
+          "set switches makes the iteration a different affine map on each "
+          "set, and a model mixing them stalls (doc/coupling.md, "
+          "'Iterations at contact'). Meant for a Robin iteration ('Robin "
+          "stiffness' > 0): without springs the relaxation step after a "
+          "restart can keep the set switching.");
         prm.declare_entry(
           "warm start",
           "false",
@@ -136,7 +139,8 @@ namespace Talus
       InterfaceAccelerator                                &accelerator,
       ConvergenceCriterion                                &criterion,
       const bool                                           strong,
-      const std::function<double()>                       &equilibrium_defect)
+      const std::function<double()>                       &equilibrium_defect,
+      const std::function<bool()>                         &active_set_changed)
     {
       WindowResult result;
       result.x = x0;
@@ -167,6 +171,20 @@ namespace Talus
             }
           good_x       = result.x;
           good_x_tilde = result.x_tilde;
+          // another active set: the columns of the others describe another
+          // operator (asked after every evaluation, so that the callback
+          // can track the set from the window's first one on). At most
+          // maximum_contact_restarts per window: each restart starts again
+          // with a relaxation step, and where that step alone is unstable
+          // (Dirichlet-Neumann without Robin springs) the set would switch
+          // for ever (tests/coupling/contact_restart.cc)
+          if (active_set_changed && active_set_changed() &&
+              result.iterations > 0 &&
+              result.contact_restarts < maximum_contact_restarts)
+            {
+              accelerator.reset();
+              ++result.contact_restarts;
+            }
           ++result.iterations;
           IterationRecord record;
           record.status = criterion.check(result.x,

@@ -89,8 +89,10 @@ namespace Talus
       step_end = t + dt;
       mpm.solver().set_warm_start(false);
       dealii::Vector<double> springs, last_x;
-      // the interface points loaded in the last iteration of this window
+      // the interface points loaded in the last iteration of this window,
+      // and whether the last evaluation changed them
       std::vector<bool> active_set;
+      bool              set_changed = false;
       structure.set_interface_springs(dealii::Vector<double>(),
                                       dealii::Vector<double>());
       const bool strong =
@@ -133,12 +135,8 @@ namespace Talus
             {
               // the same on every rank: the loaded points are gathered
               auto loaded = interface.loaded_points();
-              if (!active_set.empty() && loaded != active_set)
-                {
-                  acceleration->reset();
-                  ++result.contact_restarts;
-                }
-              active_set = std::move(loaded);
+              set_changed = !active_set.empty() && loaded != active_set;
+              active_set  = std::move(loaded);
             }
           // Robin springs where this MPM solve transmits force: a contact
           // interface that opens in an iterate must not be held by them
@@ -212,17 +210,20 @@ namespace Talus
             return d / std::max(
                          {force.l2_norm(), committed_force.l2_norm(), 1e-300});
           };
-          const WindowResult window =
-            iterate_window(H,
-                           x0,
-                           *acceleration,
-                           criterion,
-                           strong,
-                           robin_stiffness(dt) > 0. ?
-                             std::function<double()>(defect) :
-                             std::function<double()>());
-          result.iterations = window.iterations;
-          result.restarts   = window.restarts;
+          const WindowResult window = iterate_window(
+            H,
+            x0,
+            *acceleration,
+            criterion,
+            strong,
+            robin_stiffness(dt) > 0. ? std::function<double()>(defect) :
+                                       std::function<double()>(),
+            parameters.restart_at_contact_change ?
+              std::function<bool()>([&]() { return set_changed; }) :
+              std::function<bool()>());
+          result.iterations       = window.iterations;
+          result.restarts         = window.restarts;
+          result.contact_restarts = window.contact_restarts;
           if (!window.history.empty())
             result.status = window.history.back().status;
           for (const auto &record : window.history)

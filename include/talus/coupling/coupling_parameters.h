@@ -142,6 +142,11 @@ namespace Talus
     };
 
 
+    /** Largest number of restarts at a change of the active set in one
+     * window (iterate_window()). */
+    constexpr unsigned int maximum_contact_restarts = 6;
+
+
     /** Outcome of iterate_window(). */
     struct WindowResult
     {
@@ -163,6 +168,10 @@ namespace Talus
        * failed and were replaced by a relaxed step from the last good one.
        */
       unsigned int restarts = 0;
+
+      /** Restarts of the accelerator at a change of the active set
+       * (@p active_set_changed of iterate_window()). */
+      unsigned int contact_restarts = 0;
     };
 
 
@@ -195,6 +204,13 @@ namespace Talus
      * structure alone is out of equilibrium by the spring force), the
      * relative defect it returns after each evaluation must also be at
      * most the criterion's relative tolerance.
+     *
+     * With @p active_set_changed (asked after every successful evaluation
+     * but the window's first: whether the set of interface points that
+     * carry a force differs from that of the previous evaluation), the
+     * accelerator is reset at each change, so that its model is built
+     * from iterates of one active set ('restart at contact change'), at
+     * most maximum_contact_restarts times per window.
      */
     WindowResult
     iterate_window(
@@ -205,7 +221,8 @@ namespace Talus
       InterfaceAccelerator                                     &accelerator,
       ConvergenceCriterion                                     &criterion,
       const bool                                                strong = true,
-      const std::function<double()> &equilibrium_defect                = {});
+      const std::function<double()> &equilibrium_defect                = {},
+      const std::function<bool()>   &active_set_changed                = {});
   } // namespace Coupling
 } // namespace Talus
 
