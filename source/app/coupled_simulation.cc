@@ -863,6 +863,10 @@ namespace Talus
                       << (result.restarts > 0 ?
                             "  restarts " + std::to_string(result.restarts) :
                             std::string())
+                      << (result.contact_restarts > 0 ?
+                            "  contact restarts " +
+                              std::to_string(result.contact_restarts) :
+                            std::string())
                       << "  Newton MPM " << result.mpm_newton << " structure "
                       << result.structure_newton
                       << "  F = " << result.interface_force << std::defaultfloat

@@ -48,6 +48,30 @@ namespace Talus
                           "Depth of the material layer of 'Robin stiffness "
                           "= inertia' [background cells], > 0.");
         prm.declare_entry(
+          "Robin directions",
+          "all",
+          dealii::Patterns::Selection("all|normal|automatic"),
+          "Components of the interface DoFs that carry Robin springs: all, "
+          "normal (a point's spring k n n^T, lumped to its diagonal k "
+          "n_d^2, n the direction of the point's reaction: no spring along "
+          "an interface that transmits no tangential force) or automatic "
+          "(normal when every interface boundary has condition slip or "
+          "contact, all otherwise).");
+        prm.declare_entry(
+          "restart at contact change",
+          "false",
+          dealii::Patterns::Bool(),
+          "Restart the accelerator (forget its quasi-Newton columns, those "
+          "of past windows and IQN-IMVJ's Jacobian; the next step relaxes "
+          "with 'initial relaxation') whenever the set of interface points "
+          "that carry a force changes between two iterations of a window "
+          "(at most 6 times per window): a contact interface whose active "
+          "set switches makes the iteration a different affine map on each "
+          "set, and a model mixing them stalls (doc/coupling.md, "
+          "'Iterations at contact'). Meant for a Robin iteration ('Robin "
+          "stiffness' > 0): without springs the relaxation step after a "
+          "restart can keep the set switching.");
+        prm.declare_entry(
           "warm start",
           "false",
           dealii::Patterns::Bool(),
@@ -91,7 +115,14 @@ namespace Talus
                             prm.get("Robin depth"),
                             "a number > 0 [cells]");
       }
-      warm_start = prm.get_bool("warm start");
+      {
+        const std::string text = prm.get("Robin directions");
+        robin_directions       = (text == "normal" ? RobinDirections::normal :
+                                  text == "automatic" ? RobinDirections::automatic :
+                                                        RobinDirections::all);
+      }
+      restart_at_contact_change = prm.get_bool("restart at contact change");
+      warm_start                = prm.get_bool("warm start");
       acceleration.parse_parameters(prm, "Coupling");
       criterion.parse_parameters(prm, "Coupling");
       predictor.parse_parameters(prm);
@@ -108,7 +139,8 @@ namespace Talus
       InterfaceAccelerator                                &accelerator,
       ConvergenceCriterion                                &criterion,
       const bool                                           strong,
-      const std::function<double()>                       &equilibrium_defect)
+      const std::function<double()>                       &equilibrium_defect,
+      const std::function<bool()>                         &active_set_changed)
     {
       WindowResult result;
       result.x = x0;
@@ -139,6 +171,20 @@ namespace Talus
             }
           good_x       = result.x;
           good_x_tilde = result.x_tilde;
+          // another active set: the columns of the others describe another
+          // operator (asked after every evaluation, so that the callback
+          // can track the set from the window's first one on). At most
+          // maximum_contact_restarts per window: each restart starts again
+          // with a relaxation step, and where that step alone is unstable
+          // (Dirichlet-Neumann without Robin springs) the set would switch
+          // for ever (tests/coupling/contact_restart.cc)
+          if (active_set_changed && active_set_changed() &&
+              result.iterations > 0 &&
+              result.contact_restarts < maximum_contact_restarts)
+            {
+              accelerator.reset();
+              ++result.contact_restarts;
+            }
           ++result.iterations;
           IterationRecord record;
           record.status = criterion.check(result.x,

@@ -89,6 +89,10 @@ namespace Talus
       step_end = t + dt;
       mpm.solver().set_warm_start(false);
       dealii::Vector<double> springs, last_x;
+      // the interface points loaded in the last iteration of this window,
+      // and whether the last evaluation changed them
+      std::vector<bool> active_set;
+      bool              set_changed = false;
       structure.set_interface_springs(dealii::Vector<double>(),
                                       dealii::Vector<double>());
       const bool strong =
@@ -127,6 +131,13 @@ namespace Talus
           force                = interface.structure_forces(reactions,
                                              committed.size(),
                                              communicator);
+          if (parameters.restart_at_contact_change)
+            {
+              // the same on every rank: the loaded points are gathered
+              auto loaded = interface.loaded_points();
+              set_changed = !active_set.empty() && loaded != active_set;
+              active_set  = std::move(loaded);
+            }
           // Robin springs where this MPM solve transmits force: a contact
           // interface that opens in an iterate must not be held by them
           // (with springs fixed from the first solve of the window, an
@@ -138,7 +149,8 @@ namespace Talus
             {
               springs = interface.covered_area(reactions,
                                                committed.size(),
-                                               communicator);
+                                               communicator,
+                                               normal_springs());
               springs *= robin_stiffness(dt);
             }
         }
@@ -153,12 +165,21 @@ namespace Talus
           {
             dealii::Vector<double> r(x_tilde);
             r -= x;
+            // the residual at the interface points by component (root of
+            // the sum of squares over the points)
+            double r_component[3] = {0., 0., 0.};
+            for (const auto &u : interface.point_displacements(r))
+              for (unsigned int d = 0; d < dim; ++d)
+                r_component[d] += u[d] * u[d];
             std::cerr << "coupling t = " << t + dt << "  |x| " << x.l2_norm()
                       << "  |x~| " << x_tilde.l2_norm() << "  |r| "
-                      << r.l2_norm() << "  |F| " << force.l2_norm()
-                      << "  MPM Newton " << result.mpm.iterations
-                      << "  structure Newton " << its << "  springs "
-                      << springs.l1_norm() << '\n';
+                      << r.l2_norm() << "  points: |r_x| "
+                      << std::sqrt(r_component[0]) << "  |r_y| "
+                      << std::sqrt(r_component[1]) << "  |r_z| "
+                      << std::sqrt(r_component[2]) << "  |F| "
+                      << force.l2_norm() << "  MPM Newton "
+                      << result.mpm.iterations << "  structure Newton " << its
+                      << "  springs " << springs.l1_norm() << '\n';
           }
       };
 
@@ -189,17 +210,20 @@ namespace Talus
             return d / std::max(
                          {force.l2_norm(), committed_force.l2_norm(), 1e-300});
           };
-          const WindowResult window =
-            iterate_window(H,
-                           x0,
-                           *acceleration,
-                           criterion,
-                           strong,
-                           robin_stiffness(dt) > 0. ?
-                             std::function<double()>(defect) :
-                             std::function<double()>());
-          result.iterations = window.iterations;
-          result.restarts   = window.restarts;
+          const WindowResult window = iterate_window(
+            H,
+            x0,
+            *acceleration,
+            criterion,
+            strong,
+            robin_stiffness(dt) > 0. ? std::function<double()>(defect) :
+                                       std::function<double()>(),
+            parameters.restart_at_contact_change ?
+              std::function<bool()>([&]() { return set_changed; }) :
+              std::function<bool()>());
+          result.iterations       = window.iterations;
+          result.restarts         = window.restarts;
+          result.contact_restarts = window.contact_restarts;
           if (!window.history.empty())
             result.status = window.history.back().status;
           for (const auto &record : window.history)
@@ -268,6 +292,24 @@ namespace Talus
       if (beta == std::numeric_limits<double>::max() || !(layer > 0.))
         return layer;
       return 1. / (1. / layer + 1. / beta);
+    }
+
+
+    template <int dim>
+    bool
+    GaussSeidelCoupling<dim>::normal_springs() const
+    {
+      using Directions = CouplingParameters::RobinDirections;
+      if (parameters.robin_directions != Directions::automatic)
+        return parameters.robin_directions == Directions::normal;
+      for (const unsigned int b : interface.boundary_indices())
+        {
+          const auto condition = mpm.boundaries().boundary(b).condition;
+          if (condition != Boundaries::Condition::slip &&
+              condition != Boundaries::Condition::contact)
+            return false;
+        }
+      return true;
     }
 
 

@@ -493,22 +493,47 @@ namespace Talus
       const std::vector<std::pair<dealii::types::particle_index,
                                   dealii::Tensor<1, dim>>> &reactions,
       const unsigned int                                    n_dofs,
-      const MPI_Comm                                        communicator) const
+      const MPI_Comm                                        communicator,
+      const bool                                            normal_only) const
     {
-      std::vector<double> covered(transfer.n_points(), 0.);
+      // the reaction of every point, summed over the ranks (a point's
+      // reaction may be booked on several ranks by the points touching it)
+      std::vector<double> reaction(transfer.n_points() * dim, 0.);
       for (const auto &entry : reactions)
         {
           const auto it = point_of_particle.find(entry.first);
           if (it != point_of_particle.end())
-            covered[it->second] =
-              std::max(covered[it->second], entry.second.norm() > 0. ? 1. : 0.);
+            for (unsigned int d = 0; d < dim; ++d)
+              reaction[it->second * dim + d] += entry.second[d];
         }
-      dealii::Utilities::MPI::sum(covered, communicator, covered);
+      dealii::Utilities::MPI::sum(reaction, communicator, reaction);
       std::vector<dealii::Tensor<1, dim>> w(transfer.n_points());
       for (unsigned int p = 0; p < w.size(); ++p)
-        for (unsigned int d = 0; d < dim; ++d)
-          w[p][d] = covered[p] > 0. ? point_weights[p] : 0.;
+        {
+          dealii::Tensor<1, dim> f;
+          for (unsigned int d = 0; d < dim; ++d)
+            f[d] = reaction[p * dim + d];
+          const double norm = f.norm();
+          if (!(norm > 0.))
+            continue;
+          for (unsigned int d = 0; d < dim; ++d)
+            w[p][d] =
+              point_weights[p] *
+              (normal_only ? dealii::Utilities::fixed_power<2>(f[d] / norm) :
+                             1.);
+        }
       return to_structure(w, n_dofs);
+    }
+
+
+    template <int dim>
+    std::vector<bool>
+    StructureInterface<dim>::loaded_points() const
+    {
+      std::vector<bool> loaded(last_point_forces.size());
+      for (unsigned int p = 0; p < loaded.size(); ++p)
+        loaded[p] = last_point_forces[p].norm() > 0.;
+      return loaded;
     }
 
 

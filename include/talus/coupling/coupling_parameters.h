@@ -85,6 +85,32 @@ namespace Talus
       bool   robin_elastic   = false; ///< add M / d ('automatic')
       double robin_stiffness = 0.;    ///< k_R [Pa/m] when not 'inertia'
       double robin_depth     = 4.;    ///< d [cells] for 'inertia'
+      /**
+       * Directions of the Robin springs ('Robin directions'): every
+       * component of the interface DoFs, or only the normal one (k n n^T,
+       * lumped to its diagonal k n_d^2 with n the direction of the
+       * point's reaction), where the interface transmits no tangential
+       * force (slip, frictionless contact): a tangential spring there has
+       * no counterpart in the material and only slows the iteration.
+       */
+      enum class RobinDirections
+      {
+        all,
+        normal,
+        automatic ///< normal if every interface boundary is slip or contact
+      };
+      RobinDirections robin_directions = RobinDirections::all;
+      /**
+       * Restart the accelerator when the active set changes within a window
+       * ('restart at contact change'): the set of interface points that
+       * carry a force differs from that of the window's previous
+       * iteration. The map x -> x~ is then another (piecewise) affine map
+       * and the Robin springs change with it, so the quasi-Newton columns
+       * of the iterates before the change (and of past windows, and
+       * IQN-IMVJ's Jacobian) describe another operator; after the restart
+       * the model is built from iterates of the present active set only.
+       */
+      bool restart_at_contact_change = false;
       /** The MPM's Newton of an iteration starts from the last increment. */
       bool warm_start = false;
 
@@ -116,6 +142,11 @@ namespace Talus
     };
 
 
+    /** Largest number of restarts at a change of the active set in one
+     * window (iterate_window()). */
+    constexpr unsigned int maximum_contact_restarts = 6;
+
+
     /** Outcome of iterate_window(). */
     struct WindowResult
     {
@@ -137,6 +168,10 @@ namespace Talus
        * failed and were replaced by a relaxed step from the last good one.
        */
       unsigned int restarts = 0;
+
+      /** Restarts of the accelerator at a change of the active set
+       * (@p active_set_changed of iterate_window()). */
+      unsigned int contact_restarts = 0;
     };
 
 
@@ -169,6 +204,13 @@ namespace Talus
      * structure alone is out of equilibrium by the spring force), the
      * relative defect it returns after each evaluation must also be at
      * most the criterion's relative tolerance.
+     *
+     * With @p active_set_changed (asked after every successful evaluation
+     * but the window's first: whether the set of interface points that
+     * carry a force differs from that of the previous evaluation), the
+     * accelerator is reset at each change, so that its model is built
+     * from iterates of one active set ('restart at contact change'), at
+     * most maximum_contact_restarts times per window.
      */
     WindowResult
     iterate_window(
@@ -179,7 +221,8 @@ namespace Talus
       InterfaceAccelerator                                     &accelerator,
       ConvergenceCriterion                                     &criterion,
       const bool                                                strong = true,
-      const std::function<double()> &equilibrium_defect                = {});
+      const std::function<double()> &equilibrium_defect                = {},
+      const std::function<bool()>   &active_set_changed                = {});
   } // namespace Coupling
 } // namespace Talus
 

@@ -39,6 +39,9 @@ namespace Talus
       unsigned int mpm_newton = 0, structure_newton = 0;
       /** Safeguarded restarts of the accelerator (iterate_window()). */
       unsigned int restarts = 0;
+      /** Restarts of the accelerator at a change of the active set
+       * (CouplingParameters::restart_at_contact_change). */
+      unsigned int contact_restarts = 0;
       /** The MPM's result of the last iteration (the accepted one). */
       MPM::NewtonResult mpm;
       /** Sum of the interface forces on the structure [N]. */
@@ -177,6 +180,11 @@ namespace Talus
        * (CouplingParameters::robin_stiffness). */
       double
       robin_stiffness(const double dt) const;
+
+      /** Whether the Robin springs act along the reactions only
+       * (CouplingParameters::robin_directions). */
+      bool
+      normal_springs() const;
 
       /** The structure's step from @p t to @p t + @p dt with @p F; adds
        * its Newton iterations (returned) to @p result, throws when it

@@ -134,14 +134,26 @@ namespace Talus
        * The interface area of each structure DoF covered by the particles
        * listed in @p reactions that carry a force (nonzero reaction),
        * sum_p N_i(X_p) w_p [m^2 in 3D, m in 2D], summed over all ranks
-       * (collective): the lumped weight of Robin interface springs.
+       * (collective): the lumped weight of Robin interface springs. With
+       * @p normal_only each component d of a point's weight is scaled by
+       * n_d^2, n the direction of its reaction summed over the ranks (the
+       * boundary's normal for slip and frictionless contact): the diagonal
+       * of the weight times n n^T, so that no spring acts along the
+       * interface where the material transmits no tangential force.
        */
       dealii::Vector<double>
       covered_area(
         const std::vector<std::pair<dealii::types::particle_index,
                                     dealii::Tensor<1, dim>>> &reactions,
         const unsigned int                                    n_dofs,
-        const MPI_Comm communicator) const;
+        const MPI_Comm                                        communicator,
+        const bool normal_only = false) const;
+
+      /** Which interface points carried a force in the last
+       * structure_forces() (all ranks; order of the points): the active
+       * set of a contact interface. */
+      std::vector<bool>
+      loaded_points() const;
 
       /** The summed point force of the last structure_forces() [N]. */
       const dealii::Tensor<1, dim> &
