@@ -69,6 +69,34 @@ namespace Talus
       return {!v.empty(), t};
     }
 
+    /** The brakes of a structure at its committed state: the largest
+     * stroke s [m], the dissipated energy D summed increment by increment
+     * over all brakes and its closed form sum F_a s + H s^2 / 2 [J]. */
+    struct BrakeAccount
+    {
+      double       largest_stroke = 0., dissipated = 0., closed_form = 0.;
+      unsigned int n_brakes = 0;
+    };
+
+    BrakeAccount
+    brake_account(const Structure::Structure &s)
+    {
+      BrakeAccount a;
+      for (const auto &mesh : s.line_meshes)
+        if (const auto *brake =
+              dynamic_cast<const Structure::Brake *>(mesh->element.get()))
+          for (const auto &state : mesh->state)
+            {
+              const double stroke = state.plastic;
+              a.largest_stroke    = std::max(a.largest_stroke, stroke);
+              a.dissipated += state.accumulated;
+              a.closed_form += brake->activation_force * stroke +
+                               0.5 * brake->hardening * stroke * stroke;
+              ++a.n_brakes;
+            }
+      return a;
+    }
+
     /** Copy the file @p from to @p to (replacing it); false if that
      * fails. A checkpoint keeps the CSV files as copies, so that the memory
      * of a long run does not grow with them. */
@@ -185,6 +213,20 @@ namespace Talus
       "If > 0: the run must end at rest: the kinetic energy of both fields "
       "at the end, relative to the largest released gravitational energy "
       "of the material, must not exceed it [-].");
+    prm.declare_entry(
+      "minimum brake stroke",
+      "0",
+      dealii::Patterns::Double(0.),
+      "If > 0: the largest brake stroke at the end must be at least this "
+      "[m] (the brakes activated), and the brakes' dissipated energy, "
+      "summed increment by increment, must equal its closed form sum F_a "
+      "s + H s^2 / 2 over the brakes' strokes s within 'brake energy "
+      "tolerance'.");
+    prm.declare_entry("brake energy tolerance",
+                      "1e-10",
+                      dealii::Patterns::Double(0.),
+                      "Largest |D - sum (F_a s + H s^2/2)| / D of the "
+                      "brakes (with 'minimum brake stroke') [-].");
     prm.declare_entry(
       "conservation tolerance",
       "1e-10",
@@ -329,6 +371,8 @@ namespace Talus
       prm.get_double("maximum final kinetic energy");
     const double conservation_tolerance =
       prm.get_double("conservation tolerance");
+    const double min_brake_stroke = prm.get_double("minimum brake stroke");
+    const double brake_tolerance  = prm.get_double("brake energy tolerance");
     const double expected_displacement =
       prm.get_double("expected largest structure displacement");
     const double displacement_tolerance =
@@ -996,6 +1040,29 @@ namespace Talus
               << max_final_kinetic << ")\n";
         if (!(relative <= max_final_kinetic))
           failed.push_back("rest at the end");
+      }
+    if (min_brake_stroke > 0.)
+      {
+        const BrakeAccount brakes = brake_account(S);
+        if (brakes.n_brakes == 0)
+          InputFile::reject(verification_section,
+                            "minimum brake stroke",
+                            std::to_string(min_brake_stroke),
+                            "0: the structure has no brakes");
+        const double error = std::abs(brakes.dissipated - brakes.closed_form) /
+                             std::max(brakes.dissipated, 1e-300);
+        pcout << "  brakes: largest stroke " << std::setprecision(4)
+              << brakes.largest_stroke << " m (at least " << min_brake_stroke
+              << " m); dissipated " << std::setprecision(6) << brakes.dissipated
+              << " J, sum F_a s + H s^2/2 = " << brakes.closed_form
+              << " J, relative difference "
+              << (error < 1e-12 ? std::string("< 1e-12") :
+                                  std::to_string(error))
+              << " (tolerance " << brake_tolerance << ")\n";
+        if (!(brakes.largest_stroke >= min_brake_stroke))
+          failed.push_back("brake stroke");
+        if (!(error <= brake_tolerance))
+          failed.push_back("brake energy");
       }
     if (!(max_conservation <= conservation_tolerance))
       failed.push_back("interface conservation");

@@ -165,15 +165,17 @@ namespace Talus
                               "of the 2D problem)");
           return Tensor<1, 3>({v[0], v[1], 0.});
         };
-        p.post_base       = point("post base");
-        p.post_top        = point("post top");
-        p.net_bottom      = point("net bottom");
-        p.rope_anchor     = point("rope anchor");
-        p.post_EA         = get_positive(prm, ps, "post EA");
-        p.post_mass       = get_non_negative(prm, ps, "post mass");
-        p.rope_EA         = get_positive(prm, ps, "rope EA");
-        p.rope_mass       = get_non_negative(prm, ps, "rope mass");
-        p.rope_pretension = get_non_negative(prm, ps, "rope pretension");
+        p.post_base             = point("post base");
+        p.post_top              = point("post top");
+        p.net_bottom            = point("net bottom");
+        p.rope_anchor           = point("rope anchor");
+        p.post_EA               = get_positive(prm, ps, "post EA");
+        p.post_mass             = get_non_negative(prm, ps, "post mass");
+        p.rope_EA               = get_positive(prm, ps, "rope EA");
+        p.rope_mass             = get_non_negative(prm, ps, "rope mass");
+        p.rope_pretension       = get_non_negative(prm, ps, "rope pretension");
+        p.member_strain_measure = Talus::Structure::strain_measure_from_string(
+          prm.get("strain measure"));
         if (p.model == "plane barrier")
           {
             const Tensor<1, 3> post = p.post_top - p.post_base,
@@ -745,6 +747,15 @@ namespace Talus
                         "of barrier width [N/m], >= 0 (below the brake's "
                         "activation force); the equilibrium before the "
                         "impact follows from it and the net's prestress.");
+      prm.declare_entry(
+        "strain measure",
+        "Green-Lagrange",
+        Patterns::Selection(Talus::Structure::strain_measure_names),
+        "Axial law of the post and the retaining rope [-]: 'Green-Lagrange' "
+        "(N = EA (l^2 - L^2)/(2 L^2) l/L) or 'engineering' (N = EA (l - "
+        "l0)/l0, the law barrier engineers specify steel ropes and posts "
+        "by). The net follows 'strain measure' of subsection Line "
+        "members.");
       prm.leave_subsection();
 
       prm.enter_subsection("Geometry");

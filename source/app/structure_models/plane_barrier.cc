@@ -32,10 +32,11 @@ namespace Talus
        * uphill to 'rope anchor', a cable ('rope EA', 'rope mass', 'rope
        * pretension') in series with the brake of subsection Brake
        * (activation force, hardening, stroke limit, 'length') at the
-       * anchor. Meshes "net", "post", "rope" and "brake", each a
-       * Triangulation<1,2> in the plane (PlaneString), joined where their
-       * vertices coincide (Structure::setup_dofs()). The coupling's
-       * 'structure mesh' is "net".
+       * anchor. Post and rope take the axial law of the subsection's
+       * 'strain measure', the net that of Line members. Meshes "net", "post",
+       * "rope" and "brake", each a Triangulation<1,2> in the plane
+       * (PlaneString), joined where their vertices coincide
+       * (Structure::setup_dofs()). The coupling's 'structure mesh' is "net".
        *
        * It reduces the three-field barrier of the founding paper (section
        * 5; BarrierBuilder in 3D) to its load path in the flow direction:
@@ -82,13 +83,14 @@ namespace Talus
           post_element->area                  = 1.;
           post_element->density               = p.post_mass;
           post_element->slack_stiffness_ratio = p.slack_ratio;
+          post_element->strain_measure        = p.member_strain_measure;
           auto rope_element = std::make_shared<Talus::Structure::Cable>();
           rope_element->youngs_modulus        = p.rope_EA;
           rope_element->area                  = 1.;
           rope_element->density               = p.rope_mass;
           rope_element->prestress             = p.rope_pretension;
           rope_element->slack_stiffness_ratio = p.slack_ratio;
-          rope_element->strain_measure        = p.strain_measure;
+          rope_element->strain_measure        = p.member_strain_measure;
 
           s.gravity = p.gravity;
           net.add_to(s, "net", line_element());

@@ -121,6 +121,10 @@ namespace Talus
       dealii::Tensor<1, 3> post_base, post_top, net_bottom, rope_anchor;
       double post_EA = 0., post_mass = 0., rope_EA = 0., rope_mass = 0.,
              rope_pretension = 0.;
+      /** Axial law of the post and the retaining rope ('strain measure' of
+       * subsection Plane barrier; the net follows Line members). */
+      Talus::Structure::StrainMeasure member_strain_measure =
+        Talus::Structure::StrainMeasure::green_lagrange;
       // Continuum solid.
       Talus::Structure::ContinuumSolid<3> solid;
       Talus::Structure::SolidGeometry     solid_geometry;
