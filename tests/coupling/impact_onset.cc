@@ -208,40 +208,6 @@ namespace
   }
 
 
-  /** Active-set solution of K_N x = K_D (s - x) on {s > x}, 0 elsewhere. */
-  Vector<double>
-  active_set_solution(const TwoSpring::VectorModel &m, const Vector<double> &s)
-  {
-    const unsigned int n = s.size();
-    std::vector<bool>  active(n, false);
-    Vector<double>     x(n);
-    for (unsigned int it = 0; it < 50; ++it)
-      {
-        FullMatrix<double> A(m.K_N);
-        Vector<double>     b(n);
-        for (unsigned int i = 0; i < n; ++i)
-          if (active[i])
-            {
-              A(i, i) += m.K_D(i, i);
-              b[i] = m.K_D(i, i) * s[i];
-            }
-        FullMatrix<double> A_inverse(n, n);
-        A_inverse.invert(A);
-        A_inverse.vmult(x, b);
-        bool changed = false;
-        for (unsigned int i = 0; i < n; ++i)
-          if ((s[i] > x[i]) != active[i])
-            {
-              active[i] = !active[i];
-              changed   = true;
-            }
-        if (!changed)
-          break;
-      }
-    return x;
-  }
-
-
   void
   vector_contact()
   {

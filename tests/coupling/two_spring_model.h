@@ -22,6 +22,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <cmath>
+#include <vector>
 
 namespace TwoSpring
 {
@@ -149,6 +150,43 @@ namespace TwoSpring
       return x;
     }
   };
+
+
+  /**
+   * The contact solution of the vector model: the active-set solution of
+   * K_N x = K_D (s - x) on the nodes with s > x (pressed), 0 elsewhere.
+   */
+  inline dealii::Vector<double>
+  active_set_solution(const VectorModel &m, const dealii::Vector<double> &s)
+  {
+    const unsigned int     n = s.size();
+    std::vector<bool>      active(n, false);
+    dealii::Vector<double> x(n);
+    for (unsigned int it = 0; it < 50; ++it)
+      {
+        dealii::FullMatrix<double> A(m.K_N);
+        dealii::Vector<double>     b(n);
+        for (unsigned int i = 0; i < n; ++i)
+          if (active[i])
+            {
+              A(i, i) += m.K_D(i, i);
+              b[i] = m.K_D(i, i) * s[i];
+            }
+        dealii::FullMatrix<double> A_inverse(n, n);
+        A_inverse.invert(A);
+        A_inverse.vmult(x, b);
+        bool changed = false;
+        for (unsigned int i = 0; i < n; ++i)
+          if ((s[i] > x[i]) != active[i])
+            {
+              active[i] = !active[i];
+              changed   = true;
+            }
+        if (!changed)
+          break;
+      }
+    return x;
+  }
 } // namespace TwoSpring
 
 #endif
