@@ -536,9 +536,134 @@ namespace Talus
     }
 
 
+    template <int dim>
+    NewtonResult
+    MPMSolver<dim>::solve_step()
+    {
+      dealii::TimerOutput::Scope scope(timer, "solve (Newton)");
+      Assert(prepared, dealii::ExcMessage("prepare_step() first"));
+      const NewtonResult result = solve_increment();
+      if (result.converged)
+        last_increment = displacement;
+      if (result.converged && boundary_particles != nullptr)
+        evaluate_boundary_trial();
+      return result;
+    }
+
+
+    template <int dim>
+    NewtonResult
+    MPMSolver<dim>::solve_increment()
+    {
+      NewtonResult result;
+
+      dealii::TrilinosWrappers::MPI::Vector du(grid.locally_owned_dofs,
+                                               grid.mpi_communicator);
+      displacement = du;
+      if (start_acceleration_from_forces && !quasi_static)
+        {
+          // a_n = (f_ext - f_int(u_n)) / m_I at the free nodes with mass
+          // (the residual without inertia at du = 0; zero at the
+          // constrained nodes, as prepare_step() left them)
+          std::string failure;
+          {
+            dealii::TimerOutput::Scope s(timer, "assembly");
+            if (!assemble(displacement, false, false, failure))
+              {
+                result.failure = failure;
+                return result;
+              }
+          }
+          dealii::TrilinosWrappers::MPI::Vector a(grid.locally_owned_dofs,
+                                                  grid.mpi_communicator);
+          for (const auto i : grid.locally_owned_dofs)
+            if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
+              a(i) = residual(i) / nodal_mass(i);
+          a.compress(dealii::VectorOperation::insert);
+          acceleration_n = a;
+        }
+      const double f_ext_norm = external_force.l2_norm();
+      double       reference  = 0.;
+      const bool   warm = warm_start && last_increment.size() == du.size();
+      const bool   newmark_predictor =
+        predictor == "constant acceleration" ||
+        (predictor == "automatic" && boundary_particles == nullptr &&
+         !start_acceleration_from_forces);
+      if (warm || (newmark_predictor && !quasi_static))
+        {
+          // The reference of the convergence test stays the residual at
+          // du = 0, as without the predictor.
+          std::string failure;
+          {
+            dealii::TimerOutput::Scope s(timer, "assembly");
+            if (!assemble(displacement, false, true, failure))
+              {
+                result.failure = failure;
+                return result;
+              }
+          }
+          const double r0 = residual.l2_norm();
+          if (!std::isfinite(r0))
+            {
+              result.failure = "the residual is not finite";
+              return result;
+            }
+          reference = std::max(r0, f_ext_norm);
+          // du = dt v_n + dt^2/2 a_n at the free nodes with mass; v_n and
+          // a_n are zero at the constrained ones (prepare_step()).
+          for (const auto i : grid.locally_owned_dofs)
+            if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
+              du(i) = warm ?
+                        last_increment(i) :
+                        dt * velocity_n(i) + 0.5 * dt * dt * acceleration_n(i);
+          du.compress(dealii::VectorOperation::insert);
+          displacement = du;
+        }
+      // Augmented Lagrangian boundaries: after each converged Newton solve
+      // the multipliers take the boundary forces (Uzawa) and Newton runs
+      // again from the solution, until the gaps are below the tolerance.
+      const bool augmented =
+        boundary_particles != nullptr && boundary_particles->any_augmented();
+      const unsigned int max_updates =
+        augmented ? boundary_particles->max_multiplier_updates() : 0;
+      for (unsigned int update = 0;; ++update)
+        {
+          const unsigned int iterations_before = result.iterations;
+          newton_solve(du, f_ext_norm, reference, result);
+          result.iterations += iterations_before;
+          if (!result.converged || !augmented)
+            return result;
+          result.constraint_gap = update_multipliers();
+          if (result.constraint_gap <=
+              boundary_particles->multiplier_tolerance())
+            return result;
+          if (update == max_updates)
+            {
+              std::ostringstream msg;
+              msg << "the augmented Lagrangian boundary gaps did not converge "
+                     "in "
+                  << max_updates << " multiplier updates (largest gap "
+                  << result.constraint_gap << " m, tolerance "
+                  << boundary_particles->multiplier_tolerance()
+                  << " m); raise the penalty factor or 'maximum "
+                     "multiplier updates'";
+              result.converged = false;
+              result.failure   = msg.str();
+              solved           = false;
+              return result;
+            }
+          ++result.multiplier_updates;
+          result.converged = false;
+          solved           = false;
+        }
+    }
+
+
     // Explicit instantiation of the members defined in this file.
-#define TALUS_INSTANTIATE(dim)                         \
-  template void MPMSolver<dim>::newton_solve(          \
+#define TALUS_INSTANTIATE(dim)                                 \
+  template NewtonResult MPMSolver<dim>::solve_step();          \
+  template NewtonResult MPMSolver<dim>::solve_increment();     \
+  template void         MPMSolver<dim>::newton_solve(          \
     dealii::TrilinosWrappers::MPI::Vector &du,         \
     const double                           f_ext_norm, \
     double                                &reference,  \
