@@ -113,4 +113,17 @@ namespace Talus
       }
     throw ExcSimulationFailed(msg.str());
   }
+
+
+  std::string
+  failure_checkpoint_note(const unsigned int step,
+                          const double       time,
+                          const std::string &path)
+  {
+    std::ostringstream note;
+    note << " The last accepted step (" << step << ", t = " << time
+         << " s) is in the checkpoint <" << path
+         << ">: change the parameters and resume from it.";
+    return note.str();
+  }
 } // namespace Talus

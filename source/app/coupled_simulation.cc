@@ -754,12 +754,10 @@ namespace Talus
                            "'time step' or raise 'maximum step halvings' in "
                            "subsection <Time>.";
                     if (checkpointing.enabled())
-                      msg << " The last accepted step (" << time_control.step
-                          << ", t = " << time_control.time
-                          << " s) is in the checkpoint <"
-                          << write_checkpoint(
-                               "failure: coupled step not solved")
-                          << ">: change the parameters and resume from it.";
+                      msg << failure_checkpoint_note(
+                        time_control.step,
+                        time_control.time,
+                        write_checkpoint("failure: coupled step not solved"));
                     throw ExcSimulationFailed(msg.str());
                   }
               }

@@ -856,12 +856,11 @@ namespace Talus
                          "or raise 'maximum step halvings' in subsection "
                          "<Time>, or check the material parameters.";
                     if (checkpointing.enabled())
-                      msg << " The last accepted step (" << time_control.step
-                          << ", t = " << time_control.time
-                          << " s) is in the checkpoint <"
-                          << write_checkpoint(
-                               "failure: the step could not be solved")
-                          << ">: change the parameters and resume from it.";
+                      msg << failure_checkpoint_note(
+                        time_control.step,
+                        time_control.time,
+                        write_checkpoint(
+                          "failure: the step could not be solved"));
                     throw ExcSimulationFailed(msg.str());
                   }
                 pcout << "    retrying with dt = " << time_control.next_step()

@@ -60,6 +60,16 @@ namespace Talus
     const std::function<std::string(const std::string &reason)>
                   &write_checkpoint,
     const MPI_Comm communicator);
+
+  /**
+   * The sentence a failure message of a time loop ends with when
+   * checkpoints are enabled: the last accepted step @p step at @p time is
+   * in the checkpoint @p path, to be resumed with changed parameters.
+   */
+  std::string
+  failure_checkpoint_note(const unsigned int step,
+                          const double       time,
+                          const std::string &path);
 } // namespace Talus
 
 #endif
