@@ -232,11 +232,14 @@ namespace Talus
       const unsigned int n_history     = points.n_history();
       const double       c_mass = with_inertia ? newmark.mass_factor(dt) : 0.;
 
+      // the contact state of each boundary point at this assembly (-2: not
+      // assembled), compared with the last matrix assembly's
+      std::vector<int> states;
       if (with_matrix)
         {
           matrix                   = 0.;
           reversed_boundary_points = 0;
-          boundary_states_changed  = false;
+          states.assign(boundary_points.size(), -2);
         }
       residual            = 0.;
       multiplier_residual = 0.;
@@ -625,12 +628,8 @@ namespace Talus
                 }
               if (with_matrix)
                 {
-                  // a changed contact state changes A (the trial-force
-                  // stiffness k N^T D N): the AMG hierarchy of an earlier
-                  // iterate no longer fits it
-                  if (bf.state != bp.last_state)
-                    boundary_states_changed = true;
-                  bp.last_state = bf.state;
+                  states[c.first_boundary + b] = bf.state;
+                  bp.last_state                = bf.state;
                 }
               if (bp.monolithic)
                 {
@@ -779,6 +778,11 @@ namespace Talus
             if (constraints.is_constrained(i) && matrix.diag_element(i) == 0.)
               matrix.set(i, i, max_diagonal);
           matrix.compress(dealii::VectorOperation::insert);
+          // a changed contact state changes A (the trial-force stiffness
+          // k N^T D N): the preconditioner of an earlier iterate no longer
+          // fits it
+          boundary_states_changed = states != assembled_states;
+          assembled_states.swap(states);
           if (dealii::Utilities::MPI::logical_or(boundary_states_changed,
                                                  grid.mpi_communicator))
             amg_current = false;

@@ -262,10 +262,14 @@ namespace Talus
         prm.declare_entry("reuse preconditioner",
                           "true",
                           Patterns::Bool(),
-                          "Build the AMG preconditioner once per time step "
-                          "(first Newton iteration) and reuse it in the later "
-                          "iterations; it is rebuilt if the Krylov solver "
-                          "then fails.");
+                          "Build the preconditioner ('preconditioner') once "
+                          "per time step (first Newton iteration) and reuse "
+                          "it in the later iterations, and in a coupled "
+                          "problem through the coupling iterations of the "
+                          "step while the interface stays in the same cells; "
+                          "it is rebuilt when a boundary particle's contact "
+                          "state changes and when the Krylov solver fails "
+                          "with it.");
         prm.declare_entry("linear solver tolerance",
                           "1e-10",
                           Patterns::Double(0),
@@ -959,7 +963,8 @@ namespace Talus
       apply_impact_friction();
       initialize_friction_states();
       make_constraints();
-      amg_current = false;
+      if (!preconditioner_kept_for_window)
+        amg_current = false;
       // Grid velocity and acceleration obey the essential conditions: a
       // fixed node neither moves nor carries the particles' velocity. The
       // kinetic energy this removes is booked (reset_dissipation). Not so
@@ -1007,15 +1012,6 @@ namespace Talus
     void
     MPMSolver<dim>::make_step_sparsity_pattern()
     {
-      // the saddle-point factorisation and AMG are built anew in every
-      // step (they reference the matrix: released first, ML's Gauss-Seidel
-      // smoothers access it on destruction); the direct solver's first
-      // factorisation of the step pivots anew (solve_with_tangent())
-      factorisation.reset();
-      amg.reset();
-      ifpack_preconditioner.reset();
-      amg_current     = false;
-      direct_pivoting = true;
       std::vector<dealii::types::global_dof_index> blocks;
       const auto add = [&blocks](const auto &set) {
         for (const auto &c : set)
@@ -1027,8 +1023,30 @@ namespace Talus
       add(cells);
       add(boundary_cells);
       add(ghost_faces);
-      const bool changed = !pattern_current || blocks != pattern_blocks;
-      if (!dealii::Utilities::MPI::logical_or(changed, grid.mpi_communicator))
+      const bool changed = dealii::Utilities::MPI::logical_or(
+        !pattern_current || blocks != pattern_blocks, grid.mpi_communicator);
+      // The saddle-point factorisation and the preconditioner are built
+      // anew in every step (they reference the matrix: released first,
+      // ML's Gauss-Seidel smoothers access it on destruction); the direct
+      // solver's first factorisation of the step pivots anew
+      // (solve_with_tangent()). A coupling iteration that moves the
+      // interface within the same cells keeps the AMG or Ifpack
+      // preconditioner of the last Newton iteration (with 'reuse
+      // preconditioner'): the tangent changed only by the boundary
+      // particles' small displacement, and newton_solve() drops it if a
+      // contact state changed; a Krylov solve that fails with it rebuilds
+      // it.
+      preconditioner_kept_for_window =
+        updating_boundaries && !changed && reuse_preconditioner;
+      factorisation.reset();
+      if (!preconditioner_kept_for_window)
+        {
+          amg.reset();
+          ifpack_preconditioner.reset();
+          amg_current = false;
+        }
+      direct_pivoting = true;
+      if (!changed)
         return;
       pattern_blocks  = std::move(blocks);
       pattern_current = true;

@@ -52,6 +52,14 @@ namespace Talus
                                  double       &reference,
                                  NewtonResult &result)
     {
+      // The preconditioner of the last Newton solve fits this one's first
+      // tangent only in a coupling iteration that kept it (the interface
+      // moved a little, the sparsity pattern stayed,
+      // make_step_sparsity_pattern()), and only while the boundary points'
+      // contact states are those it was built with.
+      if (!preconditioner_kept_for_window)
+        assembled_states.clear();
+      preconditioner_kept_for_window = false;
       for (auto &bp : boundary_points)
         {
           bp.last_state = -1;

@@ -1155,7 +1155,21 @@ namespace Talus
       bool amg_current = false;
       /** Whether a boundary particle's contact state changed in the last
        * assembly of the matrix (the AMG hierarchy is then rebuilt). */
-      bool                                boundary_states_changed = false;
+      bool boundary_states_changed = false;
+      /**
+       * The contact state of each boundary point (in the order of
+       * boundary_points, -2: not assembled) at the last assembly of the
+       * matrix; cleared by newton_solve() unless the preconditioner is kept
+       * for a coupling iteration.
+       */
+      std::vector<int> assembled_states;
+      /**
+       * Set by make_step_sparsity_pattern() when a coupling iteration
+       * (update_boundary_displacement()) left the sparsity pattern as it
+       * was: the preconditioner of the last Newton solve is kept for the
+       * next one; consumed by newton_solve().
+       */
+      bool preconditioner_kept_for_window = false;
       std::unique_ptr<Epetra_MultiVector> rigid_body_modes;
       std::vector<dealii::Point<dim>>     owned_support_points;
       std::vector<unsigned int>           owned_components;
