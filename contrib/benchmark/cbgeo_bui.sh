@@ -20,8 +20,10 @@
 #   -i PATTERN      Talus input, %H replaced by the cell edge in mm (default
 #                   benchmarks/granular_collapse/bui2008_%Hmm_muI_recoverable.prm)
 #   -d DT           Talus' 'time step' (largest step) [s] (default: the input's)
-#   -p SETTING      a Talus parameter of a top-level subsection, e.g.
-#                   -p Time/error\ tolerance=1e-2 (repeatable)
+#   -p SETTING      a Talus parameter, Section/parameter=value (repeatable):
+#                   replaced where the input sets it (the name must be
+#                   unique in the input), else added to the top-level
+#                   subsection, e.g. -p "Solver/residual tolerance=1e-3"
 #   -e CBGEO_DT     CB-Geo's explicit step [s] (default 5e-5)
 #   -v UPDATE       CB-Geo's velocity update, pic (default) or flip
 #   -o DIR          output root (default output/cbgeo_bui)
@@ -30,7 +32,8 @@
 # column, 2 x 2 points per cell, density, E, nu, floor friction 0.36 and
 # smooth wall as the Talus input, rate-independent Mohr-Coulomb phi = 19.8
 # deg, c = 0, psi = 0 (CB-Geo has no mu(I)), USF, PIC velocity update,
-# explicit steps of 5e-5 s. Its runout: final particle positions from its
+# explicit steps of 5e-5 s, geostatic initial stresses (K0 = nu/(1 - nu);
+# CB-Geo's Mohr-Coulomb gives NaN from a zero stress). Its runout: final particle positions from its
 # last HDF5 particle file, front as in Talus' deposit profile
 # (cbgeo_bui.py runout). Wall time: the whole process (input reading,
 # output included) from the shell; CPU: its user + system time
@@ -48,10 +51,10 @@ while getopts "s:m:b:t:c:r:k:i:d:p:e:v:o:h" opt; do
     t) tbuild=$OPTARG ;; c) cells=$OPTARG ;; r) repeats=$OPTARG ;;
     k) core=$OPTARG ;; i) pattern=$OPTARG ;; d) dt=$OPTARG ;;
     p) settings+=("$OPTARG") ;; e) edt=$OPTARG ;; v) vupdate=$OPTARG ;; o) out=$OPTARG ;;
-    *) sed -n '2,38p' "$0"; exit 2 ;;
+    *) sed -n '2,41p' "$0"; exit 2 ;;
   esac
 done
-[[ -n $src || -n $mpm ]] || { sed -n '2,38p' "$0"; exit 2; }
+[[ -n $src || -n $mpm ]] || { sed -n '2,41p' "$0"; exit 2; }
 # a python with h5py (Debian's python3-h5py lives in /usr/bin/python3)
 py=""
 for p in python3 /usr/bin/python3; do
