@@ -11,8 +11,11 @@ their axis-aligned boxes: gap = max_i (|x_b,i - x_a,i| - l_a,i - l_b,i),
 positive when the boxes no longer touch, with the half-widths of the
 chosen shape functions (uGIMP: l0 = h/4; cpGIMP: |F_ii| l0; cpGIMP-box:
 sum_j |F_ij| l0; capped at h). Prints per time the largest gap (in cells)
-and its pair's undeformed position, the number of pairs with a gap, the
-largest neighbour distance (in cells) and the lowest point.
+and its pair's undeformed position, the stretch of that pair (distance
+over the undeformed h/2) against the stretch of their own F along the
+pair (|F N| averaged over the two, N the undeformed direction), the number
+of pairs with a gap, the largest neighbour distance (in cells) and the
+lowest point.
 
 usage: python3 contrib/cantilever_point_gaps.py TALUS SHAPE LEVEL T1,T2,...
        (SHAPE: linear, uGIMP, cpGIMP or cpGIMP-box)
@@ -34,8 +37,8 @@ if shape == 'cpGIMP-box':
     choice = ('set shape functions = cpGIMP\n'
               '  set cpGIMP domain stretch = bounding box')
 work = tempfile.mkdtemp()
-print('| shape | h [m] | t [s] | largest gap [cells] | at X [m] (pair) | pairs with a gap | largest neighbour distance [cells] | lowest point y [m] |')
-print('|---|---|---|---|---|---|---|---|')
+print('| shape | h [m] | t [s] | largest gap [cells] | at X [m] (pair) | pair stretch | F stretch of the pair | pairs with a gap | largest neighbour distance [cells] | lowest point y [m] |')
+print('|---|---|---|---|---|---|---|---|---|---|')
 for t in times:
     prm = template
     prm = prm.replace('set subdivisions = 20, 26',
@@ -64,21 +67,25 @@ for t in times:
             l = [(abs(F[0]) + abs(F[1])) * l0, (abs(F[2]) + abs(F[3])) * l0]
         else:
             l = [l0, l0]
-        points[X] = (x, [min(a, h) for a in l], (props[16], props[17]))
+        points[X] = (x, [min(a, h) for a in l], (props[16], props[17]), F)
     worst, where, n_gaps, far = -1e300, None, 0, 0.
-    for (i, j), (xa, la, Xa) in points.items():
+    for (i, j), (xa, la, Xa, Fa) in points.items():
         for nb in ((i + 1, j), (i, j + 1)):
             if nb not in points:
                 continue
-            xb, lb, Xb = points[nb]
+            xb, lb, Xb, Fb = points[nb]
             d = [abs(xb[k] - xa[k]) for k in range(2)]
             gap = max(d[k] - la[k] - lb[k] for k in range(2))
             far = max(far, (d[0] ** 2 + d[1] ** 2) ** 0.5 / h)
             if gap > 0.:
                 n_gaps += 1
             if gap > worst:
-                worst, where = gap, (Xa, Xb)
+                c = 0 if nb[0] != i else 1  # the undeformed direction
+                fs = sum(((F[c]) ** 2 + (F[2 + c]) ** 2) ** 0.5
+                         for F in (Fa, Fb)) / 2
+                ps = (d[0] ** 2 + d[1] ** 2) ** 0.5 / (h / 2)
+                worst, where, stretch = gap, (Xa, Xb), (ps, fs)
     lowest = min(p[0][1] for p in points.values())
-    print('| %s | %g | %g | %.3f | (%.3f, %.3f)-(%.3f, %.3f) | %d | %.2f | %.2f |' % (
+    print('| %s | %g | %g | %.3f | (%.3f, %.3f)-(%.3f, %.3f) | %.2f | %.2f | %d | %.2f | %.2f |' % (
         shape, h, t, worst / h, where[0][0], where[0][1], where[1][0],
-        where[1][1], n_gaps, far, lowest))
+        where[1][1], stretch[0], stretch[1], n_gaps, far, lowest))
