@@ -2,23 +2,25 @@
 """Gaps between the points' GIMP domains in the large-deformation cantilever.
 
 doc/verification.md, "Cantilever swinging under its own weight": runs the
-MPM beam of tests/mpm/cantilever_neo_hookean.prm.in (2 x 2 points per cell,
+MPM beam of tests/mpm/cantilever_neo_hookean.prm.in (n x n points per cell,
 h = 0.25 m / 2^level) with the given shape functions up to each of the given
 times, dumps the points (TALUS_DEBUG_DUMP_POINTS) and measures, for every
 pair of neighbouring points (neighbours in the undeformed lattice of
-spacing h/2, along X and along Y), their distance and the gap between
+spacing h/n, along X and along Y), their distance and the gap between
 their axis-aligned boxes: gap = max_i (|x_b,i - x_a,i| - l_a,i - l_b,i),
 positive when the boxes no longer touch, with the half-widths of the
-chosen shape functions (uGIMP: l0 = h/4; cpGIMP: |F_ii| l0; cpGIMP-box:
+chosen shape functions (uGIMP: l0 = h/(2n); cpGIMP: |F_ii| l0; cpGIMP-box:
 sum_j |F_ij| l0; capped at h). Prints per time the largest gap (in cells)
 and its pair's undeformed position, the stretch of that pair (distance
-over the undeformed h/2) against the stretch of their own F along the
+over the undeformed h/n) against the stretch of their own F along the
 pair (|F N| averaged over the two, N the undeformed direction), the number
 of pairs with a gap, the largest neighbour distance (in cells) and the
 lowest point.
 
-usage: python3 contrib/cantilever_point_gaps.py TALUS SHAPE LEVEL T1,T2,...
-       (SHAPE: linear, uGIMP, cpGIMP or cpGIMP-box)
+usage: python3 contrib/cantilever_point_gaps.py TALUS SHAPE LEVEL T1,T2,... [DT [N]]
+       (SHAPE: linear, uGIMP, cpGIMP or cpGIMP-box; DT the time step,
+       default that of the test, 0.01 s, or "-"; N points per cell per
+       direction, default 2)
 """
 import os
 import re
@@ -29,8 +31,10 @@ import tempfile
 here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 talus, shape, level = os.path.abspath(sys.argv[1]), sys.argv[2], int(sys.argv[3])
 times = [float(t) for t in sys.argv[4].split(',')]
+dt = sys.argv[5] if len(sys.argv) > 5 and sys.argv[5] != '-' else None
+n = int(sys.argv[6]) if len(sys.argv) > 6 else 2
 h = 0.25 / 2 ** level
-l0 = h / 4.
+l0 = h / (2. * n)
 template = open(os.path.join(here, 'tests/mpm/cantilever_neo_hookean.prm.in')).read()
 choice = 'set shape functions = ' + shape
 if shape == 'cpGIMP-box':
@@ -45,6 +49,10 @@ for t in times:
                       'set subdivisions = %d, %d' % (20 * 2 ** level, 26 * 2 ** level))
     prm = prm.replace('set shape functions = linear', choice)
     prm = prm.replace('set end time = 2', 'set end time = %g' % t)
+    prm = prm.replace('set points per cell per direction = 2',
+                      'set points per cell per direction = %d' % n)
+    if dt is not None:
+        prm = prm.replace('set time step = 0.01', 'set time step = ' + dt)
     prm = re.sub(r'set output directory = .*', 'set output directory = out', prm)
     prm = prm.replace('set test mode = true', 'set test mode = false')
     prm = re.sub(r'\n\s*set (peak )?tolerance = .*', '', prm)
@@ -60,7 +68,7 @@ for t in times:
         v = [float(x) for x in line.split()]
         x, props = v[1:3], v[3:]
         F = props[6:10]  # row by row
-        X = (round(props[16] / (h / 2) - 0.5), round(props[17] / (h / 2) - 0.5))
+        X = (round(props[16] / (h / n) - 0.5), round(props[17] / (h / n) - 0.5))
         if shape == 'cpGIMP':
             l = [abs(F[0]) * l0, abs(F[3]) * l0]
         elif shape == 'cpGIMP-box':
@@ -83,7 +91,7 @@ for t in times:
                 c = 0 if nb[0] != i else 1  # the undeformed direction
                 fs = sum(((F[c]) ** 2 + (F[2 + c]) ** 2) ** 0.5
                          for F in (Fa, Fb)) / 2
-                ps = (d[0] ** 2 + d[1] ** 2) ** 0.5 / (h / 2)
+                ps = (d[0] ** 2 + d[1] ** 2) ** 0.5 / (h / n)
                 worst, where, stretch = gap, (Xa, Xb), (ps, fs)
     lowest = min(p[0][1] for p in points.values())
     print('| %s | %g | %g | %.3f | (%.3f, %.3f)-(%.3f, %.3f) | %.2f | %.2f | %d | %.2f | %.2f |' % (
