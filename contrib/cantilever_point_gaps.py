@@ -24,6 +24,7 @@ usage: python3 contrib/cantilever_point_gaps.py TALUS SHAPE LEVEL T1,T2,... [DT 
 """
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -97,3 +98,4 @@ for t in times:
     print('| %s | %g | %g | %.3f | (%.3f, %.3f)-(%.3f, %.3f) | %.2f | %.2f | %d | %.2f | %.2f |' % (
         shape, h, t, worst / h, where[0][0], where[0][1], where[1][0],
         where[1][1], stretch[0], stretch[1], n_gaps, far, lowest))
+shutil.rmtree(work)
