@@ -3,7 +3,8 @@
 # verification.md, "Cantilever swinging under its own weight"; Sadeghirad,
 # Brannon & Burghardt 2011): the MPM beam of tests/mpm/cantilever_neo_hookean
 # (2 x 2 points per cell, neo-Hookean, dt = 0.01 s) on grids h = 0.25 m
-# times 2^-level, with 'shape functions = linear' and 'uGIMP', against the
+# times 2^-level, with 'shape functions = linear' and 'uGIMP' (or cpGIMP,
+# --shapes), against the
 # FE reference tests/mpm/cantilever_fe_reference.csv (the mean deflection of
 # x >= 3.75 m). Prints per run the peak deflection and its time, the
 # relative L2-in-time error of the history and its rate, the rejected
@@ -20,7 +21,10 @@
 # x = -1 m so that the beam can swing past the plane of the root; --from-forces starts each step
 # from the acceleration of the forces ('start acceleration = from forces')
 # instead of the projected one; --shapes "linear uGIMP" chooses the shape
-# functions (default both).
+# functions (default linear and uGIMP; also cpGIMP, 'cpGIMP domain stretch
+# = diagonal', and cpGIMP-box, 'bounding box'). For cpGIMP the table's
+# last column gives the share of point evaluations whose domain was capped
+# at the cell size.
 #
 # usage: bash contrib/cantilever_convergence.sh [path/to/talus] [levels] [options]
 set -euo pipefail
@@ -102,8 +106,11 @@ fi
 # run SHAPE LEVEL: writes $work/SHAPE-LEVEL.log and its output directory
 run() {
   local shape=$1 level=$2 f=$((1 << $2)) prm=$work/$1-$2.prm
+  local choice="set shape functions = $shape"
+  [ "$shape" = cpGIMP-box ] &&
+    choice="set shape functions = cpGIMP\n  set cpGIMP domain stretch = bounding box"
   sed -e "s|set subdivisions = 20, 26|set subdivisions = $((nx * f)), $((26 * f))|" \
-      -e "s|set shape functions = linear|set shape functions = $shape|" \
+      -e "s|set shape functions = linear|$choice|" \
       -e "s|set output directory = .*|set output directory = $work/out-$shape-$level|" \
       -e "s|set test mode = true|set test mode = false|" \
       -e "s|set tolerance = .*||" -e "s|set peak tolerance = .*||" \
@@ -140,8 +147,8 @@ def window_error(name, T):
 def rate(a, b):
     return '-' if a is None or b <= 0 else '%.2f' % math.log2(a / b)
 print('\nMPM, 2 x 2 points per cell, dt = 0.01 s: mean deflection of the points of x >= 3.75 m')
-print('| shape | h [m] | peak [m] | t_peak [s] | peak error | L2 error [0, 1 s] | rate | L2 error [0, 2 s] | rate | rejected steps | energy lost | booked | unbooked | wall [s] |')
-print('|---|---|---|---|---|---|---|---|---|---|---|---|---|---|')
+print('| shape | h [m] | peak [m] | t_peak [s] | peak error | L2 error [0, 1 s] | rate | L2 error [0, 2 s] | rate | u(2 s) [m] | rejected steps | energy lost | booked | unbooked | wall [s] | Newton it./step | per Newton it. [ms] | capped domains |')
+print('|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|')
 for s in shapes:
     prev = prev1 = None
     for l in range(levels):
@@ -150,6 +157,15 @@ for s in shapes:
         err = re.search(r'relative peak error (\S+), relative L2-in-time error (\S+)', log)
         rej = re.search(r'steps \((\d+) rejected\)', log)
         wall = re.findall(r'^wall (\S+) s', log, re.M)
+        its = re.search(r'rejected\), (\S+) Newton iterations per step', log)
+        steps = re.search(r'Done: (\d+) steps', log)
+        newton = re.search(r'\|\s*solve \(Newton\)\s*\|\s*(\d+)\s*\|\s*(\S+)s', log)
+        per_it = '-' if not (its and steps and newton) else '%.1f' % (
+            1000. * float(newton.group(2)) /
+            (int(steps.group(1)) * float(its.group(1))))
+        cap = re.search(r'capped at the cell size: (\d+) of (\d+)', log)
+        capped = '-' if cap is None else '%.2f %%' % (
+            100. * int(cap.group(1)) / max(1, int(cap.group(2))))
         out = '%s/out-%s-%d' % (work, s, l)
         rows = list(csv.DictReader(open(out + '/time_series.csv')))
         f = lambda r, k: float(r[k])
@@ -162,11 +178,13 @@ for s in shapes:
         unbooked = f(rows[0], 'energy_balance') - f(rows[-1], 'energy_balance')
         l2 = float(err.group(2))
         l1 = window_error(out + '/probe_history.csv', 1.)
-        print('| %s | %g | %s | %s | %s | %.3e | %s | %.3e | %s | %s | %.1f %% | %.1f %% | %.1f %% | %s |' % (
+        u_end = list(csv.DictReader(open(out + '/probe_history.csv')))[-1]['u_y']
+        print('| %s | %g | %s | %s | %s | %.3e | %s | %.3e | %s | %.3f | %s | %.1f %% | %.1f %% | %.1f %% | %s | %s | %s | %s |' % (
             s, 0.25 / 2 ** l, peak.group(1), peak.group(2), err.group(1), l1,
-            rate(prev1, l1), l2, rate(prev, l2), rej.group(1),
+            rate(prev1, l1), l2, rate(prev, l2), float(u_end), rej.group(1),
             100 * lost / released, 100 * booked / released,
-            100 * unbooked / released, wall[-1]))
+            100 * unbooked / released, wall[-1],
+            its.group(1) if its else '-', per_it, capped))
         prev, prev1 = l2, l1
 print('(energy: of the largest released gravitational energy; lost = '
       'K + S + G at 0 minus at the end; booked = the dissipation columns of '

@@ -9,20 +9,27 @@
 # stress error (max and RMS, relative to max |sigma_exact|) and the rates
 # log2(e_coarse / e_fine).
 #
-# usage: bash contrib/ugimp_convergence.sh [path/to/talus] [levels]
+# A third argument chooses the shape functions (default "linear uGIMP";
+# also cpGIMP, and cpGIMP-box for 'cpGIMP domain stretch = bounding box').
+#
+# usage: bash contrib/ugimp_convergence.sh [path/to/talus] [levels] [shapes]
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 talus=$(readlink -f "${1:-$here/build/talus}")
 levels=${2:-4}
+shapes=${3:-linear uGIMP}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # run CASE SHAPE: writes $work/CASE-SHAPE.log
 run() {
   local case=$1 shape=$2 prm=$work/$1-$2.prm
+  local choice="set shape functions = $shape"
+  [ "$shape" = cpGIMP-box ] &&
+    choice="set shape functions = cpGIMP\n  set cpGIMP domain stretch = bounding box"
   case $case in
     column)
-      sed -e "s|set linear solver = direct|set linear solver = direct\n  set shape functions = $shape|" \
+      sed -e "s|set linear solver = direct|set linear solver = direct\n  $choice|" \
           -e "s|set output directory = .*|set output directory = $work/out-$case-$shape|" \
           -e "s|set stress error tolerance = .*|set stress error tolerance = 10\n  set stress error norm = RMS|" \
           -e "s|set displacement error tolerance = .*|set displacement error tolerance = 10|" \
@@ -30,7 +37,7 @@ run() {
       ;;
     bar)
       sed -e "s|v0=0.00001|v0=0.1|g" \
-          -e "s|set gravity = 0, 0|set gravity = 0, 0\n  set shape functions = $shape|" \
+          -e "s|set gravity = 0, 0|set gravity = 0, 0\n  $choice|" \
           -e "s|set output directory = .*|set output directory = $work/out-$case-$shape|" \
           -e "s|set displacement error tolerance = .*|set displacement error tolerance = 10|" \
           -e "/subsection Convergence study/,/^end/d" \
@@ -46,29 +53,29 @@ run() {
 }
 
 for c in column bar; do
-  for s in linear uGIMP; do run $c $s; done
+  for s in $shapes; do run $c $s; done
 done
 
-python3 - "$work" <<'PY'
+python3 - "$work" "$shapes" <<'PY'
 import math, re, sys
-work = sys.argv[1]
+work, shapes = sys.argv[1], sys.argv[2].split()
 def rate(a, b):
     return '-' if a is None or b is None or b <= 0 else '%.2f' % math.log2(a / b)
 def table(case, title, pattern, names):
     print('\n%s' % title)
     data = {}
-    for s in ('linear', 'uGIMP'):
+    for s in shapes:
         text = open('%s/%s-%s.log' % (work, case, s)).read()
         data[s] = [tuple(float(x) for x in m) for m in re.findall(pattern, text)]
     header = ['level']
-    for s in ('linear', 'uGIMP'):
+    for s in shapes:
         for n in names:
             header += ['%s %s' % (s, n), 'rate']
     print('| ' + ' | '.join(header) + ' |')
     print('|' + '---|' * len(header))
-    for l in range(len(data['linear'])):
+    for l in range(len(data[shapes[0]])):
         row = [str(l)]
-        for s in ('linear', 'uGIMP'):
+        for s in shapes:
             for j in range(len(names)):
                 e = data[s][l][j]
                 prev = data[s][l - 1][j] if l > 0 else None

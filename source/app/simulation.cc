@@ -1160,6 +1160,16 @@ namespace Talus
               std::string())
         << "wall time " << format_seconds(wall_seconds()) << "\n"
         << "Output in " << output.directory() << "/\n";
+    // (not in test mode: a diagnostic of this process's run, which a
+    // checkpoint does not carry)
+    if (solver.convected_point_domains())
+      {
+        const auto capped = solver.capped_point_domains();
+        if (!test_mode)
+          pcout << "  cpGIMP point domains capped at the cell size: "
+                << capped.first << " of " << capped.second
+                << " point evaluations\n";
+      }
     // (not in test mode: the test outputs do not depend on the machine)
     {
       const std::string memory = memory_summary(communicator);

@@ -333,7 +333,8 @@ namespace Talus
                   const double m  = props[Properties::mass];
 
                   // The dofs the point reaches (uGIMP: at most 3^dim of the
-                  // 4^dim patch nodes; linear: all, in order).
+                  // 4^dim patch nodes, cpGIMP: up to all of them; linear:
+                  // all, in order).
                   active.clear();
                   for (unsigned int i = 0; i < dofs_per_cell; ++i)
                     if (!gimp || N[node[i]] != 0. ||
@@ -430,10 +431,10 @@ namespace Talus
 
                   if (gimp)
                     {
-                      // uGIMP (up to 3^dim nodes per point): the product
-                      // G_a . A first, per node, then with G_b (a third of
-                      // the operations of the loop below; that loop keeps
-                      // the linear results bitwise).
+                      // GIMP (3^dim, cpGIMP up to 4^dim nodes per point):
+                      // the product G_a . A first, per node, then with G_b
+                      // (a third of the operations of the loop below; that
+                      // loop keeps the linear results bitwise).
                       active_nodes.clear();
                       for (unsigned int t = 0; t < active.size(); t += dim)
                         active_nodes.push_back(node[active[t]]);

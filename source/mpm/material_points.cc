@@ -954,8 +954,9 @@ namespace Talus
                             "the same number as in <" +
                               bodies.front().subsection + "> (" +
                               std::to_string(n) +
-                              ") with 'shape functions = uGIMP', whose "
-                              "particle size h/(2 n) is one for the grid");
+                              ") with 'shape functions = uGIMP' or "
+                              "'cpGIMP', whose (initial) particle size "
+                              "h/(2 n) is one for the grid");
       return n;
     }
 

@@ -414,7 +414,7 @@ namespace Talus
         prm.declare_entry(
           "shape functions",
           "linear",
-          Patterns::Selection("linear|uGIMP"),
+          Patterns::Selection("linear|uGIMP|cpGIMP"),
           "Shape functions of the transfer between the material points and "
           "the grid and of the points' integration [-]. 'linear': the Q1 "
           "shape functions of the point's cell (standard MPM; a point that "
@@ -424,16 +424,37 @@ namespace Talus
           "Kirby and Berzins 2008, IJNME 76): the Q1 functions averaged over "
           "the point's domain, a box of half-width l_p = h / (2 n) per "
           "direction (h the cell size, n the points per cell per direction "
-          "of subsection Body), fixed at its undeformed size. The weights "
+          "of subsection Body), fixed at its undeformed size. 'cpGIMP' "
+          "(contiguous-particle GIMP, Bardenhagen and Kober 2004, with the "
+          "domain update of Wallstedt and Guilkey 2008, J Comput Phys 227): "
+          "the same box stretched by the point's "
+          "deformation gradient F committed at the end of the last step "
+          "('cpGIMP domain stretch'), frozen over a step and capped at the "
+          "cell size h. The weights "
           "and their gradients are continuous as a point crosses a face; a "
           "point influences the nodes of the 3^dim cells around its cell "
-          "(truncated at the grid's boundary), and Newton uses the uGIMP "
+          "(truncated at the grid's boundary), and Newton uses the GIMP "
           "gradients in its consistent tangent. F-bar averages over the "
           "points of a cell, whose derivatives then reach the whole patch. "
           "Boundary particles (and material-point contact) act on the grid's "
-          "Q1 field at their location, as with 'linear'. Cartesian "
-          "background grids only ('grid type = box'); not with grid "
-          "friction boundaries, APIC or the ghost penalty.");
+          "Q1 field at their location, as with 'linear'. uGIMP and cpGIMP: "
+          "Cartesian background grids only ('grid type = box'); not with "
+          "grid friction boundaries, APIC or the ghost penalty.");
+        prm.declare_entry(
+          "cpGIMP domain stretch",
+          "diagonal",
+          Patterns::Selection("diagonal|bounding box"),
+          "With 'shape functions = cpGIMP': how the half-widths l0 = h / "
+          "(2 n) of a point's box follow its deformation gradient F [-]. "
+          "'diagonal': l_i = |F_ii| l0_i (Wallstedt and Guilkey 2008; a "
+          "rotated point's box shrinks, to zero width at 90 degrees). "
+          "'bounding box': l_i = sum_j |F_ij| l0_j, the axis-aligned box "
+          "around the deformed parallelogram F (box) (exact under stretch "
+          "along the axes and under rotations by multiples of 90 degrees, "
+          "larger than the deformed domain under shear or other "
+          "rotations). Either is capped at l_i = h, the reach of the 4^dim "
+          "node patch; the run's final message (not in test mode) counts "
+          "the capped points.");
         prm.declare_entry("abort on lost material points",
                           "false",
                           Patterns::Bool(),
@@ -530,15 +551,25 @@ namespace Talus
                             prm.get("velocity update") + "' leave it at 1");
       ghost_penalty_factor = prm.get_double("ghost penalty factor");
       max_line_search      = prm.get_integer("maximum line search halvings");
-      gimp                 = prm.get("shape functions") == "uGIMP";
+      shape_name           = prm.get("shape functions");
+      gimp                 = shape_name != "linear";
+      convected_domain     = shape_name == "cpGIMP";
+      domain_bounding_box  = prm.get("cpGIMP domain stretch") == "bounding box";
       shape_stride         = gimp ? (dim == 2 ? 16 : 64) : (1u << dim);
+      if (!convected_domain && prm.get("cpGIMP domain stretch") != "diagonal")
+        InputFile::reject(sub,
+                          "cpGIMP domain stretch",
+                          prm.get("cpGIMP domain stretch"),
+                          "it applies to 'shape functions = cpGIMP' only; "
+                          "with 'shape functions = " +
+                            shape_name + "' leave it at 'diagonal'");
       if (gimp)
         {
           const auto reject_with = [&](const std::string &what) {
             InputFile::reject(sub,
                               "shape functions",
-                              "uGIMP",
-                              "uGIMP is not implemented with " + what +
+                              shape_name,
+                              shape_name + " is not implemented with " + what +
                                 "; use 'shape functions = linear'");
           };
           if (apic)
@@ -759,8 +790,9 @@ namespace Talus
       if (gimp)
         InputFile::reject("Solver",
                           "shape functions",
-                          "uGIMP",
-                          "uGIMP " + why + "; use 'shape functions = linear'");
+                          shape_name,
+                          shape_name + " " + why +
+                            "; use 'shape functions = linear'");
       if (apic)
         InputFile::reject("Solver",
                           "velocity update",
@@ -795,15 +827,17 @@ namespace Talus
       if (!grid.is_cartesian)
         InputFile::reject("Solver",
                           "shape functions",
-                          "uGIMP",
-                          "uGIMP needs a Cartesian background grid "
+                          shape_name,
+                          shape_name +
+                            " needs a Cartesian background grid "
                           "(subsection Background grid, 'grid type = box'); "
                           "this grid is read from a mesh file");
       if (!grid.friction_boundaries.empty())
         InputFile::reject("Solver",
                           "shape functions",
-                          "uGIMP",
-                          "uGIMP is not implemented with grid friction "
+                          shape_name,
+                          shape_name +
+                            " is not implemented with grid friction "
                           "boundaries; use 'shape functions = linear'");
       // the caches' node-major dof order is FESystem<FE_Q(1)^dim>'s
       for (unsigned int i = 0; i < grid.fe.dofs_per_cell; ++i)

@@ -180,12 +180,45 @@ namespace Talus
             c.dofs.push_back(it->second[d]);
           slot.push_back(a);
         }
-      // uGIMP weights: tensor products of the 1D functions, per cache node
+      // GIMP weights: tensor products of the 1D functions, per cache node
       // (node j of the cache is patch node slot[j]); the entries beyond
-      // the cache's nodes stay zero.
+      // the cache's nodes stay zero. uGIMP: the half-widths l0 = h/(2 n);
+      // cpGIMP: l0 stretched by the committed F_n of the point (frozen
+      // over the step, so the weights stay functions of the position and
+      // the Newton tangent is that of uGIMP), capped at h: beyond it the
+      // point would reach nodes outside the 4^dim patch.
       const dealii::Tensor<1, dim> &h = grid.cell_extent;
-      for (const auto &xi : reference_points)
+      for (unsigned int q = 0; q < reference_points.size(); ++q)
         {
+          const auto            &xi = reference_points[q];
+          dealii::Tensor<1, dim> l  = gimp_half_width;
+          if (convected_domain)
+            {
+              using Properties = MaterialPointProperties<dim>;
+              const auto props = particles[c.first + q]->get_properties();
+              const dealii::Tensor<2, dim> F =
+                read_tensor<dim>(props, Properties::deformation);
+              bool capped = false;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  if (domain_bounding_box)
+                    {
+                      l[d] = 0.;
+                      for (unsigned int e = 0; e < dim; ++e)
+                        l[d] += std::abs(F[d][e]) * gimp_half_width[e];
+                    }
+                  else
+                    l[d] = std::abs(F[d][d]) * gimp_half_width[d];
+                  if (l[d] >= h[d])
+                    {
+                      l[d]   = h[d];
+                      capped = true;
+                    }
+                }
+              ++n_domain_evaluations;
+              if (capped)
+                ++n_capped_domains;
+            }
           const std::size_t first = shape_values.size();
           shape_values.resize(first + shape_stride, 0.);
           shape_gradients.resize(first + shape_stride);
@@ -199,8 +232,7 @@ namespace Talus
                   rest /= 4;
                   // x_p - x_I in units of the cell's lowest vertex
                   const double r = (xi[d] - offset) * h[d];
-                  S[d] =
-                    internal::ugimp_weight(r, h[d], gimp_half_width[d], dS[d]);
+                  S[d]           = internal::gimp_weight(r, h[d], l[d], dS[d]);
                 }
               double                 value = 1.;
               dealii::Tensor<1, dim> gradient;
@@ -217,6 +249,17 @@ namespace Talus
               shape_gradients[first + j] = gradient;
             }
         }
+    }
+
+
+    template <int dim>
+    std::pair<unsigned long long, unsigned long long>
+    MPMSolver<dim>::capped_point_domains() const
+    {
+      return {dealii::Utilities::MPI::sum(n_capped_domains,
+                                          grid.mpi_communicator),
+              dealii::Utilities::MPI::sum(n_domain_evaluations,
+                                          grid.mpi_communicator)};
     }
 
 
@@ -724,12 +767,14 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-#define TALUS_INSTANTIATE(dim)                           \
-  template void MPMSolver<dim>::cache_particles();       \
-  template void MPMSolver<dim>::project_to_grid();       \
-  template void MPMSolver<dim>::compute_xpic_correction( \
-    std::vector<dealii::Tensor<1, dim>> &w) const;       \
-  template void MPMSolver<dim>::commit_step();           \
+#define TALUS_INSTANTIATE(dim)                                \
+  template void MPMSolver<dim>::cache_particles();            \
+  template std::pair<unsigned long long, unsigned long long>  \
+                MPMSolver<dim>::capped_point_domains() const; \
+  template void MPMSolver<dim>::project_to_grid();            \
+  template void MPMSolver<dim>::compute_xpic_correction(      \
+    std::vector<dealii::Tensor<1, dim>> &w) const;            \
+  template void MPMSolver<dim>::commit_step();                \
   template void MPMSolver<dim>::project_stress_to_grid();
 
     TALUS_INSTANTIATE(2)

@@ -367,6 +367,21 @@ namespace Talus
         return n_ghost_faces;
       }
 
+      /** Whether 'shape functions = cpGIMP' (convected point domains). */
+      bool
+      convected_point_domains() const
+      {
+        return convected_domain;
+      }
+      /**
+       * cpGIMP: the point evaluations (one per point and prepared step,
+       * rejected attempts included) whose half-width reached the cap, the
+       * cell size, in some direction, and all evaluations, summed over the
+       * ranks (collective).
+       */
+      std::pair<unsigned long long, unsigned long long>
+      capped_point_domains() const;
+
       /**
        * The reactions of the boundary particles at the converged iterate
        * of the last solve_step() [N], the force each exerts on the
@@ -770,9 +785,11 @@ namespace Talus
       cache_particles();
 
       /**
-       * uGIMP: the patch dofs of a material cell into @p c and the weights
-       * and gradients of its points (at @p reference_points, the unit cell
-       * coordinates) onto shape_values and shape_gradients.
+       * uGIMP and cpGIMP: the patch dofs of a material cell into @p c and
+       * the weights and gradients of its points (at @p reference_points,
+       * the unit cell coordinates; the points are particles[c.first ...],
+       * cpGIMP reads their committed deformation gradient) onto
+       * shape_values and shape_gradients.
        */
       void
       cache_gimp_cell(
@@ -780,7 +797,10 @@ namespace Talus
         const std::vector<dealii::Point<dim>> &reference_points,
         CellCache                             &c);
 
-      /** uGIMP: check the grid, fill lattice_dofs and the half-widths. */
+      /**
+       * uGIMP and cpGIMP: check the grid, fill lattice_dofs and the
+       * (initial) half-widths.
+       */
       void
       setup_gimp_lattice();
 
@@ -1216,9 +1236,31 @@ namespace Talus
        * 'shape functions = uGIMP': a material point influences the nodes of
        * the 3^dim cells around its cell with the uGIMP weights (particle
        * half-width l_p = h / (2 n) per direction, n points per cell per
-       * direction); else the Q1 shape functions of its cell.
+       * direction); else the Q1 shape functions of its cell. Also true
+       * with 'shape functions = cpGIMP' (convected_domain).
        */
       bool gimp = false;
+      /**
+       * 'shape functions = cpGIMP' (contiguous-particle GIMP, Bardenhagen
+       * and Kober 2004, with the domain update of Wallstedt and Guilkey
+       * 2008): the half-widths follow the point's deformation
+       * gradient F_n committed at the end of the last step, frozen over a
+       * step; capped at the cell size h (the 4^dim patch's reach).
+       */
+      bool convected_domain = false;
+      /**
+       * cpGIMP's stretch of the half-widths: true for the bounding box of
+       * the deformed domain, l_i = sum_j |F_ij| l0_j; false for the
+       * diagonal, l_i = |F_ii| l0_i (Wallstedt and Guilkey 2008).
+       */
+      bool domain_bounding_box = false;
+      /** The chosen 'shape functions' (uGIMP or cpGIMP, for messages). */
+      std::string shape_name = "linear";
+      /**
+       * cpGIMP: point-steps whose half-width reached the cap h in some
+       * direction, and all point-steps, summed over the run on this rank.
+       */
+      unsigned long long n_capped_domains = 0, n_domain_evaluations = 0;
       /**
        * Nodes per point in shape_values and shape_gradients: 2^dim (linear)
        * or 4^dim (uGIMP; the entries of patch nodes outside the grid are
@@ -1226,7 +1268,10 @@ namespace Talus
        * component_and_node()), c.dofs.size() / dim of its nodes are used.
        */
       unsigned int shape_stride = 1u << dim;
-      /** uGIMP half-width of the points per direction [m]. */
+      /**
+       * uGIMP half-width of the points per direction [m]; cpGIMP's
+       * undeformed one l0.
+       */
       dealii::Tensor<1, dim> gimp_half_width;
       /**
        * uGIMP: the dofs (per component) of every locally relevant grid

@@ -4,6 +4,7 @@
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/tensor.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -93,6 +94,37 @@ namespace Talus
           }
         dS = 0.;
         return 0.;
+      }
+
+      /**
+       * The 1D GIMP weight function of a node at distance @p r = x_p - x_I
+       * from a point of any half-width 0 <= @p l <= @p h (cpGIMP's
+       * convected domains; Wallstedt and Guilkey 2008): the grid's hat
+       * function N(s) = max(0, 1 - |s|/h) averaged over the point's domain,
+       * S = (Phi(r + l) - Phi(r - l)) / (2 l) with Phi the antiderivative
+       * of N, and its derivative dS/dx_p = (N(r + l) - N(r - l)) / (2 l)
+       * in @p dS. For l <= h/2 it is ugimp_weight() (the same closed form,
+       * bit for bit); beyond, the antiderivative form.
+       */
+      inline double
+      gimp_weight(const double r, const double h, const double l, double &dS)
+      {
+        if (l <= 0.5 * h)
+          return ugimp_weight(r, h, l, dS);
+        const auto Phi = [h](const double y) {
+          if (y <= -h)
+            return 0.;
+          if (y <= 0.)
+            return (y + h) * (y + h) / (2. * h);
+          if (y < h)
+            return h - (h - y) * (h - y) / (2. * h);
+          return h;
+        };
+        const auto N = [h](const double s) {
+          return std::max(0., 1. - std::abs(s) / h);
+        };
+        dS = (N(r + l) - N(r - l)) / (2. * l);
+        return (Phi(r + l) - Phi(r - l)) / (2. * l);
       }
     } // namespace internal
   }   // namespace MPM
