@@ -830,15 +830,15 @@ namespace Talus
                           shape_name,
                           shape_name +
                             " needs a Cartesian background grid "
-                          "(subsection Background grid, 'grid type = box'); "
-                          "this grid is read from a mesh file");
+                            "(subsection Background grid, 'grid type = box'); "
+                            "this grid is read from a mesh file");
       if (!grid.friction_boundaries.empty())
         InputFile::reject("Solver",
                           "shape functions",
                           shape_name,
                           shape_name +
                             " is not implemented with grid friction "
-                          "boundaries; use 'shape functions = linear'");
+                            "boundaries; use 'shape functions = linear'");
       // the caches' node-major dof order is FESystem<FE_Q(1)^dim>'s
       for (unsigned int i = 0; i < grid.fe.dofs_per_cell; ++i)
         AssertThrow(grid.fe.system_to_component_index(i) ==
@@ -990,6 +990,7 @@ namespace Talus
     {
       step_impact_dissipation = 0.;
       step_reset_dissipation  = 0.;
+      start_force_recorded    = false;
       cache_boundary_particles();
       if (ghost_penalty_factor > 0.)
         setup_ghost_penalty();

@@ -164,7 +164,10 @@ namespace Talus
               continue;
             }
           if (it == 0 && first_solve)
-            reference = std::max(r, f_ext_norm);
+            {
+              reference = std::max(r, f_ext_norm);
+              record_start_force();
+            }
           const unsigned int changed_branches =
             dealii::Utilities::MPI::sum(branch_changes, grid.mpi_communicator);
           // ... but only while the iteration makes progress: a residual
@@ -560,6 +563,33 @@ namespace Talus
 
 
     template <int dim>
+    void
+    MPMSolver<dim>::record_start_force()
+    {
+      start_force_recorded = false;
+      if (quasi_static || consistent_mass)
+        return;
+      // A moving boundary of particles (a prescribed motion, a coupling
+      // interface) has moved to its end-of-step position in the residual
+      // at du = 0: its penalty force there is not the force at the start
+      // of the step, so the start acceleration's work is not booked.
+      if (boundary_particles != nullptr)
+        for (unsigned int b = 0; b < boundary_particles->n_boundaries(); ++b)
+          if (boundary_particles->boundary(b).moving)
+            return;
+      start_force.reinit(grid.locally_owned_dofs, grid.mpi_communicator);
+      for (const auto i : grid.locally_owned_dofs)
+        if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
+          start_force(i) =
+            residual(i) +
+            nodal_mass(i) *
+              newmark.acceleration(0., velocity_n(i), acceleration_n(i), dt);
+      start_force.compress(dealii::VectorOperation::insert);
+      start_force_recorded = true;
+    }
+
+
+    template <int dim>
     NewtonResult
     MPMSolver<dim>::solve_increment()
     {
@@ -617,6 +647,7 @@ namespace Talus
               return result;
             }
           reference = std::max(r0, f_ext_norm);
+          record_start_force();
           // du = dt v_n + dt^2/2 a_n at the free nodes with mass; v_n and
           // a_n are zero at the constrained ones (prepare_step()).
           for (const auto i : grid.locally_owned_dofs)
@@ -675,7 +706,8 @@ namespace Talus
     dealii::TrilinosWrappers::MPI::Vector &du,         \
     const double                           f_ext_norm, \
     double                                &reference,  \
-    NewtonResult                          &result);
+    NewtonResult                          &result);                             \
+  template void MPMSolver<dim>::record_start_force();
 
     TALUS_INSTANTIATE(2)
     TALUS_INSTANTIATE(3)

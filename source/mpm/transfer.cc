@@ -435,10 +435,18 @@ namespace Talus
       if (!quasi_static)
         {
           // the integrator's dissipation: the forces' work by the
-          // trapezoidal rule, du (M a_n + M a_{n+1}) / 2, minus the grid's
-          // kinetic energy change (lumped masses; zero for gamma = 1/2,
-          // beta = 1/4)
-          double integrator = 0.;
+          // trapezoidal rule, du (f_n + M a_{n+1}) / 2, minus the grid's
+          // kinetic energy change (lumped masses). Newmark's own part, with
+          // the start acceleration a_n, du M (a_n + a_{n+1}) / 2 - dK, is
+          // zero for gamma = 1/2, beta = 1/4 (by its algebra: not summed,
+          // so that round-off does not fill the column); the start
+          // acceleration's part du (f_n - M a_n) / 2 is not, where a_n is
+          // the points' projected acceleration instead of M^-1 f_n
+          // (record_start_force(); the free nodes).
+          double     integrator = 0.;
+          double     start_work = 0.;
+          const bool newmark_part =
+            !(newmark.gamma == 0.5 && newmark.beta == 0.25);
           for (const auto i : grid.locally_owned_dofs)
             if (nodal_mass(i) > 0.)
               {
@@ -451,13 +459,15 @@ namespace Talus
                 integrator +=
                   nodal_mass(i) *
                   (0.5 * du * (an + a) - dv(i) * (velocity_n(i) + 0.5 * dv(i)));
+                if (start_force_recorded && !constraints.is_constrained(i))
+                  start_work +=
+                    0.5 * du * (start_force(i) - nodal_mass(i) * an);
               }
-          // (the trapezoidal rule's is zero by its algebra: not summed,
-          // so that round-off does not fill the column)
-          if (!consistent_mass &&
-              !(newmark.gamma == 0.5 && newmark.beta == 0.25))
+          if (!consistent_mass)
             accounts.integrator_dissipation +=
-              dealii::Utilities::MPI::sum(integrator, grid.mpi_communicator);
+              dealii::Utilities::MPI::sum((newmark_part ? integrator : 0.) +
+                                            start_work,
+                                          grid.mpi_communicator);
           a_new.compress(dealii::VectorOperation::insert);
           dv.compress(dealii::VectorOperation::insert);
         }

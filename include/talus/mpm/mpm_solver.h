@@ -117,12 +117,15 @@ namespace Talus
       double transfer_dissipation = 0.;
       /**
        * Energy the time integrator dissipates since the start [J]: per step
-       * sum_I m_I (du_I (a_I^n + a_I^{n+1}) / 2 - (|v_I^{n+1}|^2 -
-       * |v_I^n|^2) / 2) over the free nodes with mass (lumped masses), the
-       * work of the forces by the trapezoidal rule minus the grid's kinetic
-       * energy change. Zero for the trapezoidal rule (gamma = 1/2, beta =
-       * 1/4); Newmark with gamma > 1/2 damps the high frequencies and books
-       * it here. Not booked (zero) with the consistent mass matrix.
+       * sum_I (du_I (f_I^n + m_I a_I^{n+1}) / 2 - m_I (|v_I^{n+1}|^2 -
+       * |v_I^n|^2) / 2) over the nodes with mass (lumped masses), the work
+       * of the forces by the trapezoidal rule minus the grid's kinetic
+       * energy change, with f^n = f_ext - f_int(u_n) at the free nodes and
+       * M a^n at the constrained ones. Newmark with gamma > 1/2 damps the
+       * high frequencies and books it here (zero for gamma = 1/2, beta =
+       * 1/4); so does a start acceleration a^n other than M^-1 f^n ('start
+       * acceleration = projected'), by du (f^n - M a^n) / 2. Not booked
+       * (zero) with the consistent mass matrix.
        */
       double integrator_dissipation = 0.;
       /**
@@ -760,6 +763,15 @@ namespace Talus
                    const double                           f_ext_norm,
                    double                                &reference,
                    NewtonResult                          &result);
+
+      /**
+       * Record the force f_n = f_ext - f_int(u_n) at the free nodes with
+       * mass from the residual at du = 0 (which holds -M a(du = 0)): the
+       * start force of the step, booked by commit_step() in the
+       * integrator's dissipation (the work of M a_n - f_n).
+       */
+      void
+      record_start_force();
 
       /**
        * Initial accelerations @p a (owned) that obey the conditions of the
@@ -1461,6 +1473,10 @@ namespace Talus
       dealii::TrilinosWrappers::MPI::Vector increment;        // owned
       dealii::TrilinosWrappers::MPI::Vector displacement;     // ghosted du
       dealii::TrilinosWrappers::MPI::Vector acceleration_new; // ghosted
+      /** f_ext - f_int(u_n) at the free nodes with mass (owned), recorded
+       * by the step's last solve (record_start_force()). */
+      dealii::TrilinosWrappers::MPI::Vector start_force;
+      bool                                  start_force_recorded = false;
       /** v_n + dv of the last committed step (ghosted); grid_velocity(). */
       dealii::TrilinosWrappers::MPI::Vector committed_grid_velocity;
 
