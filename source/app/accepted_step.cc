@@ -126,4 +126,23 @@ namespace Talus
          << ">: change the parameters and resume from it.";
     return note.str();
   }
+
+
+  std::string
+  rejected_step_line(const std::ostream &format,
+                     const unsigned int  step,
+                     const double        time,
+                     const double        dt,
+                     const std::string  &reason,
+                     const double        retry_dt)
+  {
+    std::ostringstream line;
+    line.copyfmt(format);
+    line << "  step " << step + 1 << " at t = " << time
+         << " s rejected (dt = " << dt << " s): " << reason;
+    if (retry_dt > 0.)
+      line << "; retrying with dt = " << retry_dt << " s";
+    line << '\n';
+    return line.str();
+  }
 } // namespace Talus

@@ -711,11 +711,12 @@ namespace Talus
                         ++total_rejected;
                         coupling.reject_step();
                         if (!test_mode)
-                          pcout << "  step " << time_control.step + 1
-                                << " at t = " << time_control.time
-                                << " s rejected (dt = " << dt
-                                << " s): contact onset; retrying with dt = "
-                                << time_control.next_step() << " s\n";
+                          pcout << rejected_step_line(pcout.get_stream(),
+                                                      time_control.step,
+                                                      time_control.time,
+                                                      dt,
+                                                      "contact onset",
+                                                      time_control.next_step());
                         continue;
                       }
                     if (!time_control.error_control.enabled())
@@ -727,20 +728,27 @@ namespace Talus
                     ++total_rejected;
                     coupling.reject_step();
                     if (!test_mode)
-                      pcout << "  step " << time_control.step + 1
-                            << " at t = " << time_control.time
-                            << " s rejected (dt = " << dt
-                            << " s): estimated error " << error
-                            << " above the tolerance; retrying with dt = "
-                            << time_control.next_step() << " s\n";
+                      {
+                        std::ostringstream reason;
+                        reason.copyfmt(pcout.get_stream());
+                        reason << "estimated error " << error
+                               << " above the tolerance";
+                        pcout << rejected_step_line(pcout.get_stream(),
+                                                    time_control.step,
+                                                    time_control.time,
+                                                    dt,
+                                                    reason.str(),
+                                                    time_control.next_step());
+                      }
                     continue;
                   }
                 ++total_rejected;
                 coupling.reject_step();
-                pcout << "  step " << time_control.step + 1
-                      << " at t = " << time_control.time
-                      << " s rejected (dt = " << dt << " s): " << result.failure
-                      << '\n';
+                pcout << rejected_step_line(pcout.get_stream(),
+                                            time_control.step,
+                                            time_control.time,
+                                            dt,
+                                            result.failure);
                 if (!time_control.reject())
                   {
                     std::ostringstream msg;

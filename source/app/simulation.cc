@@ -802,11 +802,12 @@ namespace Talus
                   {
                     ++total_rejected;
                     if (!test_mode)
-                      pcout << "  step " << time_control.step + 1
-                            << " at t = " << time_control.time
-                            << " s rejected (dt = " << dt_try
-                            << " s): contact onset; retrying with dt = "
-                            << time_control.next_step() << " s\n";
+                      pcout << rejected_step_line(pcout.get_stream(),
+                                                  time_control.step,
+                                                  time_control.time,
+                                                  dt_try,
+                                                  "contact onset",
+                                                  time_control.next_step());
                     continue;
                   }
                 if (result.converged && !time_control.error_control.enabled())
@@ -822,19 +823,26 @@ namespace Talus
                       break;
                     ++total_rejected;
                     if (!test_mode)
-                      pcout << "  step " << time_control.step + 1
-                            << " at t = " << time_control.time
-                            << " s rejected (dt = " << dt_try
-                            << " s): estimated error " << error
-                            << " above the tolerance; retrying with dt = "
-                            << time_control.next_step() << " s\n";
+                      {
+                        std::ostringstream reason;
+                        reason.copyfmt(pcout.get_stream());
+                        reason << "estimated error " << error
+                               << " above the tolerance";
+                        pcout << rejected_step_line(pcout.get_stream(),
+                                                    time_control.step,
+                                                    time_control.time,
+                                                    dt_try,
+                                                    reason.str(),
+                                                    time_control.next_step());
+                      }
                     continue;
                   }
                 ++total_rejected;
-                pcout << "  step " << time_control.step + 1
-                      << " at t = " << time_control.time
-                      << " s rejected (dt = " << dt_try
-                      << " s): " << result.failure << '\n';
+                pcout << rejected_step_line(pcout.get_stream(),
+                                            time_control.step,
+                                            time_control.time,
+                                            dt_try,
+                                            result.failure);
                 if (!time_control.reject())
                   {
                     std::ostringstream msg;

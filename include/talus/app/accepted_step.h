@@ -6,6 +6,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <functional>
+#include <ostream>
 #include <string>
 
 namespace Talus
@@ -70,6 +71,21 @@ namespace Talus
   failure_checkpoint_note(const unsigned int step,
                           const double       time,
                           const std::string &path);
+
+  /**
+   * The log line of a rejected attempt at the step after step @p step from
+   * @p time with step size @p dt: "  step n at t = ... s rejected (dt =
+   * ... s): <reason>", followed by "; retrying with dt = ... s" when
+   * @p retry_dt is positive, and a newline, with the number format of
+   * @p format (the log's stream). The same in both time loops.
+   */
+  std::string
+  rejected_step_line(const std::ostream &format,
+                     const unsigned int  step,
+                     const double        time,
+                     const double        dt,
+                     const std::string  &reason,
+                     const double        retry_dt = 0.);
 } // namespace Talus
 
 #endif
