@@ -157,6 +157,13 @@ namespace Talus
       const std::string dir = output_directory + "/";
       if (format == "vtu")
         {
+          // zlib's fastest level (as ASPECT writes): deal.II's default,
+          // the best compression, took 4 % of the Bui collapse's run time
+          // (doc/performance.md); the files grow by about a quarter
+          dealii::DataOutBase::VtkFlags flags;
+          flags.compression_level = dealii::DataOutBase::VtkFlags::best_speed;
+          particle_out.set_flags(flags);
+          grid_out.set_flags(flags);
           const std::string pname = particle_out.write_vtu_with_pvtu_record(
             dir, "particles", counter, comm, 5);
           particle_records.emplace_back(time, pname);

@@ -74,6 +74,9 @@ namespace Talus
       double last_increment = 0.;
       // the residual norm at which the last correction was computed
       double residual_at_correction = 0.;
+      // the residual's contraction over the last correction (negative
+      // before the first)
+      double contraction = -1.;
       // contact states are updated only from a solution of the current
       // linear system
       bool         solved_since_update = false;
@@ -109,6 +112,9 @@ namespace Talus
       // one; the collapse almost none).
       bool assembled_at_iterate = false;
       bool full_step_accepted   = true;
+      // The trial was assembled without the matrix, because the full
+      // correction was predicted to converge (line search below).
+      bool residual_at_iterate = false;
       // the next assembly is at the iterate of the last one, after a
       // contact state update
       bool contact_reassembly = false;
@@ -124,13 +130,26 @@ namespace Talus
         {
           std::string failure;
           bool        ok;
+          // the residual-only trial's iterate still needs the matrix
+          // before its correction (below), unless it converges
+          bool matrix_pending = false;
           if (assembled_at_iterate)
             {
               assembled_at_iterate = false;
               ok                   = true;
             }
+          else if (residual_at_iterate &&
+                   residual.l2_norm() <=
+                     std::max(residual_tolerance * reference,
+                              absolute_residual_tolerance))
+            {
+              residual_at_iterate = false;
+              matrix_pending      = true;
+              ok                  = true;
+            }
           else
             {
+              residual_at_iterate = false;
               dealii::TimerOutput::Scope s(timer, "assembly");
               ok = assemble(
                 displacement, true, !quasi_static, failure, contact_reassembly);
@@ -350,7 +369,19 @@ namespace Talus
                       state_change_iterations)
             break;
 
-          unsigned int n_linear  = 0;
+          if (matrix_pending)
+            {
+              // the prediction missed: the matrix at the same iterate
+              dealii::TimerOutput::Scope s(timer, "assembly");
+              if (!assemble(displacement, true, !quasi_static, failure))
+                {
+                  result.failure = failure;
+                  return;
+                }
+            }
+          unsigned int n_linear = 0;
+          contraction =
+            residual_at_correction > 0. ? r / residual_at_correction : -1.;
           residual_at_correction = r;
           // inexact Newton: solve loosely while far from the solution
           const double krylov_tolerance =
@@ -453,10 +484,24 @@ namespace Talus
               // while the residual grows (at most max_line_search times).
               dealii::TimerOutput::Scope s(timer, "line search");
               bool                       any_accepted = false;
+              // The full correction is predicted to meet the residual
+              // tolerance if it contracts the residual as much as the last
+              // one did (Newton converges faster than that): its matrix
+              // would not be needed, so the trial assembles the residual
+              // only. A wrong prediction costs that residual assembly
+              // again with the matrix at the top of the loop.
+              const bool convergence_predicted =
+                contraction >= 0. && contraction < 1. &&
+                r * contraction <= std::max(residual_tolerance * reference,
+                                            absolute_residual_tolerance);
+              if (convergence_predicted && std::getenv("TALUS_DEBUG_NEWTON"))
+                std::cerr << "    convergence predicted: residual-only trial"
+                          << std::endl;
               for (unsigned int k = 0; k < max_line_search; ++k)
                 {
                   const bool with_matrix = k == 0 && full_step_accepted &&
-                                           boundary_particles == nullptr;
+                                           boundary_particles == nullptr &&
+                                           !convergence_predicted;
                   // a rejected trial must not count its return branches
                   const std::vector<int> branches_before =
                     with_matrix ? point_branches : std::vector<int>();
@@ -474,7 +519,9 @@ namespace Talus
                   if (accepted)
                     {
                       assembled_at_iterate = with_matrix;
-                      any_accepted         = true;
+                      residual_at_iterate =
+                        !with_matrix && boundary_particles == nullptr;
+                      any_accepted = true;
                       break;
                     }
                   if (with_matrix)
