@@ -145,4 +145,22 @@ namespace Talus
     line << '\n';
     return line.str();
   }
+
+
+  std::string
+  error_rejected_step_line(const std::ostream &format,
+                           const TimeControl  &time_control,
+                           const double        dt,
+                           const double        error)
+  {
+    std::ostringstream reason;
+    reason.copyfmt(format);
+    reason << "estimated error " << error << " above the tolerance";
+    return rejected_step_line(format,
+                              time_control.step,
+                              time_control.time,
+                              dt,
+                              reason.str(),
+                              time_control.next_step());
+  }
 } // namespace Talus

@@ -728,18 +728,10 @@ namespace Talus
                     ++total_rejected;
                     coupling.reject_step();
                     if (!test_mode)
-                      {
-                        std::ostringstream reason;
-                        reason.copyfmt(pcout.get_stream());
-                        reason << "estimated error " << error
-                               << " above the tolerance";
-                        pcout << rejected_step_line(pcout.get_stream(),
-                                                    time_control.step,
-                                                    time_control.time,
-                                                    dt,
-                                                    reason.str(),
-                                                    time_control.next_step());
-                      }
+                      pcout << error_rejected_step_line(pcout.get_stream(),
+                                                        time_control,
+                                                        dt,
+                                                        error);
                     continue;
                   }
                 ++total_rejected;

@@ -823,18 +823,10 @@ namespace Talus
                       break;
                     ++total_rejected;
                     if (!test_mode)
-                      {
-                        std::ostringstream reason;
-                        reason.copyfmt(pcout.get_stream());
-                        reason << "estimated error " << error
-                               << " above the tolerance";
-                        pcout << rejected_step_line(pcout.get_stream(),
-                                                    time_control.step,
-                                                    time_control.time,
-                                                    dt_try,
-                                                    reason.str(),
-                                                    time_control.next_step());
-                      }
+                      pcout << error_rejected_step_line(pcout.get_stream(),
+                                                        time_control,
+                                                        dt_try,
+                                                        error);
                     continue;
                   }
                 ++total_rejected;

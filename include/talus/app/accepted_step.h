@@ -1,6 +1,7 @@
 #ifndef talus_app_accepted_step_h
 #define talus_app_accepted_step_h
 
+#include <talus/base/time_control.h>
 #include <talus/io/checkpointing.h>
 
 #include <deal.II/base/mpi.h>
@@ -86,6 +87,18 @@ namespace Talus
                      const double        dt,
                      const std::string  &reason,
                      const double        retry_dt = 0.);
+
+  /**
+   * The log line of a step of size @p dt rejected by the error control
+   * of @p time_control because its estimated error @p error exceeds the
+   * tolerance (rejected_step_line() with the retry step
+   * TimeControl::next_step()). The same in both time loops.
+   */
+  std::string
+  error_rejected_step_line(const std::ostream &format,
+                           const TimeControl  &time_control,
+                           const double        dt,
+                           const double        error);
 } // namespace Talus
 
 #endif
