@@ -70,10 +70,11 @@ namespace Talus
           "factorised tangent per interface DoF) and the structure's "
           "tangent, computed at the first iteration of every window; then "
           "the first step of a window is the Newton step of the linearised "
-          "interface equilibrium, (K_S + K_D) dx = (K_S + k) r "
-          "(doc/coupling.md). Only with acceleration = IQN-ILS, interface "
-          "boundaries imposed by a penalty or an augmented Lagrangian, and "
-          "at most 5000 interface DoFs.");
+          "interface equilibrium, (K_S + K_D) dx = (K_S + k) r, and the "
+          "columns of past windows are dropped (J0 carries what they "
+          "would; doc/coupling.md). Only with acceleration = IQN-ILS, "
+          "interface boundaries imposed by a penalty or an augmented "
+          "Lagrangian, and at most 5000 interface DoFs.");
         prm.declare_entry(
           "restart at contact change",
           "false",
