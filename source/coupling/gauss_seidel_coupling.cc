@@ -1,3 +1,4 @@
+#include <talus/base/input.h>
 #include <talus/coupling/gauss_seidel_coupling.h>
 
 #include <deal.II/base/mpi.h>
@@ -280,6 +281,23 @@ namespace Talus
       const dealii::Vector<double> &springs)
     {
       dealii::TimerOutput::Scope scope(timer, "coupling: interface Jacobian");
+      // the MPM linearises penalty and augmented Lagrangian conditions only
+      for (const unsigned int b : interface.boundary_indices())
+        {
+          const auto &boundary = mpm.boundaries().boundary(b);
+          if (boundary.nitsche || boundary.lagrange_multiplier)
+            InputFile::reject("Coupling",
+                              "initial Jacobian",
+                              "interface stiffness",
+                              "'none' when an interface boundary imposes "
+                              "its condition by " +
+                                std::string(boundary.nitsche ?
+                                              "Nitsche's method" :
+                                              "Lagrange multipliers") +
+                                " (boundary '" + boundary.name +
+                                "'; interface stiffness needs a penalty or "
+                                "augmented Lagrangian method)");
+        }
       const auto &constraints = structure.get_structure().get_constraints();
       const unsigned int                           n = committed.size();
       std::vector<dealii::types::global_dof_index> dofs;
