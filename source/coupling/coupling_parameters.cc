@@ -58,6 +58,24 @@ namespace Talus
           "(normal when every interface boundary has condition slip or "
           "contact, all otherwise).");
         prm.declare_entry(
+          "initial Jacobian",
+          "none",
+          dealii::Patterns::Selection("none|interface stiffness"),
+          "Initial inverse Jacobian J0 of IQN-ILS (x_{k+1} = x~ - W c - "
+          "J0 (r - V c)): none (the plain least-squares model; a window "
+          "without columns relaxes with 'initial relaxation') or interface "
+          "stiffness: J0 from the MPM's interface stiffness K_D (the "
+          "derivative of its interface reactions with respect to the "
+          "interface displacement, one back-substitution with the MPM's "
+          "factorised tangent per interface DoF) and the structure's "
+          "tangent, computed at the first iteration of every window; then "
+          "the first step of a window is the Newton step of the linearised "
+          "interface equilibrium, (K_S + K_D) dx = (K_S + k) r, and the "
+          "columns of past windows are dropped (J0 carries what they "
+          "would; doc/coupling.md). Only with acceleration = IQN-ILS, "
+          "interface boundaries imposed by a penalty or an augmented "
+          "Lagrangian, and at most 5000 interface DoFs.");
+        prm.declare_entry(
           "restart at contact change",
           "false",
           dealii::Patterns::Bool(),
@@ -121,6 +139,21 @@ namespace Talus
                                   text == "automatic" ? RobinDirections::automatic :
                                                         RobinDirections::all);
       }
+      interface_stiffness_jacobian =
+        prm.get("initial Jacobian") == "interface stiffness";
+      if (interface_stiffness_jacobian && prm.get("acceleration") != "IQN-ILS")
+        InputFile::reject("Coupling",
+                          "initial Jacobian",
+                          prm.get("initial Jacobian"),
+                          "'none' (interface stiffness needs acceleration "
+                          "= IQN-ILS; it is '" +
+                            prm.get("acceleration") + "')");
+      if (interface_stiffness_jacobian && prm.get("scheme") == "weak")
+        InputFile::reject("Coupling",
+                          "initial Jacobian",
+                          prm.get("initial Jacobian"),
+                          "'none' (interface stiffness needs scheme = "
+                          "strong)");
       restart_at_contact_change = prm.get_bool("restart at contact change");
       warm_start                = prm.get_bool("warm start");
       acceleration.parse_parameters(prm, "Coupling");

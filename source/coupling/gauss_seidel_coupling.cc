@@ -1,6 +1,9 @@
+#include <talus/base/input.h>
 #include <talus/coupling/gauss_seidel_coupling.h>
 
 #include <deal.II/base/mpi.h>
+
+#include <deal.II/lac/sparse_direct.h>
 
 #include <algorithm>
 #include <cmath>
@@ -101,6 +104,8 @@ namespace Talus
       // whether this window's MPM step was prepared (by the first
       // evaluation of H)
       bool mpm_prepared = false;
+      // whether the window's initial Jacobian is still to be computed
+      bool jacobian_pending = parameters.interface_stiffness_jacobian && strong;
 
       // The fixed-point operator x -> x̃ of the Dirichlet-Neumann iteration.
       const auto H = [&](const dealii::Vector<double> &x,
@@ -160,6 +165,18 @@ namespace Talus
         const unsigned int its = solve_structure(t, dt, force, result);
         x_tilde                = structure.displacement();
         f                      = force;
+        if (jacobian_pending)
+          {
+            // the window's initial Jacobian from the tangents of this first
+            // evaluation (the accelerator started the window before it)
+            jacobian_pending = false;
+            if (compute_interface_jacobian(springs))
+              acceleration->set_initial_jacobian(
+                [this](const dealii::Vector<double> &v,
+                       dealii::Vector<double>       &Jv) {
+                  apply_initial_jacobian(v, Jv);
+                });
+          }
         if (debug &&
             dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
           {
@@ -255,6 +272,141 @@ namespace Talus
       result.work_structure = work.first;
       result.work_points    = work.second;
       return result;
+    }
+
+
+    template <int dim>
+    bool
+    GaussSeidelCoupling<dim>::compute_interface_jacobian(
+      const dealii::Vector<double> &springs)
+    {
+      dealii::TimerOutput::Scope scope(timer, "coupling: interface Jacobian");
+      // the MPM linearises penalty and augmented Lagrangian conditions only
+      for (const unsigned int b : interface.boundary_indices())
+        {
+          const auto &boundary = mpm.boundaries().boundary(b);
+          if (boundary.nitsche || boundary.lagrange_multiplier)
+            InputFile::reject("Coupling",
+                              "initial Jacobian",
+                              "interface stiffness",
+                              "'none' when an interface boundary imposes "
+                              "its condition by " +
+                                std::string(boundary.nitsche ?
+                                              "Nitsche's method" :
+                                              "Lagrange multipliers") +
+                                " (boundary '" + boundary.name +
+                                "'; interface stiffness needs a penalty or "
+                                "augmented Lagrangian method)");
+        }
+      const auto &constraints = structure.get_structure().get_constraints();
+      const unsigned int                           n = committed.size();
+      std::vector<dealii::types::global_dof_index> dofs;
+      for (const auto j : interface.interface_structure_dofs())
+        if (!constraints.is_constrained(j))
+          dofs.push_back(j);
+      AssertThrow(dofs.size() <= 5000,
+                  dealii::ExcMessage(
+                    "initial Jacobian = interface stiffness: the interface "
+                    "has " +
+                    std::to_string(dofs.size()) +
+                    " free DoFs, at most 5000 are allowed (set initial "
+                    "Jacobian = none)"));
+      // the change of every interface point's prescribed increment for a
+      // unit displacement of each interface DoF at the end of the step,
+      // for the DoFs that move a point loaded in this evaluation (the
+      // others neither move the material nor carry a spring)
+      std::vector<std::vector<dealii::Tensor<1, dim>>> delta;
+      {
+        const std::vector<bool> loaded = interface.loaded_points();
+        std::vector<dealii::types::global_dof_index> moving;
+        dealii::Vector<double>                       e(n);
+        for (const auto j : dofs)
+          {
+            e[j]       = 1.;
+            auto u     = interface.point_displacements(e);
+            e[j]       = 0.;
+            bool moves = false;
+            for (unsigned int p = 0; p < u.size() && !moves; ++p)
+              moves = p < loaded.size() && loaded[p] && u[p].norm() > 0.;
+            if (moves)
+              {
+                moving.push_back(j);
+                delta.push_back(std::move(u));
+              }
+          }
+        dofs = std::move(moving);
+      }
+      // the same on every rank (the loaded points are gathered)
+      if (dofs.empty())
+        return false;
+      const auto reactions = mpm.solver().linearised_boundary_reactions(
+        [&](const dealii::types::particle_index id, const unsigned int c) {
+          const unsigned int p = interface.point_of(id);
+          return p == dealii::numbers::invalid_unsigned_int ?
+                   dealii::Tensor<1, dim>() :
+                   delta[c][p];
+        },
+        dofs.size());
+      // dF/dx e_j = -K_D e_j on the structure's DoFs
+      const auto dF =
+        interface.linearised_structure_forces(reactions, n, communicator);
+
+      // U = C (k - K_D) on the columns where k - K_D acts
+      std::vector<dealii::Vector<double>>          columns;
+      std::vector<dealii::types::global_dof_index> S;
+      bool                                         any_force = false;
+      for (unsigned int c = 0; c < dofs.size(); ++c)
+        {
+          dealii::Vector<double> v(dF[c]);
+          any_force = any_force || v.linfty_norm() > 0.;
+          if (springs.size() == n)
+            v[dofs[c]] += springs[dofs[c]];
+          constraints.set_zero(v);
+          if (v.linfty_norm() > 0.)
+            {
+              columns.push_back(std::move(v));
+              S.push_back(dofs[c]);
+            }
+        }
+      if (!any_force || S.empty())
+        return false;
+      dealii::SparseDirectUMFPACK compliance;
+      compliance.initialize(structure.get_static_solver().tangent());
+      const unsigned int m = S.size();
+      jacobian_U.reinit(n, m);
+      for (unsigned int c = 0; c < m; ++c)
+        {
+          compliance.solve(columns[c]);
+          constraints.set_zero(columns[c]);
+          for (unsigned int i = 0; i < n; ++i)
+            jacobian_U(i, c) = columns[c][i];
+        }
+      dealii::FullMatrix<double> I_minus_US(m, m);
+      for (unsigned int a = 0; a < m; ++a)
+        for (unsigned int b = 0; b < m; ++b)
+          I_minus_US(a, b) = (a == b ? 1. : 0.) - jacobian_U(S[a], b);
+      jacobian_M.reinit(m, m);
+      jacobian_M.invert(I_minus_US);
+      jacobian_dofs = std::move(S);
+      return true;
+    }
+
+
+    template <int dim>
+    void
+    GaussSeidelCoupling<dim>::apply_initial_jacobian(
+      const dealii::Vector<double> &v,
+      dealii::Vector<double>       &result) const
+    {
+      // J0 v = A (A - I)^-1 v = -U M v_S
+      const unsigned int     m = jacobian_dofs.size();
+      dealii::Vector<double> v_S(m), z(m);
+      for (unsigned int a = 0; a < m; ++a)
+        v_S[a] = v[jacobian_dofs[a]];
+      jacobian_M.vmult(z, v_S);
+      result.reinit(v.size());
+      jacobian_U.vmult(result, z);
+      result *= -1.;
     }
 
 

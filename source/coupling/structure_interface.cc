@@ -527,6 +527,63 @@ namespace Talus
 
 
     template <int dim>
+    std::vector<dealii::types::global_dof_index>
+    StructureInterface<dim>::interface_structure_dofs() const
+    {
+      std::vector<dealii::types::global_dof_index> dofs(structure_dofs);
+      std::sort(dofs.begin(), dofs.end());
+      dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+      return dofs;
+    }
+
+
+    template <int dim>
+    unsigned int
+    StructureInterface<dim>::point_of(
+      const dealii::types::particle_index id) const
+    {
+      const auto it = point_of_particle.find(id);
+      return it == point_of_particle.end() ?
+               dealii::numbers::invalid_unsigned_int :
+               it->second;
+    }
+
+
+    template <int dim>
+    std::vector<dealii::Vector<double>>
+    StructureInterface<dim>::linearised_structure_forces(
+      const std::vector<std::vector<
+        std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>>
+                        &columns,
+      const unsigned int n_dofs,
+      const MPI_Comm     communicator) const
+    {
+      const unsigned int  n_points = transfer.n_points();
+      std::vector<double> f(columns.size() * dim * n_points, 0.);
+      for (unsigned int c = 0; c < columns.size(); ++c)
+        for (const auto &[id, R] : columns[c])
+          {
+            const auto it = point_of_particle.find(id);
+            if (it == point_of_particle.end())
+              continue;
+            for (unsigned int d = 0; d < dim; ++d)
+              f[(c * n_points + it->second) * dim + d] += R[d];
+          }
+      dealii::Utilities::MPI::sum(f, communicator, f);
+      std::vector<dealii::Vector<double>> F(columns.size());
+      std::vector<dealii::Tensor<1, dim>> point_forces(n_points);
+      for (unsigned int c = 0; c < columns.size(); ++c)
+        {
+          for (unsigned int p = 0; p < n_points; ++p)
+            for (unsigned int d = 0; d < dim; ++d)
+              point_forces[p][d] = f[(c * n_points + p) * dim + d];
+          F[c] = to_structure(point_forces, n_dofs);
+        }
+      return F;
+    }
+
+
+    template <int dim>
     std::vector<bool>
     StructureInterface<dim>::loaded_points() const
     {

@@ -6,6 +6,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <deque>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -116,6 +117,17 @@ namespace Talus
        */
       virtual void
       reset();
+
+      /**
+       * An initial inverse Jacobian J0 of the residual operator for the
+       * current window (Δx̃ ≈ J0 Δr; @p J0 (v, result) sets result =
+       * J0 v), set after start_window() and before the window's first
+       * compute_next(). Only IQNILS uses one; the others throw.
+       */
+      virtual void
+      set_initial_jacobian(
+        const std::function<void(const dealii::Vector<double> &,
+                                 dealii::Vector<double> &)> &J0);
 
       /** What the last compute_next() did. */
       const AccelerationInfo &
@@ -320,6 +332,22 @@ namespace Talus
       void
       reset() override;
 
+      /**
+       * With J0 the step is the multi-secant update of J0 (as IQNIMVJ's
+       * with J_prev = J0): x_{k+1} = x̃_k − W c − J0 (r_k − V c), and a
+       * step without columns (the first of the first window, after a
+       * reset() or the stagnation guard) is x̃_k − J0 r_k instead of a
+       * relaxation step. The columns of past windows are dropped when J0
+       * is set (they are secants of other steps' operators, which the
+       * least-change update would bend J0 to fit; J0 is the information
+       * carried between windows). Cleared by start_window() (kept by
+       * reset()).
+       */
+      void
+      set_initial_jacobian(
+        const std::function<void(const dealii::Vector<double> &,
+                                 dealii::Vector<double> &)> &J0) override;
+
       /** Columns stored now (this window and the reused ones). */
       unsigned int
       n_columns() const;
@@ -363,6 +391,9 @@ namespace Talus
       const Filter       filter;
       const double       filter_tolerance;
 
+      std::function<void(const dealii::Vector<double> &,
+                         dealii::Vector<double> &)>
+                             initial_jacobian;
       std::deque<Column>     columns; // newest first
       dealii::Vector<double> previous_residual;
       dealii::Vector<double> previous_x_tilde;

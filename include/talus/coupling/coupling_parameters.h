@@ -111,6 +111,16 @@ namespace Talus
        * the model is built from iterates of the present active set only.
        */
       bool restart_at_contact_change = false;
+      /**
+       * 'initial Jacobian = interface stiffness': IQN-ILS starts every
+       * window from the inverse Jacobian of the linearised interface
+       * problem, built from the MPM's interface stiffness K_D (the
+       * Schur complement of its tangent on the interface, by one
+       * back-substitution per interface DoF,
+       * MPM::MPMSolver::linearised_boundary_reactions()) and the
+       * structure's tangent (GaussSeidelCoupling, doc/coupling.md).
+       */
+      bool interface_stiffness_jacobian = false;
       /** The MPM's Newton of an iteration starts from the last increment. */
       bool warm_start = false;
 

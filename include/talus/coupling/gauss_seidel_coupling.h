@@ -11,10 +11,12 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/timer.h>
 
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace Talus
 {
@@ -185,6 +187,29 @@ namespace Talus
        * (CouplingParameters::robin_directions). */
       bool
       normal_springs() const;
+
+      /**
+       * 'initial Jacobian = interface stiffness': after the window's first
+       * evaluation of H (MPM and structure solved at x_0, Robin springs
+       * @p springs), the Jacobian of H, A = C (k - K_D) with the
+       * structure's compliance C = (K_S + k)^-1 (its last tangent) and the
+       * MPM's interface stiffness K_D = -dF/dx (one back-substitution per
+       * interface DoF), kept as U = A restricted to the columns S of the
+       * interface DoFs it acts on (n x m) and M = (I - U_S)^-1 (m x m);
+       * then J0 = A (A - I)^-1 = -U M P_S^T (Woodbury), and x~ - J0 r is
+       * the Newton step of the linearised interface equilibrium. Returns
+       * false if the MPM transmits no force (no J0).
+       */
+      bool
+      compute_interface_jacobian(const dealii::Vector<double> &springs);
+
+      /** J0 v (after compute_interface_jacobian()). */
+      void
+      apply_initial_jacobian(const dealii::Vector<double> &v,
+                             dealii::Vector<double>       &result) const;
+
+      std::vector<dealii::types::global_dof_index> jacobian_dofs;
+      dealii::FullMatrix<double>                   jacobian_U, jacobian_M;
 
       /** The structure's step from @p t to @p t + @p dt with @p F; adds
        * its Newton iterations (returned) to @p result, throws when it

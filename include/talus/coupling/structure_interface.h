@@ -195,6 +195,30 @@ namespace Talus
         return structure_dofs[i];
       }
 
+      /** The structure DoFs of the interface surface (sorted, unique). */
+      std::vector<dealii::types::global_dof_index>
+      interface_structure_dofs() const;
+
+      /** The point of the interface particle with index @p id
+       * (numbers::invalid_unsigned_int if it is none). */
+      unsigned int
+      point_of(const dealii::types::particle_index id) const;
+
+      /**
+       * The nodal structure vectors (length @p n_dofs) of point-force
+       * changes listed by particle index, one list per column (this rank's
+       * entries, e.g. MPM::MPMSolver::linearised_boundary_reactions()),
+       * summed over the ranks in one reduction (collective). Unlike
+       * structure_forces() it leaves the last forces as they are.
+       */
+      std::vector<dealii::Vector<double>>
+      linearised_structure_forces(
+        const std::vector<std::vector<
+          std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>>
+                          &columns,
+        const unsigned int n_dofs,
+        const MPI_Comm     communicator) const;
+
       /** Interface work U . F of the structure's vectors and sum_p u_p .
        * f_p of the points for the last structure_forces() [J] (equal to
        * round-off: the transfer is conservative). */

@@ -26,6 +26,7 @@
 #include <Epetra_MultiVector.h>
 
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -401,6 +402,34 @@ namespace Talus
       std::vector<
         std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>
       boundary_reactions() const;
+
+      /**
+       * The linearised response of boundary_reactions() to a change of the
+       * boundary particles' prescribed increments, at the converged iterate
+       * of the last solve_step() (the interface stiffness of a coupling).
+       * For each of @p n_columns columns c, @p delta_bar(id, c) is the
+       * change of the prescribed increment of the boundary particle with
+       * index id [m]; returned are the changes of the reactions, in the
+       * format of boundary_reactions() (this rank's entries; a particle's
+       * change is the sum over the ranks).
+       *
+       * With the penalty force F_p = D_p (N_p du - du_bar_p) + ... on the
+       * material (D_p = dF_p/du, -beta w n n^T for slip and contact, the
+       * converged states held) and the step's tangent K (which contains
+       * N^T (-D) N): du = K^-1 sum_p N_p^T (-D_p) d_bar_p, dF_p =
+       * D_p (N_p du - d_bar_p), and the reaction changes by -dF_p. The
+       * tangent is that of the last Newton iteration; with the direct
+       * solver it is factorised once and the columns are back-substituted.
+       * Penalty and augmented Lagrangian boundaries (multipliers held);
+       * Nitsche's stress terms and Lagrange multiplier boundaries are not
+       * linearised (an error). Collective.
+       */
+      std::vector<std::vector<
+        std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>>
+      linearised_boundary_reactions(const std::function<dealii::Tensor<1, dim>(
+                                      const dealii::types::particle_index,
+                                      const unsigned int)> &delta_bar,
+                                    const unsigned int      n_columns);
 
       /** Whether the MPM solves for equilibrium without inertia. */
       bool

@@ -120,6 +120,19 @@ namespace Talus
       History
       get_history() const;
 
+      /**
+       * The tangent of the last Newton iteration (condensed with the
+       * constraints; with the dynamic solver's inertia and damping terms
+       * and the Robin interface springs of that solve): the linearised
+       * response of a solved state to its loads (the coupling's interface
+       * Jacobian).
+       */
+      const dealii::SparseMatrix<double> &
+      tangent() const
+      {
+        return matrix;
+      }
+
       void
       set_history(const History &history);
 
