@@ -104,6 +104,8 @@ namespace Talus
       data.smoother_sweeps       = amg_sweeps;
       data.smoother_type         = amg_smoother.c_str();
       data.aggregation_threshold = amg_threshold;
+      // TALUS_DEBUG_AMG: ML prints its hierarchy (levels, rows, smoothers)
+      data.output_details = std::getenv("TALUS_DEBUG_AMG") != nullptr;
       // ML parameters with the rigid body modes (translations and
       // rotations) as near null space; deal.II 9.4's AdditionalData only
       // takes the translations.
