@@ -1098,6 +1098,7 @@ namespace Talus
           }
         pcout << "\n  max speed: " << round(v_max)
               << "\n  lost mass: " << round(total_lost_mass) << " kg\n";
+        problem.print_adaptive_grid(pcout);
         if (time_control.error_control.enabled())
           pcout << "  steps chosen by the error: " << time_control.step
                 << " steps, " << time_control.error_rejections

@@ -504,6 +504,7 @@ namespace Talus
           const std::string sub = "Boundary particles/" + slot_name(k);
           prm.enter_subsection(slot_name(k));
           BoundaryDescription<dim> b;
+          b.slot     = k;
           b.geometry = prm.get("geometry");
           if (b.geometry == "none")
             {

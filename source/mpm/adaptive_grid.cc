@@ -26,7 +26,8 @@ namespace Talus
           "maximum level, generates the points there and coarsens the empty "
           "cells before the first step. Needs linear shape functions, the "
           "lumped mass, no APIC, no ghost penalty, no grid friction "
-          "boundaries and no boundary particles.");
+          "boundaries, and boundary particles with the 'penalty' or "
+          "'augmented Lagrangian' method on the grid side.");
         prm.declare_entry("minimum level",
                           "0",
                           Patterns::Integer(0, 10),
@@ -55,6 +56,16 @@ namespace Talus
                           "share a vertex with them, layer by layer) [-]. "
                           "The points may move this many fine cells between "
                           "two adaptations without reaching a coarse cell.");
+        prm.declare_entry(
+          "refine at boundary particles",
+          "true",
+          Patterns::Bool(),
+          "Refine the cells that hold boundary particles (subsection "
+          "Boundary particles: terrain, walls, the coupled interface) to the "
+          "maximum level as well, with their 'neighbour layers', whether or "
+          "not material is near [-]: the contact forces then act on the "
+          "finest cells, and material that reaches a boundary meets fine "
+          "cells there. 'false': only the material points decide.");
       }
       prm.leave_subsection();
     }
@@ -70,6 +81,8 @@ namespace Talus
       max_level = prm.get_integer("maximum level");
       every     = prm.get_integer("refine every steps");
       layers    = prm.get_integer("neighbour layers");
+      refine_at_boundary_particles =
+        prm.get_bool("refine at boundary particles");
       prm.leave_subsection();
       if (enable && max_level < min_level)
         InputFile::reject("Adaptive grid",
@@ -85,6 +98,7 @@ namespace Talus
     AdaptiveGrid<dim>::flag_cells(
       BackgroundGrid<dim>                           &grid,
       const dealii::Particles::ParticleHandler<dim> &points,
+      const dealii::Particles::ParticleHandler<dim> &boundary,
       const unsigned int                             base_level) const
     {
       using Vector     = dealii::TrilinosWrappers::MPI::Vector;
@@ -101,7 +115,9 @@ namespace Talus
             const typename dealii::Triangulation<dim>::active_cell_iterator
               tria_cell(cell);
             near[cell->active_cell_index()] =
-              points.n_particles_in_cell(tria_cell) > 0;
+              points.n_particles_in_cell(tria_cell) > 0 ||
+              (refine_at_boundary_particles &&
+               boundary.n_particles_in_cell(tria_cell) > 0);
           }
       for (unsigned int layer = 0; layer < layers; ++layer)
         {
@@ -142,6 +158,25 @@ namespace Talus
             (cell->refine_flag_set() || cell->coarsen_flag_set()))
           changed = true;
       return dealii::Utilities::MPI::logical_or(changed, grid.mpi_communicator);
+    }
+
+
+    template <int dim>
+    std::pair<unsigned int, unsigned int>
+    AdaptiveGrid<dim>::boundary_cells_at_maximum_level(
+      const BackgroundGrid<dim>                     &grid,
+      const dealii::Particles::ParticleHandler<dim> &boundary,
+      const unsigned int                             base_level) const
+    {
+      unsigned int with = 0, finest = 0;
+      for (const auto &cell : grid.triangulation.active_cell_iterators())
+        if (cell->is_locally_owned() && boundary.n_particles_in_cell(cell) > 0)
+          {
+            ++with;
+            finest += cell->level() == static_cast<int>(base_level + max_level);
+          }
+      return {dealii::Utilities::MPI::sum(with, grid.mpi_communicator),
+              dealii::Utilities::MPI::sum(finest, grid.mpi_communicator)};
     }
 
 

@@ -576,7 +576,7 @@ namespace Talus
           if (!ok)
             break;
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            du_local[i] = du(c.dofs[i]);
+            du_local[i] = conforming_value(du, c.dofs[i]);
           k_local = 0.;
           r_local = 0.;
           for (unsigned int b = 0; b < c.n_boundary; ++b)

@@ -114,7 +114,8 @@ namespace Talus
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
           {
             const auto ci = fe.system_to_component_index(i);
-            a_b[ci.first] += bp.N[ci.second] * a_ghosted(c.dofs[i]);
+            a_b[ci.first] +=
+              bp.N[ci.second] * conforming_value(a_ghosted, c.dofs[i]);
           }
         return boundary_force(bp, tau2 * a_b);
       };
@@ -294,8 +295,9 @@ namespace Talus
           c.dofs.resize(grid.fe.dofs_per_cell);
           cell->get_dof_indices(c.dofs);
           bool has_mass = false;
+          // (a hanging node carries its masters' mass)
           for (const auto i : c.dofs)
-            has_mass = has_mass || nodal_mass(i) > 0.;
+            has_mass = has_mass || conforming_value(nodal_mass, i) > 0.;
           if (!has_mass)
             continue;
           c.first_boundary = boundary_points.size();
@@ -412,7 +414,8 @@ namespace Talus
             std::vector<bool> massive(n_nodes);
             for (unsigned int k = 0; k < n_nodes; ++k)
               massive[k] =
-                nodal_mass(c.dofs[grid.fe.component_to_system_index(0, k)]) >
+                conforming_value(
+                  nodal_mass, c.dofs[grid.fe.component_to_system_index(0, k)]) >
                 0.;
             for (unsigned int q = 0; q < n_kept; ++q)
               {
@@ -820,7 +823,8 @@ namespace Talus
             for (unsigned int i = 0; i < dofs_per_cell; ++i)
               {
                 const auto ci = fe.system_to_component_index(i);
-                du_b[ci.first] += bp.N[ci.second] * displacement(c.dofs[i]);
+                du_b[ci.first] +=
+                  bp.N[ci.second] * conforming_value(displacement, c.dofs[i]);
               }
             const BoundaryForce bf = boundary_force(bp, du_b);
             if (bf.state == 0)
@@ -977,7 +981,7 @@ namespace Talus
         for (const auto &c : boundary_cells)
           {
             for (unsigned int i = 0; i < dofs_per_cell; ++i)
-              du_local[i] = displacement(c.dofs[i]);
+              du_local[i] = conforming_value(displacement, c.dofs[i]);
             for (unsigned int b = 0; b < c.n_boundary; ++b)
               {
                 BoundaryPoint &bp = boundary_points[c.first_boundary + b];

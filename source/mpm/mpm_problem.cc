@@ -191,13 +191,34 @@ namespace Talus
       mpm_solver->attach_boundary_particles(*boundary_particles);
       if (adaptive.enabled())
         {
-          if (boundary_particles->n_boundaries() > 0)
-            InputFile::reject("Adaptive grid",
-                              "enable",
-                              "true",
-                              "boundary particles (subsection Boundary "
-                              "particles) are not implemented on an adaptive "
-                              "grid; use the grid's fixed or slip boundaries");
+          // penalty and augmented Lagrangian boundaries read the grid
+          // through the conforming values; the others use the uniform
+          // cell extent or a multiplier space tied to the cells
+          for (unsigned int b = 0; b < boundary_particles->n_boundaries(); ++b)
+            {
+              const auto       &desc = boundary_particles->boundary(b);
+              const std::string sub =
+                "Boundary particles/Boundary " + std::to_string(desc.slot + 1);
+              if (desc.nitsche || desc.lagrange_multiplier)
+                InputFile::reject(sub,
+                                  "method",
+                                  desc.method,
+                                  "'penalty' or 'augmented Lagrangian' on an "
+                                  "adaptive grid (subsection Adaptive grid, "
+                                  "'enable = true'): " +
+                                    desc.method +
+                                    " is not implemented on a locally "
+                                    "refined grid");
+              if (desc.material_point_contact)
+                InputFile::reject(sub,
+                                  "contact side",
+                                  "material points",
+                                  "'grid' on an adaptive grid (subsection "
+                                  "Adaptive grid, 'enable = true'): contact "
+                                  "detection between material points and "
+                                  "the surface is not implemented on a "
+                                  "locally refined grid");
+            }
           mpm_solver->check_local_refinement_support();
           // coarsen the empty cells of the uniform initial grid
           for (unsigned int pass = 0; pass < adaptive.initial_passes(); ++pass)
@@ -214,6 +235,7 @@ namespace Talus
       auto &grid = *background_grid;
       if (!adaptive.flag_cells(grid,
                                material_points->particle_handler(),
+                               boundary_particles->particle_handler(),
                                base_refinement))
         return false;
       CommittedStateTransfer<dim> transfer(
@@ -564,6 +586,24 @@ namespace Talus
 
     template <int dim>
     void
+    MPMProblem<dim>::print_adaptive_grid(
+      const dealii::ConditionalOStream &out) const
+    {
+      if (!adaptive.enabled() || boundary_particles->n_boundaries() == 0)
+        return;
+      const auto &grid  = *background_grid;
+      const auto  cells = adaptive.boundary_cells_at_maximum_level(
+        grid, boundary_particles->particle_handler(), base_refinement);
+      out << "  adaptive grid: " << grid.triangulation.n_global_active_cells()
+          << " cells, " << grid.dof_handler.n_dofs() << " DoFs; " << cells.first
+          << " cells hold boundary particles, " << cells.second
+          << " of them at the maximum level " << adaptive.maximum_level()
+          << '\n';
+    }
+
+
+    template <int dim>
+    void
     MPMProblem<dim>::print_summary(const dealii::ConditionalOStream &out) const
     {
       const auto &grid       = *background_grid;
@@ -592,6 +632,7 @@ namespace Talus
       if (initial_stress_field.enabled())
         out << "  initial stress: " << initial_stress_field.description()
             << '\n';
+      print_adaptive_grid(out);
       if (mpm_solver->ghost_penalty() > 0.)
         out << "  ghost penalty: factor " << mpm_solver->ghost_penalty()
             << " (gamma = factor * P-wave modulus), on the faces of cut "

@@ -186,11 +186,11 @@ namespace Talus
                           Patterns::Selection("CG|GMRES|direct"),
                           "'CG' or 'GMRES' (with 'preconditioner': by "
                           "default Trilinos ML algebraic multigrid with the "
-                          "rigid body modes as near null space; 'GMRES' with "
-                          "'preconditioner = ILU' for the non-symmetric "
-                          "tangents of plasticity with contact, "
-                          "doc/performance.md), or 'direct' (Amesos KLU or "
-                          "MUMPS, 'direct solver').");
+                          "rigid body modes as near null space; 'GMRES' for "
+                          "the non-symmetric tangents of plasticity with "
+                          "contact, with 'AMG smoother = ILU' or "
+                          "'preconditioner = ILU', doc/performance.md), or "
+                          "'direct' (Amesos KLU or MUMPS, 'direct solver').");
         prm.declare_entry(
           "direct solver",
           "KLU",
@@ -234,15 +234,49 @@ namespace Talus
         prm.declare_entry(
           "AMG smoother",
           "Chebyshev",
-          Patterns::Selection("Chebyshev|symmetric Gauss-Seidel"),
-          "Smoother of the ML algebraic multigrid (2 sweeps per level) [-]: "
-          "'Chebyshev' (polynomial in the point Jacobi-scaled matrix) or "
-          "'symmetric Gauss-Seidel' (processor-local, Jacobi across ranks). "
-          "Gauss-Seidel handles the stiff rank-one couplings of contact on "
-          "boundaries that are not aligned with the grid much better: the "
-          "Lagrange multiplier block solve on a fine 3D grid needs it "
+          Patterns::Selection(
+            "Chebyshev|symmetric Gauss-Seidel|Gauss-Seidel|ILU"),
+          "Smoother of the ML algebraic multigrid ('AMG smoother sweeps' "
+          "per level) [-]: 'Chebyshev' (polynomial in the point "
+          "Jacobi-scaled matrix), 'symmetric Gauss-Seidel' or "
+          "'Gauss-Seidel' (forward sweeps only; both processor-local, "
+          "Jacobi across ranks) or 'ILU' (Ifpack ILU(0) of each level's "
+          "matrix, processor-local; not symmetric: for GMRES). On the "
+          "non-symmetric plastic and frictional tangents of the granular "
+          "benchmarks the ILU smoother needs the fewest Krylov iterations "
+          "and failed no solve up to 0.05 m cells in 3D, where Chebyshev "
+          "and Gauss-Seidel fail on rows of grid friction "
+          "(doc/performance.md, 'Growth with the grid'). Gauss-Seidel "
+          "handles the stiff rank-one couplings of contact on boundaries "
+          "that are not aligned with the grid much better than Chebyshev: "
+          "the Lagrange multiplier block solve on a fine 3D grid needs it "
           "(doc/verification.md, saddle-point solve with AMG); combine it "
           "with a 'ghost penalty factor' when cut cells are small.");
+        prm.declare_entry(
+          "AMG aggregation",
+          "symmetric",
+          Patterns::Selection("symmetric|non-symmetric"),
+          "Multigrid hierarchy of ML [-]: 'symmetric' (smoothed aggregation, "
+          "ML's 'SA' defaults: the prolongator smoothed with a damped "
+          "Jacobi step, restriction its transpose; Vanek, Mandel and Brezina "
+          "1996) or 'non-symmetric' (ML's 'NSSA': Petrov-Galerkin smoothed "
+          "aggregation with restriction and prolongation smoothed separately "
+          "by energy minimisation, for non-symmetric operators; Sala and "
+          "Tuminaro 2008, SIAM J. Sci. Comput. 31).");
+        prm.declare_entry("AMG cycle",
+                          "V",
+                          Patterns::Selection("V|W"),
+                          "Multigrid cycle of the ML preconditioner [-]: "
+                          "'V' or 'W' (the coarse levels visited twice per "
+                          "visit of the level above).");
+        prm.declare_entry("AMG coarse size",
+                          "2000",
+                          Patterns::Integer(1),
+                          "Rows of the coarsest ML level [-]: ML coarsens "
+                          "until a level has fewer rows and solves that level "
+                          "with KLU. A tangent with fewer rows than this is "
+                          "solved directly by the 'preconditioner' (one "
+                          "Krylov iteration).");
         prm.declare_entry(
           "saddle-point solver",
           "automatic",
@@ -501,6 +535,9 @@ namespace Talus
       gmres_restart       = prm.get_integer("GMRES restart length");
       amg_sweeps          = prm.get_integer("AMG smoother sweeps");
       amg_threshold       = prm.get_double("AMG aggregation threshold");
+      amg_elliptic        = prm.get("AMG aggregation") == "symmetric";
+      amg_w_cycle         = prm.get("AMG cycle") == "W";
+      amg_coarse_size     = prm.get_integer("AMG coarse size");
       ilu_fill            = prm.get_integer("ILU fill level");
       {
         const std::string s = prm.get("saddle-point solver");

@@ -301,7 +301,8 @@ namespace Talus
                             const auto ci =
                               grid.fe.system_to_component_index(i);
                             du_b[ci.first] +=
-                              bp.N[ci.second] * displacement(c.dofs[i]);
+                              bp.N[ci.second] *
+                              conforming_value(displacement, c.dofs[i]);
                           }
                         // admissible if the free evaluation gives the
                         // state, or (at the kink between the two states)

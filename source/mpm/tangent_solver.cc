@@ -98,11 +98,14 @@ namespace Talus
                                      preconditioner_type + "'"));
       dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
       data.constant_modes        = constant_modes;
-      data.elliptic              = true;
+      data.elliptic              = amg_elliptic;
+      data.w_cycle               = amg_w_cycle;
       data.higher_order_elements = false;
       data.smoother_sweeps       = amg_sweeps;
       data.smoother_type         = amg_smoother.c_str();
       data.aggregation_threshold = amg_threshold;
+      // TALUS_DEBUG_AMG: ML prints its hierarchy (levels, rows, smoothers)
+      data.output_details = std::getenv("TALUS_DEBUG_AMG") != nullptr;
       // ML parameters with the rigid body modes (translations and
       // rotations) as near null space; deal.II 9.4's AdditionalData only
       // takes the translations.
@@ -138,6 +141,7 @@ namespace Talus
               v[5 * n + l]       = rz[c];
             }
         }
+      parameters.set("coarse: max size", static_cast<int>(amg_coarse_size));
       parameters.set("null space: type", "pre-computed");
       parameters.set("null space: dimension", static_cast<int>(n_modes));
       parameters.set("null space: vectors", rigid_body_modes->Values());

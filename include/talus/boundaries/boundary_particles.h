@@ -74,9 +74,11 @@ namespace Talus
     struct BoundaryDescription
     {
       std::string name;
-      std::string geometry;
-      Condition   condition = Condition::fixed;
-      std::string method    = "penalty";
+      /** Index k of its subsection `Boundary k+1`. */
+      unsigned int slot = 0;
+      std::string  geometry;
+      Condition    condition = Condition::fixed;
+      std::string  method    = "penalty";
       /**
        * Impose the condition with Lagrange multipliers iterated by Uzawa
        * updates on top of the penalty spring (method = augmented

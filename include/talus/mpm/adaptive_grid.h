@@ -24,7 +24,10 @@ namespace Talus
      * before the first step. Afterwards, every `refine every steps`
      * accepted steps, one pass of the criterion
      *
-     *  - a cell is *occupied* if it holds a material point;
+     *  - a cell is *occupied* if it holds a material point, or, with
+     *    `refine at boundary particles` (the default), a boundary particle
+     *    (terrain, walls, the coupled interface: subsection Boundary
+     *    particles), so that the contact forces act on the finest cells;
      *  - a cell is *near* the material if it shares a vertex with an
      *    occupied cell, or, with `neighbour layers` n > 1, with a cell
      *    near the material at layer n - 1 (n = 0: occupied cells only);
@@ -91,14 +94,34 @@ namespace Talus
       bool
       flag_cells(BackgroundGrid<dim>                           &grid,
                  const dealii::Particles::ParticleHandler<dim> &points,
+                 const dealii::Particles::ParticleHandler<dim> &boundary,
                  const unsigned int base_level) const;
 
+      /**
+       * The active cells that hold boundary particles of @p boundary, and
+       * how many of them are at the maximum level (offset by @p
+       * base_level), over all ranks. Collective.
+       */
+      std::pair<unsigned int, unsigned int>
+      boundary_cells_at_maximum_level(
+        const BackgroundGrid<dim>                     &grid,
+        const dealii::Particles::ParticleHandler<dim> &boundary,
+        const unsigned int                             base_level) const;
+
+      /** The maximum level (counted from the background grid). */
+      unsigned int
+      maximum_level() const
+      {
+        return max_level;
+      }
+
     private:
-      bool         enable    = false;
-      unsigned int min_level = 0;
-      unsigned int max_level = 0;
-      unsigned int every     = 1;
-      unsigned int layers    = 1;
+      bool         enable                       = false;
+      unsigned int min_level                    = 0;
+      unsigned int max_level                    = 0;
+      unsigned int every                        = 1;
+      unsigned int layers                       = 1;
+      bool         refine_at_boundary_particles = true;
     };
   } // namespace MPM
 } // namespace Talus

@@ -267,6 +267,14 @@ namespace Talus
       void
       print_summary(const dealii::ConditionalOStream &out) const;
 
+      /**
+       * With an adaptive grid and boundary particles: the grid's cells and
+       * DoFs, the cells that hold boundary particles and how many of them
+       * are at the maximum level (one line; nothing otherwise).
+       */
+      void
+      print_adaptive_grid(const dealii::ConditionalOStream &out) const;
+
       BackgroundGrid<dim> &
       grid()
       {

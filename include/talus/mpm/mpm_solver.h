@@ -1150,6 +1150,13 @@ namespace Talus
       /** ML smoother sweeps per level and aggregation threshold. */
       unsigned int amg_sweeps    = 2;
       double       amg_threshold = 0.02;
+      /** ML: smoothed aggregation for symmetric (true, "SA") or
+       * non-symmetric (false, "NSSA", Petrov-Galerkin) operators. */
+      bool amg_elliptic = true;
+      /** ML: W-cycle instead of the V-cycle. */
+      bool amg_w_cycle = false;
+      /** ML: largest coarse problem, solved with KLU ("coarse: max size"). */
+      unsigned int amg_coarse_size = 2000;
       /** Fill level (ILU(k)) of 'preconditioner = ILU'. */
       unsigned int ilu_fill = 0;
 
