@@ -34,31 +34,138 @@ namespace Talus
 
     namespace
     {
-      /** Smaller principal value of a Voigt stress and its direction. */
+      /** Smaller principal value of a Voigt stress S = [S11, S22, S12] and
+       * the angle theta of its direction n = (cos theta, sin theta). */
       double
-      minor_principal(const Tensor<1, 3> &S, Tensor<1, 2> &n)
+      minor_principal(const Tensor<1, 3> &S, double &theta)
       {
         const double m = 0.5 * (S[0] + S[1]);
         const double R = std::hypot(0.5 * (S[0] - S[1]), S[2]);
-        const double theta =
+        theta =
           0.5 * std::atan2(2. * S[2], S[0] - S[1]) + 0.5 * dealii::numbers::PI;
-        n[0] = std::cos(theta);
-        n[1] = std::sin(theta);
         return m - R;
+      }
+
+      /** a(theta) = [n1^2, n2^2, 2 n1 n2], so that a.S = n.S n. */
+      Tensor<1, 3>
+      direction_vector(const double theta)
+      {
+        const double c = std::cos(theta), s = std::sin(theta);
+        return Tensor<1, 3>({c * c, s * s, 2. * c * s});
       }
     } // namespace
 
 
     Tensor<1, 3>
-    MembraneMaterial::wrinkled_stress(const Tensor<1, 3> &E) const
+    MembraneMaterial::wrinkled_stress(const Tensor<1, 3> &E,
+                                      Tensor<2, 3>       *tangent) const
     {
       const Tensor<2, 3> C = elasticity();
       const Tensor<1, 3> S = C * E + prestress;
-      Tensor<1, 2>       n;
-      minor_principal(S, n);
-      const Tensor<1, 3> a({n[0] * n[0], n[1] * n[1], 2. * n[0] * n[1]});
-      const Tensor<1, 3> Ca = C * a;
-      return S - (a * S) / (a * Ca) * Ca;
+      // Wrinkle strain beta a(theta) (a contraction along n): the relaxed
+      // stress S_w = S - beta C a with beta = (a.S)/(a.C a) carries no
+      // normal stress along n; the angle makes it carry no shear either,
+      // F(theta) = a'(theta).S_w = 0, which is the stationarity of
+      // q(theta) = (a.S)^2/(a.C a), the strain energy released by the
+      // wrinkles: theta maximises q over the directions of compression
+      // a.S < 0 (Roddeman et al. 1987; Raible et al. 2005, Jarasjarungkiat
+      // et al. 2008 for orthotropic sheets). Isotropic: q is largest along
+      // the minor principal stress.
+      const auto a_of  = [](const double th) { return direction_vector(th); };
+      const auto da_of = [](const double th) {
+        return Tensor<1, 3>(
+          {-std::sin(2. * th), std::sin(2. * th), 2. * std::cos(2. * th)});
+      };
+      const auto dda_of = [](const double th) {
+        return Tensor<1, 3>({-2. * std::cos(2. * th),
+                             2. * std::cos(2. * th),
+                             -4. * std::sin(2. * th)});
+      };
+      // F and dF/dtheta at theta.
+      const auto F = [&](const double th, double &dF) {
+        const Tensor<1, 3> a = a_of(th), da = da_of(th), b = C * a;
+        const double       psi = a * b, beta = (a * S) / psi;
+        const Tensor<1, 3> S_w   = S - beta * b;
+        const double       dbeta = (da * S) / psi - 2. * beta * (da * b) / psi;
+        const Tensor<1, 3> dS_w  = -dbeta * b - beta * (C * da);
+        dF                       = dda_of(th) * S_w + da * dS_w;
+        return da * S_w;
+      };
+
+      double theta;
+      minor_principal(S, theta);
+      {
+        // Start: the best of the minor principal direction and 64 angles.
+        const auto q = [&](const double th) {
+          const Tensor<1, 3> a   = a_of(th);
+          const double       phi = a * S;
+          return phi < 0. ? phi * phi / (a * (C * a)) : -1.;
+        };
+        const unsigned int n_samples = 64;
+        const double       h         = dealii::numbers::PI / n_samples;
+        double             q_best    = q(theta);
+        for (unsigned int k = 0; k < n_samples; ++k)
+          if (const double qk = q(k * h); qk > q_best)
+            {
+              q_best = qk;
+              theta  = k * h;
+            }
+        // Safeguarded Newton on F = 0 (bisection where F changes sign in
+        // [theta - h, theta + h]).
+        double       dF;
+        double       lo = theta - h, hi = theta + h;
+        double       F_lo      = F(lo, dF);
+        const double F_hi      = F(hi, dF);
+        const bool   bracketed = F_lo * F_hi < 0.;
+        const double scale     = S.norm() + 1e-300;
+        for (unsigned int it = 0; it < 100; ++it)
+          {
+            const double f = F(theta, dF);
+            if (f == 0.)
+              break;
+            double next = theta - f / dF;
+            if (bracketed)
+              {
+                if ((f < 0.) == (F_lo < 0.))
+                  {
+                    lo   = theta;
+                    F_lo = f;
+                  }
+                else
+                  hi = theta;
+                if (!(next > lo && next < hi))
+                  next = 0.5 * (lo + hi);
+              }
+            else if (!std::isfinite(next) || std::abs(dF) < 1e-12 * scale ||
+                     std::abs(next - theta) > h)
+              break;
+            const bool done = std::abs(next - theta) <= 1e-15;
+            theta           = next;
+            if (done)
+              break;
+          }
+      }
+
+      const Tensor<1, 3> a = a_of(theta), b = C * a;
+      const double       psi = a * b, beta = (a * S) / psi;
+      const Tensor<1, 3> S_w = S - beta * b;
+      if (tangent != nullptr)
+        {
+          // Consistent tangent. At fixed theta, dS_w/dE = D = C - b b/psi;
+          // theta follows E by F(theta, E) = 0:
+          //   dtheta/dE = -F_E/F_theta, F_E = D a',
+          // and dS_w/dtheta = -beta D a' there, so
+          //   dS_w/dE = D + (beta/F_theta) F_E F_E   (symmetric: the
+          // second derivative of the relaxed energy).
+          const Tensor<2, 3> D   = C - outer_product(b, b) / psi;
+          const Tensor<1, 3> F_E = D * da_of(theta);
+          double             F_theta;
+          F(theta, F_theta);
+          *tangent = D;
+          if (std::abs(F_theta) > 1e-12 * (S.norm() + 1e-300))
+            *tangent += (beta / F_theta) * outer_product(F_E, F_E);
+        }
+      return S_w;
     }
 
 
@@ -72,30 +179,29 @@ namespace Talus
       C_tangent            = C;
       if (!wrinkling)
         return State::taut;
-      Tensor<1, 2> n;
-      if (minor_principal(S, n) > 0.)
+      double theta;
+      if (minor_principal(S, theta) > 0.)
         return State::taut;
-      const double eps_max =
-        0.5 * (E[0] + E[1]) + std::hypot(0.5 * (E[0] - E[1]), 0.5 * E[2]);
-      if (eps_max <= 0.)
+      // Slack where no direction is stretched: the larger principal value
+      // of the elastic strain E + C^-1 S_0 (the pre-stress as a pre-strain)
+      // is <= 0 (Raible et al. 2005 without pre-stress). At this boundary
+      // the relaxed stress S_w (uniaxial) vanishes, so the stress is
+      // continuous; a uniaxial S_w without tension is slack as well.
+      const Tensor<1, 3> E_el = E + dealii::invert(C) * prestress;
+      const double       eps_max =
+        0.5 * (E_el[0] + E_el[1]) +
+        std::hypot(0.5 * (E_el[0] - E_el[1]), 0.5 * E_el[2]);
+      Tensor<2, 3>       C_w;
+      const Tensor<1, 3> S_w =
+        eps_max > 0. ? wrinkled_stress(E, &C_w) : Tensor<1, 3>();
+      if (eps_max <= 0. || S_w[0] + S_w[1] <= 0.)
         {
           S         = 0.;
           C_tangent = slack_stiffness_ratio * C;
           return State::slack;
         }
-      S = wrinkled_stress(E);
-      // Tangent by central differences (n rotates with E).
-      const double h = 1e-6 * std::max(E.norm(), 1e-10);
-      for (unsigned int j = 0; j < 3; ++j)
-        {
-          Tensor<1, 3> Ep = E, Em = E;
-          Ep[j] += h;
-          Em[j] -= h;
-          const Tensor<1, 3> dS =
-            (wrinkled_stress(Ep) - wrinkled_stress(Em)) / (2. * h);
-          for (unsigned int i = 0; i < 3; ++i)
-            C_tangent[i][j] = dS[i];
-        }
+      S         = S_w;
+      C_tangent = C_w;
       return State::wrinkled;
     }
 

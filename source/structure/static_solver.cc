@@ -9,6 +9,7 @@
 #include <iostream>
 #include <limits>
 #include <sstream>
+#include <string>
 
 namespace Talus
 {
@@ -265,15 +266,16 @@ namespace Talus
                     n += (f == 0.);
                   std::cerr << ' ' << m->name << '=' << n;
                 }
-              unsigned int nw = 0, ns = 0;
+              unsigned int nw = 0, nsl = 0, ns = 0;
               for (const auto &m : structure.membrane_meshes)
                 for (const auto &o : m->cell_output)
                   {
                     nw += o.n_wrinkled;
+                    nsl += o.n_slack;
                     ns += (o.min_principal < 0.);
                   }
-              std::cerr << " net wrinkled/compressed " << nw << '/' << ns
-                        << std::endl;
+              std::cerr << " net wrinkled/slack points, compressed cells " << nw
+                        << '/' << nsl << '/' << ns << std::endl;
             }
           if (!std::isfinite(norm))
             {
@@ -292,7 +294,8 @@ namespace Talus
             }
           if (it == max_iterations)
             break;
-          if (std::getenv("TALUS_FD_CHECK") && it == 0)
+          if (std::getenv("TALUS_FD_CHECK") &&
+              (it == 0 || std::string(std::getenv("TALUS_FD_CHECK")) == "all"))
             {
               // Debug: compare the tangent with central differences.
               dealii::Vector<double>       rp, rm, col(r.size()), e(r.size());

@@ -14,7 +14,9 @@
 //    slipping forward and backward) equals central differences
 //  - Membrane: rigid rotation, uniaxial strain with lateral constraint
 //    (edge force t W lambda S11), tangent with pre-stress and follower
-//    pressure, wrinkled state (no compressive principal stress; tangent)
+//    pressure, wrinkled state (no compressive principal stress; tangent);
+//    the orthotropic, pre-stressed wrinkling law: uniaxial relaxed stress,
+//    consistent tangent, continuity across taut / wrinkled / slack
 //  - ContinuumSolid (St. Venant-Kirchhoff, one cell, Q1 and Q2, 3D and
 //    2D plane strain): rigid rotation, uniaxial stress (face force
 //    E A lambda (lambda^2 - 1)/2 with free lateral faces), tangent
@@ -38,6 +40,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q1.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -648,6 +651,104 @@ main()
     membrane.compute(fe_values, displacement(slack), 0., r, K, &output);
     out << "  biaxial compression: " << output.n_slack
         << " of 4 points slack, |f| = " << r.linfty_norm() << '\n';
+
+    // Orthotropic, pre-stressed wrinkling law (the flagship's net: E1 = E2
+    // = 1 GPa, G12 = 0.1 GPa, nu = 0, S_0 = 1 MPa biaxial). Over a grid of
+    // strains in [-1e-2, 1e-2]^3: the relaxed stress of a wrinkled point
+    // is uniaxial (no compressive principal stress); its tangent equals
+    // central differences of the stress; along straight strain paths the
+    // stress is continuous across taut / wrinkled / slack (largest jump
+    // per step against |C| |dE|).
+    {
+      MembraneMaterial m;
+      m.youngs_modulus_1             = 1e9;
+      m.youngs_modulus_2             = 1e9;
+      m.shear_modulus                = 1e8;
+      m.poissons_ratio               = 0.;
+      m.prestress                    = Tensor<1, 3>({1e6, 1e6, 0.});
+      m.wrinkling                    = true;
+      unsigned int counts[3]         = {0, 0, 0};
+      double       worst_compression = 0., worst_tangent = 0., worst_jump = 0.;
+      const auto   strain = [](const unsigned int i) {
+        return -1e-2 + 2e-2 * i / 10. + 1.234e-4; // off the symmetric points
+      };
+      for (unsigned int i = 0; i <= 10; ++i)
+        for (unsigned int j = 0; j <= 10; ++j)
+          for (unsigned int k = 0; k <= 10; ++k)
+            {
+              const Tensor<1, 3> E({strain(i), strain(j), strain(k)});
+              Tensor<1, 3>       S;
+              Tensor<2, 3>       C;
+              const auto         state = m.stress(E, S, C);
+              ++counts[static_cast<int>(state)];
+              if (state != MembraneMaterial::State::wrinkled)
+                continue;
+              const double mean = 0.5 * (S[0] + S[1]);
+              const double R    = std::hypot(0.5 * (S[0] - S[1]), S[2]);
+              worst_compression = std::max(worst_compression,
+                                           std::max(0., R - mean) / (mean + R));
+              Tensor<2, 3> C_fd;
+              bool         same_state = true;
+              const double h          = 1e-9;
+              for (unsigned int c = 0; c < 3; ++c)
+                {
+                  Tensor<1, 3> Ep = E, Em = E, Sp, Sm;
+                  Tensor<2, 3> dummy;
+                  Ep[c] += h;
+                  Em[c] -= h;
+                  same_state = same_state && m.stress(Ep, Sp, dummy) == state &&
+                               m.stress(Em, Sm, dummy) == state;
+                  for (unsigned int d = 0; d < 3; ++d)
+                    C_fd[d][c] = (Sp[d] - Sm[d]) / (2. * h);
+                }
+              if (same_state)
+                worst_tangent =
+                  std::max(worst_tangent, (C_fd - C).norm() / C.norm());
+            }
+      const double C_norm = m.elasticity().norm();
+      for (unsigned int i = 0; i <= 10; ++i)
+        for (unsigned int j = 0; j <= 10; ++j)
+          {
+            // From (i, j, 0) to the mirrored point through the origin.
+            const Tensor<1, 3> E0({strain(i), strain(j), 0.5 * strain(i + j)});
+            const Tensor<1, 3> dE = -2. * E0 / 1000.;
+            Tensor<1, 3>       S_prev, S;
+            Tensor<2, 3>       C;
+            m.stress(E0, S_prev, C);
+            for (unsigned int step = 1; step <= 1000; ++step)
+              {
+                m.stress(E0 + step * dE, S, C);
+                worst_jump =
+                  std::max(worst_jump,
+                           (S - S_prev).norm() / (C_norm * dE.norm()));
+                S_prev = S;
+              }
+          }
+      out << "  orthotropic, pre-stressed wrinkling law, 1331 strains: "
+          << counts[0] << " taut, " << counts[1] << " wrinkled, " << counts[2]
+          << " slack\n";
+      report("wrinkled: compressive / tensile principal stress",
+             worst_compression,
+             1e-10);
+      report("wrinkled: tangent vs central differences", worst_tangent, 1e-6);
+      report("paths through all states: largest |dS| / (|C| |dE|)",
+             worst_jump,
+             2.);
+    }
+
+    // The same law in the element: tangent vs central differences.
+    membrane.material.youngs_modulus_1 = 1e9;
+    membrane.material.youngs_modulus_2 = 1e9;
+    membrane.material.shear_modulus    = 1e8;
+    membrane.material.poissons_ratio   = 0.;
+    membrane.material.prestress        = Tensor<1, 3>({1e6, 1e6, 0.});
+    membrane.compute(fe_values, displacement(wrinkle), 0., r, K, &output);
+    out << "  orthotropic, pre-stressed: " << output.n_wrinkled
+        << " of 4 points wrinkled\n";
+    report("orthotropic, pre-stressed, wrinkled: tangent vs central "
+           "differences",
+           fd_error(displacement(wrinkle)),
+           1e-5);
   }
   check_solid<3>(1);
   check_solid<3>(2);

@@ -24,12 +24,17 @@ namespace Talus
      *   C = [[E1/D, nu12 E2/D, 0], [nu12 E2/D, E2/D, 0], [0, 0, G12]],
      *   D = 1 - nu12^2 E2/E1 (isotropic: E1 = E2 = E, G12 = E/(2(1+nu))).
      * Wrinkling (Kratos wrinkling_linear_2d_law; Raible et al. 2005): taut if
-     * the smaller principal value of S is > 0; slack (S = 0, C = 0) if the
-     * larger principal strain is <= 0; otherwise wrinkled: with n the
+     * the smaller principal value of S is > 0; otherwise, with n the
      * direction of the minor principal stress and a = [n1^2, n2^2, 2 n1 n2],
      *   S_w = S - (a.S)/(a.C a) C a   (zero stress across the wrinkles),
-     * whose tangent (including the rotation of n) is computed by central
-     * differences of S_w(E).
+     * wrinkled if S_w keeps a tension (its larger principal value > 0),
+     * slack (S = 0, C = slack_stiffness_ratio C) if not. Since a.S_w = 0,
+     * S_w vanishes where it loses its tension, so the stress is continuous
+     * across all three states, also with a pre-stress S_0 (without S_0 and
+     * isotropic, slack is the strain criterion eps_max <= 0 of Raible et
+     * al.; with S_0 it is eps_max(E + C^-1 S_0) <= 0). The wrinkled tangent
+     * is the consistent derivative dS_w/dE, the rotation of n with E
+     * included (doc/theory.md, "Membranes").
      */
     class MembraneMaterial
     {
@@ -66,8 +71,11 @@ namespace Talus
              dealii::Tensor<2, 3>       &C_tangent) const;
 
     private:
+      /** S_w(E) and, if @p tangent is given, its derivative dS_w/dE
+       * (the rotation of the wrinkle direction included). */
       dealii::Tensor<1, 3>
-      wrinkled_stress(const dealii::Tensor<1, 3> &E) const;
+      wrinkled_stress(const dealii::Tensor<1, 3> &E,
+                      dealii::Tensor<2, 3>       *tangent = nullptr) const;
     };
 
 

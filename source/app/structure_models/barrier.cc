@@ -194,7 +194,8 @@ namespace Talus
          * force in each rope's brake) [N]; every brake's stroke [m]; the
          * net's largest deflection along its downstream normal [m] and its
          * residual height (the lowest point of its top edge above the
-         * ground plane z = 0) [m].
+         * ground plane z = 0) [m]; the number of the net's Gauss points
+         * that are wrinkled and slack (wrinkling law) [-].
          */
         std::vector<std::pair<std::string, double>>
         impact_columns(const Structure      &s,
@@ -278,6 +279,16 @@ namespace Talus
               }
           columns.emplace_back("net_deflection", deflection);
           columns.emplace_back("net_residual_height", residual_height);
+          // Gauss points of the net in each state of the wrinkling law.
+          unsigned int n_wrinkled = 0, n_slack = 0;
+          for (const auto &m : s.membrane_meshes)
+            for (const auto &o : m->cell_output)
+              {
+                n_wrinkled += o.n_wrinkled;
+                n_slack += o.n_slack;
+              }
+          columns.emplace_back("net_wrinkled_points", n_wrinkled);
+          columns.emplace_back("net_slack_points", n_slack);
           return columns;
         }
 
