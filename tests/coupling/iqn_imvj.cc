@@ -56,44 +56,6 @@ namespace
   }
 
 
-  /** Load of window w: size and shape change. */
-  void
-  set_load(TwoSpring::VectorModel &model, const unsigned int w)
-  {
-    for (unsigned int i = 0; i < n_dofs; ++i)
-      model.f_0[i] = 1e4 * (1. + double(i) / n_dofs) *
-                     (1. + 0.5 * std::sin(0.5 * w + 0.9 * i));
-  }
-
-
-  /** Newton on (K_N + K_D) x + c x^3 = f_0, from x = 0. */
-  Vector<double>
-  monolithic_solution(const TwoSpring::VectorModel &model)
-  {
-    Vector<double> x(n_dofs);
-    for (unsigned int it = 0; it < 50; ++it)
-      {
-        FullMatrix<double> J(model.K_N);
-        J.add(1., model.K_D);
-        Vector<double> residual(n_dofs), kx(n_dofs);
-        J.vmult(kx, x);
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          {
-            residual[i] = kx[i] + cubic * std::pow(x[i], 3) - model.f_0[i];
-            J(i, i) += 3. * cubic * x[i] * x[i];
-          }
-        if (residual.l2_norm() <= 1e-13 * model.f_0.l2_norm())
-          break;
-        FullMatrix<double> J_inverse(n_dofs, n_dofs);
-        J_inverse.invert(J);
-        Vector<double> dx(n_dofs);
-        J_inverse.vmult(dx, residual);
-        x -= dx;
-      }
-    return x;
-  }
-
-
   struct Run
   {
     std::string               name;
@@ -135,7 +97,7 @@ namespace
     bool finite = true;
     for (unsigned int w = 1; w <= n_windows; ++w)
       {
-        set_load(model, w);
+        model.set_window_load(w);
         const WindowResult window =
           iterate_window([&](const Vector<double> &x,
                              Vector<double>       &x_tilde,
@@ -148,7 +110,7 @@ namespace
         if (!window.accepted)
           check(false, name + ", window " + std::to_string(w) + " converges");
         Vector<double>       error(window.x_tilde);
-        const Vector<double> reference = monolithic_solution(model);
+        const Vector<double> reference = model.monolithic_solution();
         error -= reference;
         result.max_error =
           std::max(result.max_error, error.l2_norm() / reference.l2_norm());

@@ -137,6 +137,44 @@ namespace TwoSpring
       K_N_inverse.vmult(x_tilde, f);
     }
 
+    /** The load of window @p w of the accelerator tests: its size and
+     * shape change from window to window. */
+    void
+    set_window_load(const unsigned int w)
+    {
+      for (unsigned int i = 0; i < n; ++i)
+        f_0[i] =
+          1e4 * (1. + double(i) / n) * (1. + 0.5 * std::sin(0.5 * w + 0.9 * i));
+    }
+
+    /** Newton on (K_N + K_D) x + c x^3 = f_0, from x = 0: the monolithic
+     * solution the partitioned iterations converge to. */
+    Vector<double>
+    monolithic_solution() const
+    {
+      Vector<double> x(n);
+      for (unsigned int it = 0; it < 50; ++it)
+        {
+          FullMatrix<double> J(K_N);
+          J.add(1., K_D);
+          Vector<double> residual(n), kx(n);
+          J.vmult(kx, x);
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              residual[i] = kx[i] + cubic * std::pow(x[i], 3) - f_0[i];
+              J(i, i) += 3. * cubic * x[i] * x[i];
+            }
+          if (residual.l2_norm() <= 1e-13 * f_0.l2_norm())
+            break;
+          FullMatrix<double> J_inverse(n, n);
+          J_inverse.invert(J);
+          Vector<double> dx(n);
+          J_inverse.vmult(dx, residual);
+          x -= dx;
+        }
+      return x;
+    }
+
     /** Exact solution of the linear model (cubic = 0): (K_N + K_D) x = f_0. */
     Vector<double>
     linear_solution() const
