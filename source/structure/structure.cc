@@ -892,8 +892,7 @@ namespace Talus
             constraints.add_entries_local_to_global(indices, dsp, false);
           }
       for_each_solid_mesh([&](auto &solid_mesh) {
-        auto *const   mesh = &solid_mesh;
-        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+        auto *const mesh = &solid_mesh;
 
         indices.resize(mesh->fe->n_dofs_per_cell());
         for (const auto &cell : mesh->dof_handler.active_cell_iterators())
@@ -1257,8 +1256,7 @@ namespace Talus
           write_pvd(mesh->name);
         }
       for_each_solid_mesh([&](auto &solid_mesh) {
-        auto *const   mesh = &solid_mesh;
-        constexpr int dim  = std::decay_t<decltype(solid_mesh)>::dimension;
+        auto *const mesh = &solid_mesh;
 
         const unsigned int     n = mesh->cell_output.size();
         dealii::Vector<double> von_mises(n), mean(n), energy(n);
