@@ -157,9 +157,10 @@ namespace Talus
       const std::string dir = output_directory + "/";
       if (format == "vtu")
         {
-          // zlib's fastest level (as ASPECT writes): deal.II's default,
-          // the best compression, took 4 % of the Bui collapse's run time
-          // (doc/performance.md); the files grow by about a quarter
+          // zlib's fastest level (as deal.II's step-37 and step-64 write):
+          // deal.II's default, the best compression, took 4 % of the Bui
+          // collapse's run time (doc/performance.md); the files grow by
+          // about 4 %
           dealii::DataOutBase::VtkFlags flags;
           flags.compression_level = dealii::DataOutBase::VtkFlags::best_speed;
           particle_out.set_flags(flags);

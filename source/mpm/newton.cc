@@ -373,6 +373,9 @@ namespace Talus
           if (matrix_pending)
             {
               // the prediction missed: the matrix at the same iterate
+              // (the return-branch changes it records are reset with the
+              // correction below, so a miss does not extend the iteration
+              // by 'maximum Newton iterations with state changes')
               dealii::TimerOutput::Scope s(timer, "assembly");
               if (!assemble(displacement, true, !quasi_static, failure))
                 {
