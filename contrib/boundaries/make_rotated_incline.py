@@ -18,12 +18,15 @@ H = 0.05  # background cell size [m]
 
 
 def write(path, rho_deg, mu, condition, method_lines="", end_time=1.0,
-          mpi_note="", max_penetration=None, solver_lines=""):
+          mpi_note="", max_penetration=None, solver_lines="", offset=0.,
+          damping=True, output_directory=None):
     rho = math.radians(rho_deg)
     t = (math.cos(rho), math.sin(rho))
     n = (-math.sin(rho), math.cos(rho))
     # incline line through o, from s = -0.2 to s = 3.2
-    o = (0.3 + 0.2 * math.sin(rho), 0.137)
+    # (offset: a shift of the whole problem along y, which changes how the
+    # incline and the block cut the cells)
+    o = (0.3 + 0.2 * math.sin(rho), 0.137 + offset)
     line = [(o[0] + s * t[0], o[1] + s * t[1]) for s in (-0.2, 3.2)]
     # block corners: s in [0.1, 0.5], normal offset in [0, 0.2]
     corners = []
@@ -38,6 +41,13 @@ def write(path, rho_deg, mu, condition, method_lines="", end_time=1.0,
     sliding = math.tan(THETA) > mu
     a = G * (math.sin(THETA) - mu * math.cos(THETA)) if sliding else 0.
     fmt = lambda p: "%.10g, %.10g" % p
+    newmark = ("""  # numerical damping of the acceleration jumps when boundary particles
+  # start or stop acting (doc/theory.md, "Boundary particles")
+  set Newmark gamma = 0.6
+  set Newmark beta = 0.3025
+""" if damping else "")
+    out_dir = output_directory or \
+        "output-" + path.split('/')[-1].split('.')[0]
     with open(path, "w") as f:
         f.write(f"""# Block on a 30 degree incline rotated by {rho_deg} degrees against the
 # grid, Coulomb friction mu = {mu} ({condition}), imposed by boundary particles
@@ -77,13 +87,9 @@ subsection Solver
 subsection Time
   set end time = {end_time}
   set time step = 0.01
-  # numerical damping of the acceleration jumps when boundary particles
-  # start or stop acting (doc/theory.md, "Boundary particles")
-  set Newmark gamma = 0.6
-  set Newmark beta = 0.3025
-end
+{newmark}end
 subsection Output
-  set output directory = output-{path.split('/')[-1].split('.')[0]}
+  set output directory = {out_dir}
   set format = none
   set test mode = true
 end
