@@ -8,6 +8,7 @@
 #include <talus/app/structure_models/factory.h>
 #include <talus/app/structure_models/model.h>
 #include <talus/base/contact_onset.h>
+#include <talus/base/energy_jump_monitor.h>
 #include <talus/base/input.h>
 #include <talus/base/memory_usage.h>
 #include <talus/base/time_control.h>
@@ -265,6 +266,8 @@ namespace Talus
     time_control.parse_parameters(prm);
     ContactOnsetEvent contact_onset;
     contact_onset.parse_parameters(prm, time_control.initial_dt);
+    EnergyJumpMonitor energy_jumps;
+    energy_jumps.parse_parameters(prm);
     MPM::MPMProblem<dim> mpm(communicator, time_control.newmark, timer);
     mpm.parse_parameters(prm);
     IO::VisualizationOutput<dim> output;
@@ -820,6 +823,10 @@ namespace Talus
           std::max(max_released,
                    std::abs(diagnostics.gravitational_energy -
                             initial_diagnostics.gravitational_energy));
+        pcout << energy_jumps.assess(time_control.step,
+                                     time_control.time,
+                                     change,
+                                     max_released + final_kinetic);
         const double scale = std::max({std::abs(result.work_structure),
                                        std::abs(result.work_points),
                                        1e-300});

@@ -2,6 +2,7 @@
 #include <talus/app/run_console.h>
 #include <talus/app/simulation.h>
 #include <talus/base/contact_onset.h>
+#include <talus/base/energy_jump_monitor.h>
 #include <talus/base/input.h>
 #include <talus/base/memory_usage.h>
 #include <talus/base/parsed_functions.h>
@@ -351,6 +352,8 @@ namespace Talus
     time_control.parse_parameters(prm);
     ContactOnsetEvent contact_onset;
     contact_onset.parse_parameters(prm, time_control.initial_dt);
+    EnergyJumpMonitor energy_jumps;
+    energy_jumps.parse_parameters(prm);
     prm.enter_subsection("Convergence study");
     if (prm.get_bool("refine time step") && refinement > 0)
       {
@@ -955,9 +958,14 @@ namespace Talus
           max_balance_change = std::max(max_balance_change, std::abs(b - b0));
           for (const auto &b : diagnostics.boundaries)
             max_penetration = std::max(max_penetration, b.penetration);
-          max_released   = std::max(max_released,
+          max_released = std::max(max_released,
                                   std::abs(diagnostics.gravitational_energy -
                                            initial.gravitational_energy));
+          pcout << energy_jumps.assess(time_control.step,
+                                       time_control.time,
+                                       b,
+                                       max_released +
+                                         diagnostics.kinetic_energy);
           const double p = diagnostics.momentum[0];
           if (p * last_momentum < 0.)
             crossings.push_back(time_control.time -

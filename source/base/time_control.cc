@@ -1,4 +1,5 @@
 #include <talus/base/contact_onset.h>
+#include <talus/base/energy_jump_monitor.h>
 #include <talus/base/input.h>
 #include <talus/base/time_control.h>
 
@@ -103,6 +104,7 @@ namespace Talus
       NewmarkBeta::declare_parameters(prm);
       TruncationErrorControl::declare_parameters(prm);
       ContactOnsetEvent::declare_parameters(prm);
+      EnergyJumpMonitor::declare_parameters(prm);
     }
     prm.leave_subsection();
   }

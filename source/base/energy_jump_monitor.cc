@@ -1,0 +1,77 @@
+#include <talus/base/energy_jump_monitor.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace Talus
+{
+  void
+  EnergyJumpMonitor::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    prm.declare_entry(
+      "energy jump warning",
+      "0.01",
+      dealii::Patterns::Double(0.),
+      "Warn about a committed step whose energy balance (kinetic + strain + "
+      "gravitational energy plus the booked dissipation; coupled: of both "
+      "fields) changes by more than this fraction of the energy moved so "
+      "far (the largest released gravitational energy plus the kinetic "
+      "energy) [-]: a sign of a spurious solution of the step (a shorter "
+      "'time step' avoids it). 0: off. The warning does not reject the "
+      "step.");
+    prm.declare_entry(
+      "energy jump outlier factor",
+      "10",
+      dealii::Patterns::Double(1.),
+      "A step is warned about only if its change of the energy balance is "
+      "also this many times the mean change per step of the steps before "
+      "(at least 3 of them) [-], >= 1: the steady drift of the booking "
+      "(e.g. friction on a soft penalty) is not a jump.");
+  }
+
+
+  void
+  EnergyJumpMonitor::parse_parameters(dealii::ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time");
+    fraction       = prm.get_double("energy jump warning");
+    outlier_factor = prm.get_double("energy jump outlier factor");
+    prm.leave_subsection();
+  }
+
+
+  std::string
+  EnergyJumpMonitor::assess(const unsigned int step,
+                            const double       time,
+                            const double       balance,
+                            const double       scale)
+  {
+    const std::optional<double> last = last_balance;
+    last_balance                     = balance;
+    if (!(fraction > 0.) || !last)
+      return "";
+    const double jump = balance - *last;
+    // the mean change per step before this one
+    const double       mean = n_changes > 0 ? sum_of_changes / n_changes : 0.;
+    const unsigned int n_before = n_changes;
+    sum_of_changes += std::abs(jump);
+    ++n_changes;
+    if (!(scale > 0.) || n_before < 3 || !(std::abs(jump) > fraction * scale) ||
+        !(std::abs(jump) > outlier_factor * mean))
+      return "";
+    ++warnings;
+    std::ostringstream msg;
+    msg << "  Warning: step " << step << " (to t = " << time
+        << " s): the energy balance changed by " << jump << " J in this step, "
+        << 100. * std::abs(jump) / scale
+        << " % of the energy moved so far (released gravitational plus "
+           "kinetic energy) and "
+        << std::abs(jump) / mean
+        << " times the mean change per step before ('energy jump warning' "
+           "in subsection Time): the "
+           "step's solution may be spurious; a shorter 'time step' avoids "
+           "it.\n";
+    return msg.str();
+  }
+} // namespace Talus
