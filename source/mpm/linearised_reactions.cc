@@ -67,9 +67,9 @@ namespace Talus
                 {
                   active_share = 0.;
                   for (unsigned int k = 0; k < n_nodes; ++k)
-                    if (nodal_mass(c.dofs[fe.component_to_system_index(0, k)]) >
-                        0.)
-                      active_share += bp.N[k];
+                    active_share +=
+                      bp.N[k] *
+                      mass_share(c.dofs[fe.component_to_system_index(0, k)]);
                 }
               loaded.push_back({&bp, &c, bf.dforce_du, active_share});
             }
