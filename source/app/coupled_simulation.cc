@@ -1042,8 +1042,15 @@ namespace Talus
                  "two passes "
               << std::setprecision(3) << max_interface_travel / h
               << " cells of the finest level (neighbour layers "
-              << adaptive.neighbour_layers() << ")\n"
-              << "  adaptive grid: coupling iterations per step "
+              << adaptive.neighbour_layers() << ")\n";
+        if (max_interface_travel > adaptive.neighbour_layers() * h)
+          pcout << "  Warning: the interface travelled farther than the "
+                   "band of 'neighbour layers' around its boundary "
+                   "particles between two passes of the grid, so it may "
+                   "have reached coarser cells within a step: raise "
+                   "'neighbour layers' or lower 'refine every steps' in "
+                   "subsection <Adaptive grid>.\n";
+        pcout << "  adaptive grid: coupling iterations per step "
               << (steps_after_change > 0 ?
                     static_cast<double>(iterations_after_change) /
                       steps_after_change :

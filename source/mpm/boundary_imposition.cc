@@ -412,19 +412,23 @@ namespace Talus
           // massive nodes with the boundary then leaves the gap unchanged;
           // for a boundary at rest nothing changes.
           {
-            std::vector<bool> massive(n_nodes);
+            // (a hanging node h moves with its masters j: its share is
+            // that of its masters with mass, sum_j c_hj [m_j > 0])
+            std::vector<bool>   massive(n_nodes);
+            std::vector<double> share(n_nodes);
             for (unsigned int k = 0; k < n_nodes; ++k)
-              massive[k] =
-                conforming_value(
-                  nodal_mass, c.dofs[grid.fe.component_to_system_index(0, k)]) >
-                0.;
+              {
+                const auto dof =
+                  c.dofs[grid.fe.component_to_system_index(0, k)];
+                massive[k] = conforming_value(nodal_mass, dof) > 0.;
+                share[k]   = mass_share(dof);
+              }
             for (unsigned int q = 0; q < n_kept; ++q)
               {
                 auto  &bp = boundary_points[c.first_boundary + q];
                 double S  = 0.;
                 for (unsigned int k = 0; k < n_nodes; ++k)
-                  if (massive[k])
-                    S += bp.N[k];
+                  S += bp.N[k] * share[k];
                 bp.du_bar *= S;
                 bp.a_bar *= S;
                 // Nitsche: the stress at the start of the step, interpolated
