@@ -1066,7 +1066,10 @@ namespace Talus
                  "difference "
               << (max_reaction_balance < 1e-12 ?
                     std::string("< 1e-12") :
-                    std::to_string(max_reaction_balance))
+                    (std::ostringstream()
+                     << std::scientific << std::setprecision(2)
+                     << max_reaction_balance)
+                      .str())
               << '\n';
       }
     {
