@@ -5,6 +5,10 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <algorithm>
+#include <set>
+#include <string>
+
 namespace Talus
 {
   namespace MPM
@@ -66,6 +70,19 @@ namespace Talus
           "not material is near [-]: the contact forces then act on the "
           "finest cells, and material that reaches a boundary meets fine "
           "cells there. 'false': only the material points decide.");
+        prm.declare_entry(
+          "refine at boundaries",
+          "",
+          Patterns::List(Patterns::Integer(0, 255)),
+          "Boundary ids of the background grid (box grid: 0 x-min, 1 x-max, "
+          "2 y-min, 3 y-max, 4 z-min, 5 z-max; Gmsh: the physical ids) whose "
+          "cells are refined to the maximum level where material is near "
+          "[-]: a cell that touches a face of one of them counts as near "
+          "the material also within 'neighbour layers' + 1 more layers of "
+          "the near cells, counted along those faces, so that the fine band "
+          "along a wall or floor reaches 2 n + 1 cells beyond the material "
+          "(n = 'neighbour layers'). Empty: the grid's faces are no "
+          "criterion.");
       }
       prm.leave_subsection();
     }
@@ -83,6 +100,15 @@ namespace Talus
       layers    = prm.get_integer("neighbour layers");
       refine_at_boundary_particles =
         prm.get_bool("refine at boundary particles");
+      refine_boundaries.clear();
+      for (const auto &id : dealii::Utilities::split_string_list(
+             prm.get("refine at boundaries")))
+        refine_boundaries.push_back(
+          static_cast<dealii::types::boundary_id>(std::stoi(id)));
+      std::sort(refine_boundaries.begin(), refine_boundaries.end());
+      refine_boundaries.erase(std::unique(refine_boundaries.begin(),
+                                          refine_boundaries.end()),
+                              refine_boundaries.end());
       prm.leave_subsection();
       if (enable && max_level < min_level)
         InputFile::reject("Adaptive grid",
@@ -94,12 +120,43 @@ namespace Talus
 
 
     template <int dim>
-    bool
-    AdaptiveGrid<dim>::flag_cells(
-      BackgroundGrid<dim>                           &grid,
+    void
+    AdaptiveGrid<dim>::check_refined_boundaries(
+      const BackgroundGrid<dim> &grid) const
+    {
+      if (!enable || refine_boundaries.empty())
+        return;
+      std::set<dealii::types::boundary_id> grid_ids;
+      for (const auto &cell : grid.triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              grid_ids.insert(face->boundary_id());
+      std::vector<unsigned int> local_ids(grid_ids.begin(), grid_ids.end());
+      std::set<unsigned int>    all_ids;
+      for (const auto &part :
+           dealii::Utilities::MPI::all_gather(grid.mpi_communicator, local_ids))
+        all_ids.insert(part.begin(), part.end());
+      std::string list;
+      for (const unsigned int id : all_ids)
+        list += (list.empty() ? "" : ", ") + std::to_string(id);
+      for (unsigned int k = 0; k < refine_boundaries.size(); ++k)
+        if (all_ids.count(refine_boundaries[k]) == 0)
+          InputFile::reject("Adaptive grid",
+                            "refine at boundaries",
+                            std::to_string(refine_boundaries[k]),
+                            "a boundary id of the background grid (its "
+                            "faces carry the ids " +
+                              list + ")");
+    }
+
+
+    template <int dim>
+    std::vector<bool>
+    AdaptiveGrid<dim>::near_cells(
+      const BackgroundGrid<dim>                     &grid,
       const dealii::Particles::ParticleHandler<dim> &points,
-      const dealii::Particles::ParticleHandler<dim> &boundary,
-      const unsigned int                             base_level) const
+      const dealii::Particles::ParticleHandler<dim> &boundary) const
     {
       using Vector     = dealii::TrilinosWrappers::MPI::Vector;
       const auto &dofs = grid.dof_handler;
@@ -109,6 +166,8 @@ namespace Talus
                      grid.locally_relevant_dofs,
                      grid.mpi_communicator);
       std::vector<bool> near(grid.triangulation.n_active_cells(), false);
+      // the owned cells that touch a face of `refine at boundaries`
+      std::vector<bool> at_face(grid.triangulation.n_active_cells(), false);
       for (const auto &cell : dofs.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -118,10 +177,22 @@ namespace Talus
               points.n_particles_in_cell(tria_cell) > 0 ||
               (refine_at_boundary_particles &&
                boundary.n_particles_in_cell(tria_cell) > 0);
+            if (!refine_boundaries.empty())
+              for (const auto &face : cell->face_iterators())
+                if (face->at_boundary() &&
+                    std::binary_search(refine_boundaries.begin(),
+                                       refine_boundaries.end(),
+                                       face->boundary_id()))
+                  at_face[cell->active_cell_index()] = true;
           }
-      for (unsigned int layer = 0; layer < layers; ++layer)
+      // the layers around the occupied cells, then (with `refine at
+      // boundaries`) n + 1 more layers of cells at those faces
+      const unsigned int face_layers =
+        refine_boundaries.empty() ? 0 : layers + 1;
+      for (unsigned int layer = 0; layer < layers + face_layers; ++layer)
         {
-          marks = 0.;
+          const bool faces_only = layer >= layers;
+          marks                 = 0.;
           std::vector<dealii::types::global_dof_index> indices;
           for (const auto &cell : dofs.active_cell_iterators())
             if (cell->is_locally_owned() && near[cell->active_cell_index()])
@@ -132,13 +203,27 @@ namespace Talus
           marks.compress(dealii::VectorOperation::add);
           ghosted = marks;
           for (const auto &cell : dofs.active_cell_iterators())
-            if (cell->is_locally_owned())
+            if (cell->is_locally_owned() &&
+                (!faces_only || at_face[cell->active_cell_index()]))
               for (const unsigned int v : cell->vertex_indices())
                 if (ghosted(cell->vertex_dof_index(v, 0)) > 0.)
                   near[cell->active_cell_index()] = true;
         }
-      const int lowest  = base_level + min_level;
-      const int highest = base_level + max_level;
+      return near;
+    }
+
+
+    template <int dim>
+    bool
+    AdaptiveGrid<dim>::flag_cells(
+      BackgroundGrid<dim>                           &grid,
+      const dealii::Particles::ParticleHandler<dim> &points,
+      const dealii::Particles::ParticleHandler<dim> &boundary,
+      const unsigned int                             base_level) const
+    {
+      const std::vector<bool> near    = near_cells(grid, points, boundary);
+      const int               lowest  = base_level + min_level;
+      const int               highest = base_level + max_level;
       for (const auto &cell : grid.triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -172,6 +257,36 @@ namespace Talus
       for (const auto &cell : grid.triangulation.active_cell_iterators())
         if (cell->is_locally_owned() && boundary.n_particles_in_cell(cell) > 0)
           {
+            ++with;
+            finest += cell->level() == static_cast<int>(base_level + max_level);
+          }
+      return {dealii::Utilities::MPI::sum(with, grid.mpi_communicator),
+              dealii::Utilities::MPI::sum(finest, grid.mpi_communicator)};
+    }
+
+
+    template <int dim>
+    std::pair<unsigned int, unsigned int>
+    AdaptiveGrid<dim>::boundary_face_cells_at_maximum_level(
+      const BackgroundGrid<dim>                     &grid,
+      const dealii::Particles::ParticleHandler<dim> &points,
+      const dealii::Particles::ParticleHandler<dim> &boundary,
+      const unsigned int                             base_level) const
+    {
+      const std::vector<bool> near = near_cells(grid, points, boundary);
+      unsigned int            with = 0, finest = 0;
+      for (const auto &cell : grid.triangulation.active_cell_iterators())
+        if (cell->is_locally_owned() && near[cell->active_cell_index()])
+          {
+            bool touches = false;
+            for (const auto &face : cell->face_iterators())
+              touches =
+                touches || (face->at_boundary() &&
+                            std::binary_search(refine_boundaries.begin(),
+                                               refine_boundaries.end(),
+                                               face->boundary_id()));
+            if (!touches)
+              continue;
             ++with;
             finest += cell->level() == static_cast<int>(base_level + max_level);
           }

@@ -38,6 +38,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 #include <tuple>
 
@@ -411,19 +412,23 @@ namespace Talus
           // massive nodes with the boundary then leaves the gap unchanged;
           // for a boundary at rest nothing changes.
           {
-            std::vector<bool> massive(n_nodes);
+            // (a hanging node h moves with its masters j: its share is
+            // that of its masters with mass, sum_j c_hj [m_j > 0])
+            std::vector<bool>   massive(n_nodes);
+            std::vector<double> share(n_nodes);
             for (unsigned int k = 0; k < n_nodes; ++k)
-              massive[k] =
-                conforming_value(
-                  nodal_mass, c.dofs[grid.fe.component_to_system_index(0, k)]) >
-                0.;
+              {
+                const auto dof =
+                  c.dofs[grid.fe.component_to_system_index(0, k)];
+                massive[k] = conforming_value(nodal_mass, dof) > 0.;
+                share[k]   = mass_share(dof);
+              }
             for (unsigned int q = 0; q < n_kept; ++q)
               {
                 auto  &bp = boundary_points[c.first_boundary + q];
                 double S  = 0.;
                 for (unsigned int k = 0; k < n_nodes; ++k)
-                  if (massive[k])
-                    S += bp.N[k];
+                  S += bp.N[k] * share[k];
                 bp.du_bar *= S;
                 bp.a_bar *= S;
                 // Nitsche: the stress at the start of the step, interpolated
@@ -723,9 +728,14 @@ namespace Talus
                     }
                   // shape values of the point's cell at x_c
                   dealii::Point<dim> xi = particle->get_reference_location();
+                  // (the extent of the point's cell: that of the finest
+                  // level, doubled per level above it)
                   if (grid.is_cartesian)
                     for (unsigned int d = 0; d < dim; ++d)
-                      xi[d] += (x_c[d] - x_p[d]) / grid.cell_extent[d];
+                      xi[d] +=
+                        (x_c[d] - x_p[d]) /
+                        std::ldexp(grid.cell_extent[d],
+                                   grid.cell_extent_level - mc.cell->level());
                   else
                     {
                       try
@@ -1007,9 +1017,9 @@ namespace Talus
                 // does not act on the material: report the rest.
                 double active_share = 0.;
                 for (unsigned int k = 0; k < n_nodes; ++k)
-                  if (nodal_mass(c.dofs[fe.component_to_system_index(0, k)]) >
-                      0.)
-                    active_share += bp.N[k];
+                  active_share +=
+                    bp.N[k] *
+                    mass_share(c.dofs[fe.component_to_system_index(0, k)]);
                 // dissipated: -f . (relative increment - elastic gap change)
                 work[bp.boundary] -=
                   bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
@@ -1192,10 +1202,79 @@ namespace Talus
     }
 
 
+    template <int dim>
+    std::pair<dealii::Tensor<1, dim>, dealii::Tensor<1, dim>>
+    MPMSolver<dim>::boundary_force_balance() const
+    {
+      Assert(solved, dealii::ExcMessage("solve_step() first"));
+      const auto        &fe            = grid.fe;
+      const unsigned int dofs_per_cell = fe.dofs_per_cell;
+      const MPI_Comm     comm          = grid.mpi_communicator;
+      // the particles' forces on the grid nodes, condensed by deal.II
+      dealii::TrilinosWrappers::MPI::Vector on_grid(grid.locally_owned_dofs,
+                                                    comm);
+      dealii::Vector<double>                local(dofs_per_cell);
+      std::vector<double>                   du_local(dofs_per_cell);
+      for (const auto &c : boundary_cells)
+        {
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            du_local[i] = conforming_value(displacement, c.dofs[i]);
+          local = 0.;
+          for (unsigned int b = 0; b < c.n_boundary; ++b)
+            {
+              const BoundaryPoint &bp = boundary_points[c.first_boundary + b];
+              AssertThrow(!(bp.nitsche && bp.with_stress),
+                          dealii::ExcMessage(
+                            "the boundary force balance is not available for "
+                            "Nitsche boundaries"));
+              dealii::Tensor<1, dim> du_b;
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const auto ci = fe.system_to_component_index(i);
+                  du_b[ci.first] += bp.N[ci.second] * du_local[i];
+                }
+              const BoundaryForce bf = boundary_force(bp, du_b);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const auto ci = fe.system_to_component_index(i);
+                  local[i] += bp.N[ci.second] * bf.force[ci.first];
+                }
+            }
+          hanging_constraints.distribute_local_to_global(local,
+                                                         c.dofs,
+                                                         on_grid);
+        }
+      on_grid.compress(dealii::VectorOperation::add);
+      // summed by component over the owned nodes that carry mass
+      const auto                               &forces = on_grid;
+      std::set<dealii::types::global_dof_index> counted;
+      dealii::Tensor<1, dim>                    grid_sum, reaction_sum;
+      for (const auto &cell : grid.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const auto i = cell->vertex_dof_index(v, d);
+                if (grid.locally_owned_dofs.is_element(i) &&
+                    nodal_mass(i) > 0. && counted.insert(i).second)
+                  grid_sum[d] += forces(i);
+              }
+      for (const auto &t : boundary_trial)
+        reaction_sum += t.reaction;
+      for (const auto &pc : point_contact_trial)
+        if (pc.active)
+          reaction_sum += pc.reaction;
+      return {dealii::Utilities::MPI::sum(grid_sum, comm),
+              dealii::Utilities::MPI::sum(reaction_sum, comm)};
+    }
+
+
     // Explicit instantiation of the members defined in this file.
 #define TALUS_INSTANTIATE(dim)                                                 \
   template void MPMSolver<dim>::evaluate_boundary_trial();                     \
   template void MPMSolver<dim>::commit_boundary_trial();                       \
+  template std::pair<dealii::Tensor<1, dim>, dealii::Tensor<1, dim>>           \
+  MPMSolver<dim>::boundary_force_balance() const;                              \
   template std::vector<                                                        \
     std::pair<dealii::types::particle_index, dealii::Tensor<1, dim>>>          \
   MPMSolver<dim>::boundary_reactions() const;                                  \

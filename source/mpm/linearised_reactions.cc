@@ -45,7 +45,7 @@ namespace Talus
       for (const auto &c : boundary_cells)
         {
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            du_local[i] = displacement(c.dofs[i]);
+            du_local[i] = conforming_value(displacement, c.dofs[i]);
           for (unsigned int b = 0; b < c.n_boundary; ++b)
             {
               const BoundaryPoint   &bp = boundary_points[c.first_boundary + b];
@@ -67,9 +67,9 @@ namespace Talus
                 {
                   active_share = 0.;
                   for (unsigned int k = 0; k < n_nodes; ++k)
-                    if (nodal_mass(c.dofs[fe.component_to_system_index(0, k)]) >
-                        0.)
-                      active_share += bp.N[k];
+                    active_share +=
+                      bp.N[k] *
+                      mass_share(c.dofs[fe.component_to_system_index(0, k)]);
                 }
               loaded.push_back({&bp, &c, bf.dforce_du, active_share});
             }
@@ -155,7 +155,8 @@ namespace Talus
                 {
                   const auto ci = fe.system_to_component_index(i);
                   du_b[ci.first] +=
-                    bp.N[ci.second] * x_ghosted(loaded[l].cell->dofs[i]);
+                    bp.N[ci.second] *
+                    conforming_value(x_ghosted, loaded[l].cell->dofs[i]);
                 }
               const dealii::Tensor<1, dim> dF = loaded[l].D * (du_b - delta[l]);
               if (bp.on_material_point)

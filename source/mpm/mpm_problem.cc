@@ -100,6 +100,7 @@ namespace Talus
         }
       // the adaptive grid starts at its finest level (setup() coarsens)
       adaptive.parse_parameters(prm);
+      adaptive.check_refined_boundaries(*background_grid);
       base_refinement = refinement;
       const unsigned int total_level =
         refinement + adaptive.initial_refinement();
@@ -191,9 +192,10 @@ namespace Talus
       mpm_solver->attach_boundary_particles(*boundary_particles);
       if (adaptive.enabled())
         {
-          // penalty and augmented Lagrangian boundaries read the grid
-          // through the conforming values; the others use the uniform
-          // cell extent or a multiplier space tied to the cells
+          // penalty and augmented Lagrangian boundaries (on the grid side
+          // or on the material points) read the grid through the
+          // conforming values; the others use the uniform cell extent or a
+          // multiplier space tied to the cells
           for (unsigned int b = 0; b < boundary_particles->n_boundaries(); ++b)
             {
               const auto       &desc = boundary_particles->boundary(b);
@@ -209,15 +211,6 @@ namespace Talus
                                     desc.method +
                                     " is not implemented on a locally "
                                     "refined grid");
-              if (desc.material_point_contact)
-                InputFile::reject(sub,
-                                  "contact side",
-                                  "material points",
-                                  "'grid' on an adaptive grid (subsection "
-                                  "Adaptive grid, 'enable = true'): contact "
-                                  "detection between material points and "
-                                  "the surface is not implemented on a "
-                                  "locally refined grid");
             }
           mpm_solver->check_local_refinement_support();
           // coarsen the empty cells of the uniform initial grid
@@ -551,7 +544,8 @@ namespace Talus
       if (adaptive.due(step))
         {
           dealii::TimerOutput::Scope scope(timer, "adaptive grid");
-          if (adapt_grid())
+          record.adapted = adapt_grid();
+          if (record.adapted)
             log << "  adaptive grid at step " << step << ": "
                 << background_grid->triangulation.n_global_active_cells()
                 << " cells, " << background_grid->dof_handler.n_dofs()
@@ -589,16 +583,38 @@ namespace Talus
     MPMProblem<dim>::print_adaptive_grid(
       const dealii::ConditionalOStream &out) const
     {
-      if (!adaptive.enabled() || boundary_particles->n_boundaries() == 0)
+      if (!adaptive.enabled())
         return;
-      const auto &grid  = *background_grid;
-      const auto  cells = adaptive.boundary_cells_at_maximum_level(
-        grid, boundary_particles->particle_handler(), base_refinement);
-      out << "  adaptive grid: " << grid.triangulation.n_global_active_cells()
-          << " cells, " << grid.dof_handler.n_dofs() << " DoFs; " << cells.first
-          << " cells hold boundary particles, " << cells.second
-          << " of them at the maximum level " << adaptive.maximum_level()
-          << '\n';
+      const auto &grid = *background_grid;
+      if (boundary_particles->n_boundaries() > 0)
+        {
+          const auto cells = adaptive.boundary_cells_at_maximum_level(
+            grid, boundary_particles->particle_handler(), base_refinement);
+          out << "  adaptive grid: "
+              << grid.triangulation.n_global_active_cells() << " cells, "
+              << grid.dof_handler.n_dofs() << " DoFs; " << cells.first
+              << " cells hold boundary particles, " << cells.second
+              << " of them at the maximum level " << adaptive.maximum_level()
+              << '\n';
+        }
+      if (!adaptive.refined_boundaries().empty())
+        {
+          const auto cells = adaptive.boundary_face_cells_at_maximum_level(
+            grid,
+            material_points->particle_handler(),
+            boundary_particles->particle_handler(),
+            base_refinement);
+          std::string ids;
+          for (const auto id : adaptive.refined_boundaries())
+            ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+          out << "  adaptive grid: "
+              << grid.triangulation.n_global_active_cells() << " cells, "
+              << grid.dof_handler.n_dofs() << " DoFs; " << cells.first
+              << " cells at the faces of boundaries " << ids
+              << " are near the material, " << cells.second
+              << " of them at the maximum level " << adaptive.maximum_level()
+              << '\n';
+        }
     }
 
 

@@ -7,6 +7,8 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <vector>
+
 namespace Talus
 {
   namespace MPM
@@ -31,6 +33,13 @@ namespace Talus
      *  - a cell is *near* the material if it shares a vertex with an
      *    occupied cell, or, with `neighbour layers` n > 1, with a cell
      *    near the material at layer n - 1 (n = 0: occupied cells only);
+     *  - with `refine at boundaries` (a list of grid boundary ids), a
+     *    cell that touches a face of one of them is near the material
+     *    also if it is within `neighbour layers` + 1 more layers of a
+     *    near cell, counted through the cells that touch those faces:
+     *    along a wall or floor the fine band reaches 2 n + 1 cells
+     *    beyond the material (n = `neighbour layers`), so that material
+     *    that slides along it meets fine cells there;
      *  - near cells below the maximum level are refined, cells below the
      *    minimum level are refined, all other cells above the minimum
      *    level are coarsened (p4est coarsens a parent only if all its
@@ -108,6 +117,47 @@ namespace Talus
         const dealii::Particles::ParticleHandler<dim> &boundary,
         const unsigned int                             base_level) const;
 
+      /**
+       * The active cells that touch a face of a boundary of `refine at
+       * boundaries` and are near the material (class documentation), and
+       * how many of them are at the maximum level (offset by @p
+       * base_level), over all ranks. Collective.
+       */
+      std::pair<unsigned int, unsigned int>
+      boundary_face_cells_at_maximum_level(
+        const BackgroundGrid<dim>                     &grid,
+        const dealii::Particles::ParticleHandler<dim> &points,
+        const dealii::Particles::ParticleHandler<dim> &boundary,
+        const unsigned int                             base_level) const;
+
+      /**
+       * Reject (ExcInvalidInput naming `refine at boundaries`) a boundary
+       * id that no face of @p grid carries. Collective.
+       */
+      void
+      check_refined_boundaries(const BackgroundGrid<dim> &grid) const;
+
+      /** The grid boundary ids of `refine at boundaries` (sorted). */
+      const std::vector<dealii::types::boundary_id> &
+      refined_boundaries() const
+      {
+        return refine_boundaries;
+      }
+
+      /** `neighbour layers`. */
+      unsigned int
+      neighbour_layers() const
+      {
+        return layers;
+      }
+
+      /** `refine every steps`. */
+      unsigned int
+      refine_every() const
+      {
+        return every;
+      }
+
       /** The maximum level (counted from the background grid). */
       unsigned int
       maximum_level() const
@@ -116,6 +166,16 @@ namespace Talus
       }
 
     private:
+      /** Whether each active cell (by active cell index) is near the
+       * material (class documentation); owned cells only. Collective. */
+      std::vector<bool>
+      near_cells(const BackgroundGrid<dim>                     &grid,
+                 const dealii::Particles::ParticleHandler<dim> &points,
+                 const dealii::Particles::ParticleHandler<dim> &boundary) const;
+
+      /** `refine at boundaries`. */
+      std::vector<dealii::types::boundary_id> refine_boundaries;
+
       bool         enable                       = false;
       unsigned int min_level                    = 0;
       unsigned int max_level                    = 0;

@@ -48,6 +48,8 @@ namespace Talus
     {
       /** Whether the grid was repartitioned. */
       bool repartitioned = false;
+      /** Whether a pass of the adaptive grid changed the grid. */
+      bool adapted = false;
       /**
        * Imbalance of the material points before and after (the largest
        * rank's points over the mean; LoadBalancing::imbalance()) [-].
@@ -270,7 +272,9 @@ namespace Talus
       /**
        * With an adaptive grid and boundary particles: the grid's cells and
        * DoFs, the cells that hold boundary particles and how many of them
-       * are at the maximum level (one line; nothing otherwise).
+       * are at the maximum level (one line); with `refine at boundaries`
+       * the same for the cells at those faces that are near the material
+       * (one line; nothing otherwise).
        */
       void
       print_adaptive_grid(const dealii::ConditionalOStream &out) const;

@@ -264,6 +264,23 @@ namespace Talus
       boundary_reactions() const;
 
       /**
+       * The force balance of the boundary particles at the converged
+       * iterate of the last solve_step(), summed over all ranks
+       * (collective): first the sum of their forces on the grid's nodes
+       * that carry mass, assembled node by node (f_i = sum_p N_i(x_p) f_p)
+       * and condensed through the hanging-node constraints by deal.II
+       * (AffineConstraints::distribute_local_to_global), second the sum of
+       * their reactions boundary_reactions() (with material-point contact
+       * the pressed points' forces and reactions). The two add up to zero to
+       * round-off when the reactions are conservative: on a locally
+       * refined grid a hanging node passes its share c_hj N_h of a
+       * particle's force to its masters j, and the part that acts on the
+       * material is that of the masters with mass.
+       */
+      std::pair<dealii::Tensor<1, dim>, dealii::Tensor<1, dim>>
+      boundary_force_balance() const;
+
+      /**
        * The linearised response of boundary_reactions() to a change of the
        * boundary particles' prescribed increments, at the converged iterate
        * of the last solve_step() (the interface stiffness of a coupling).
@@ -1059,6 +1076,24 @@ namespace Talus
         for (const auto &e : *hanging_constraints.get_constraint_entries(dof))
           value += e.second * v(e.first);
         return value;
+      }
+
+      /**
+       * The share of a boundary force at node @p dof that acts on the
+       * material: 1 if the node carries mass, else 0; a hanging node h
+       * passes it to its masters j, sum_j c_hj [m_j > 0] (the nodal mass
+       * vector must be ghosted).
+       */
+      double
+      mass_share(const dealii::types::global_dof_index dof) const
+      {
+        if (!has_hanging_nodes || !hanging_constraints.is_constrained(dof))
+          return nodal_mass(dof) > 0. ? 1. : 0.;
+        double share = 0.;
+        for (const auto &e : *hanging_constraints.get_constraint_entries(dof))
+          if (nodal_mass(e.first) > 0.)
+            share += e.second;
+        return share;
       }
 
       /** Add the cell vector @p local to @p v, condensing hanging nodes. */
