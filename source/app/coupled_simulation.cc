@@ -460,6 +460,9 @@ namespace Talus
           << dealii::Utilities::MPI::n_mpi_processes(communicator)
           << " MPI rank(s)\n";
     mpm.print_summary(pcout);
+    if (!test_mode &&
+        dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+      std::cerr << mpm.solver().friction_at_rest_warning();
     if (!test_mode)
       pcout << "  " << mpm.memory_estimate().summary() << '\n';
     pcout << "  structure: model '" << sp.model_text << "' ("

@@ -528,6 +528,9 @@ namespace Talus
           << dealii::Utilities::MPI::n_mpi_processes(communicator)
           << " MPI rank(s)\n";
     problem.print_summary(pcout);
+    if (!test_mode &&
+        dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+      std::cerr << solver.friction_at_rest_warning();
     if (!test_mode)
       pcout << "  " << problem.memory_estimate().summary() << '\n'
             << "  time: end " << time_control.end_time << " s, step "

@@ -1264,21 +1264,28 @@ namespace Talus
                          "fail; set the ghost penalty factor (e.g. 1) or "
                          "'Nitsche symmetry' = -1."
                       << std::endl;
+    }
+
+
+    template <int dim>
+    std::string
+    MPMSolver<dim>::friction_at_rest_warning() const
+    {
       // Bodies meant to stay at rest on a frictional boundary slip and creep
       // in cut cells without numerical damping and the ghost penalty
       // (doc/verification.md, "A block at rest whatever the cut": 0 of 40
       // cuts at rest with Newmark gamma = 0.5 and no ghost penalty, 40 of
       // 40 with gamma = 0.6 and ghost penalty factor 1).
-      if (!quasi_static &&
-          (newmark.gamma <= 0.5 || ghost_penalty_factor == 0.) &&
-          dealii::Utilities::MPI::this_mpi_process(grid.mpi_communicator) == 0)
-        for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
-          if (boundaries.boundary(b).condition ==
-                Boundaries::Condition::friction &&
-              !boundaries.boundary(b).moving)
-            {
-              std::cerr
-                << "Warning: boundary " << boundaries.name(b)
+      if (boundary_particles == nullptr || quasi_static ||
+          (newmark.gamma > 0.5 && ghost_penalty_factor > 0.))
+        return "";
+      for (unsigned int b = 0; b < boundary_particles->n_boundaries(); ++b)
+        if (boundary_particles->boundary(b).condition ==
+              Boundaries::Condition::friction &&
+            !boundary_particles->boundary(b).moving)
+          {
+            std::ostringstream msg;
+            msg << "Warning: boundary " << boundary_particles->name(b)
                 << " holds material by Coulomb friction in a dynamic run "
                 << (newmark.gamma <= 0.5 ? "without numerical damping "
                                            "(Newmark gamma = 0.5)" :
@@ -1296,10 +1303,10 @@ namespace Talus
                    "both: 'Newmark gamma = 0.6', 'Newmark beta = 0.3025' in "
                    "subsection Time and 'ghost penalty factor = 1' in "
                    "subsection Solver; doc/verification.md, \"A block at "
-                   "rest whatever the cut\")."
-                << std::endl;
-              break;
-            }
+                   "rest whatever the cut\").\n";
+            return msg.str();
+          }
+      return "";
     }
 
 

@@ -422,6 +422,17 @@ namespace Talus
       void
       attach_boundary_particles(Boundaries::BoundaryParticles<dim> &boundaries);
 
+      /**
+       * A warning (with its newline), or an empty string: a dynamic run
+       * with a frictional boundary of particles at rest but without
+       * numerical damping (Newmark gamma = 0.5) or without the ghost
+       * penalty, where a body meant to stay at rest may slip and creep in
+       * cut cells (doc/verification.md, "A block at rest whatever the
+       * cut"). The time loops print it outside test mode.
+       */
+      std::string
+      friction_at_rest_warning() const;
+
     private:
       /** Material points of one cell with cached shape data. */
       struct CellCache
