@@ -131,8 +131,8 @@ namespace Talus
       }
       /**
        * The CPDI1 weights and gradients (convected particle domain
-       * interpolation; Sadeghirad, Brannon and Burghardt 2011, IJNME 86,
-       * §3-4) of a point whose domain is the parallelogram (2D) or
+       * interpolation; Sadeghirad, Brannon and Burghardt 2011, IJNME 86)
+       * of a point whose domain is the parallelogram (2D) or
        * parallelepiped (3D) x_p + R xi, xi in [-1, 1]^dim, spanned by the
        * half-vectors r_i, the columns of @p R [m] (r_i = F r_i^0). N_I is
        * replaced by its multilinear interpolant through the 2^dim corners
