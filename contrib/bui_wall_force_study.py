@@ -27,7 +27,8 @@ and one table row per grid and shape function:
 doc/verification.md, "Force on a rigid wall: uGIMP against linear".
 
 usage: contrib/bui_wall_force_study.py [--talus PATH] [--work DIR]
-       [--sizes 0.02 0.01 ...] [--reuse] [--plot PNG]
+       [--sizes 0.02 0.01 ...] [--shapes linear uGIMP ...] [--reuse]
+       [--plot PNG]
 """
 
 import argparse
@@ -127,6 +128,9 @@ def main():
     parser.add_argument("--work", default="bui_wall_force_study")
     parser.add_argument("--sizes", nargs="*", type=float,
                         default=[0.02, 0.01])
+    parser.add_argument("--shapes", nargs="*", default=["linear", "uGIMP"],
+                        help="shape functions to compare (linear, uGIMP, "
+                        "cpGIMP, CPDI)")
     parser.add_argument("--reuse", action="store_true",
                         help="report the runs already in the work "
                         "directory instead of running them again")
@@ -140,7 +144,7 @@ def main():
     print(header)
     histories = []
     for h in args.sizes:
-        for shape in ("linear", "uGIMP"):
+        for shape in args.shapes:
             out, log, _ = run(talus, work, h, shape, False, args.reuse)
             runout = float(re.search(r"runout L = ([0-9.eE+-]+) m",
                                      log).group(1))

@@ -22,9 +22,10 @@
 # from the acceleration of the forces ('start acceleration = from forces')
 # instead of the projected one; --shapes "linear uGIMP" chooses the shape
 # functions (default linear and uGIMP; also cpGIMP, 'cpGIMP domain stretch
-# = diagonal', and cpGIMP-box, 'bounding box'). For cpGIMP the table's
-# last column gives the share of point evaluations whose domain was capped
-# at the cell size.
+# = diagonal', cpGIMP-box, 'bounding box', and CPDI). For cpGIMP the
+# table's last column gives the share of point evaluations whose domain
+# was capped at the cell size, for CPDI of those whose parallelogram was
+# scaled down to keep its corners in the node patch and the grid.
 #
 # usage: bash contrib/cantilever_convergence.sh [path/to/talus] [levels] [options]
 set -euo pipefail
@@ -163,7 +164,7 @@ for s in shapes:
         per_it = '-' if not (its and steps and newton) else '%.1f' % (
             1000. * float(newton.group(2)) /
             (int(steps.group(1)) * float(its.group(1))))
-        cap = re.search(r'capped at the cell size: (\d+) of (\d+)', log)
+        cap = re.search(r'capped[^:\n]*: (\d+) of (\d+)', log)
         capped = '-' if cap is None else '%.2f %%' % (
             100. * int(cap.group(1)) / max(1, int(cap.group(2))))
         out = '%s/out-%s-%d' % (work, s, l)

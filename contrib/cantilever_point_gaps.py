@@ -10,7 +10,9 @@ spacing h/n, along X and along Y), their distance and the gap between
 their axis-aligned boxes: gap = max_i (|x_b,i - x_a,i| - l_a,i - l_b,i),
 positive when the boxes no longer touch, with the half-widths of the
 chosen shape functions (uGIMP: l0 = h/(2n); cpGIMP: |F_ii| l0; cpGIMP-box:
-sum_j |F_ij| l0; capped at h). Prints per time the largest gap (in cells)
+sum_j |F_ij| l0; capped at h); for CPDI the gap between the two
+parallelograms spanned by r_i = F e_i l0 along the line between the
+points: distance - sum over both points and i of |e . r_i|. Prints per time the largest gap (in cells)
 and its pair's undeformed position, the stretch of that pair (distance
 over the undeformed h/n) against the stretch of their own F along the
 pair (|F N| averaged over the two, N the undeformed direction), the number
@@ -18,7 +20,7 @@ of pairs with a gap, the largest neighbour distance (in cells) and the
 lowest point.
 
 usage: python3 contrib/cantilever_point_gaps.py TALUS SHAPE LEVEL T1,T2,... [DT [N]]
-       (SHAPE: linear, uGIMP, cpGIMP or cpGIMP-box; DT the time step,
+       (SHAPE: linear, uGIMP, cpGIMP, cpGIMP-box or CPDI; DT the time step,
        default that of the test, 0.01 s, or "-"; N points per cell per
        direction, default 2)
 """
@@ -84,7 +86,18 @@ for t in times:
                 continue
             xb, lb, Xb, Fb = points[nb]
             d = [abs(xb[k] - xa[k]) for k in range(2)]
-            gap = max(d[k] - la[k] - lb[k] for k in range(2))
+            if shape == 'CPDI':
+                # parallelograms spanned by r_i = F r_i^0: their gap along
+                # the line between the points (separating axis e), the
+                # distance minus the half-extents sum_i |e . r_i|
+                v = [xb[k] - xa[k] for k in range(2)]
+                dist = (v[0] ** 2 + v[1] ** 2) ** 0.5
+                e = [v[0] / dist, v[1] / dist]
+                ext = lambda F: l0 * (abs(e[0] * F[0] + e[1] * F[2]) +
+                                      abs(e[0] * F[1] + e[1] * F[3]))
+                gap = dist - ext(Fa) - ext(Fb)
+            else:
+                gap = max(d[k] - la[k] - lb[k] for k in range(2))
             far = max(far, (d[0] ** 2 + d[1] ** 2) ** 0.5 / h)
             if gap > 0.:
                 n_gaps += 1

@@ -10,7 +10,7 @@
 # log2(e_coarse / e_fine).
 #
 # A third argument chooses the shape functions (default "linear uGIMP";
-# also cpGIMP, and cpGIMP-box for 'cpGIMP domain stretch = bounding box').
+# also cpGIMP, cpGIMP-box for 'cpGIMP domain stretch = bounding box', and CPDI).
 #
 # usage: bash contrib/ugimp_convergence.sh [path/to/talus] [levels] [shapes]
 set -euo pipefail

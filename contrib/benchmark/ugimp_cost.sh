@@ -7,13 +7,17 @@
 # the wall time of the Newton solve and of its assembly and linear-solve
 # phases (TimerOutput) and the time per Newton iteration.
 #
-# usage: bash contrib/benchmark/ugimp_cost.sh [talus] [N2D] [N3D] [steps]
+# A fifth argument chooses the shape functions (default "linear uGIMP";
+# any of linear, uGIMP, cpGIMP, CPDI).
+#
+# usage: bash contrib/benchmark/ugimp_cost.sh [talus] [N2D] [N3D] [steps] [shapes]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 talus=$(readlink -f "${1:-$here/../../build/talus}")
 n2=${2:-48}
 n3=${3:-12}
 steps=${4:-10}
+shapes=${5:-linear uGIMP}
 dt=0.005
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -38,7 +42,7 @@ fill() { # dim n shape
 printf '| case | shape functions | steps | Newton it./step | Newton solve [s] | assembly [s] | linear solver + AMG setup [s] | per Newton it. [ms] |\n|---|---|---|---|---|---|---|---|\n'
 for dim in 2 3; do
   n=$n2; [ "$dim" = 3 ] && n=$n3
-  for shape in linear uGIMP; do
+  for shape in $shapes; do
     fill "$dim" "$n" "$shape" > "$work/b$dim-$shape.prm"
     (cd "$work" && "$talus" "b$dim-$shape.prm") > "$work/b$dim-$shape.log" 2>&1 || {
       echo "talus failed:"; tail -20 "$work/b$dim-$shape.log"; exit 1; }

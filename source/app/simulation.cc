@@ -1178,7 +1178,10 @@ namespace Talus
       {
         const auto capped = solver.capped_point_domains();
         if (!test_mode)
-          pcout << "  cpGIMP point domains capped at the cell size: "
+          pcout << (solver.shape_functions() == "CPDI" ?
+                      "  CPDI point domains scaled down to keep their "
+                      "corners in the node patch and the grid, capped: " :
+                      "  cpGIMP point domains capped at the cell size: ")
                 << capped.first << " of " << capped.second
                 << " point evaluations\n";
       }

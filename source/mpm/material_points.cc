@@ -954,8 +954,9 @@ namespace Talus
                             "the same number as in <" +
                               bodies.front().subsection + "> (" +
                               std::to_string(n) +
-                              ") with 'shape functions = uGIMP' or "
-                              "'cpGIMP', whose (initial) particle size "
+                              ") with 'shape functions = uGIMP', "
+                              "'cpGIMP' or 'CPDI', whose (initial) particle "
+                              "size "
                               "h/(2 n) is one for the grid");
       return n;
     }

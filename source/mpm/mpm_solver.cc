@@ -448,7 +448,7 @@ namespace Talus
         prm.declare_entry(
           "shape functions",
           "linear",
-          Patterns::Selection("linear|uGIMP|cpGIMP"),
+          Patterns::Selection("linear|uGIMP|cpGIMP|CPDI"),
           "Shape functions of the transfer between the material points and "
           "the grid and of the points' integration [-]. 'linear': the Q1 "
           "shape functions of the point's cell (standard MPM; a point that "
@@ -464,14 +464,24 @@ namespace Talus
           "the same box stretched by the point's "
           "deformation gradient F committed at the end of the last step "
           "('cpGIMP domain stretch'), frozen over a step and capped at the "
-          "cell size h. The weights "
+          "cell size h. 'CPDI' (convected particle domain interpolation, "
+          "CPDI1 of Sadeghirad, Brannon and Burghardt 2011, IJNME 86): the "
+          "point's domain is the parallelogram (parallelepiped in 3D) "
+          "spanned by r_i = F r_i^0, r_i^0 = l0 e_i the uGIMP half-widths, "
+          "with F committed at the end of the last step and frozen over a "
+          "step; the weight is the mean of the Q1 functions at its 2^dim "
+          "corners, the gradient the corner formula of the paper; a domain "
+          "whose corners would leave the 3^dim cells around the point's "
+          "cell or the grid is scaled down about the point until they do "
+          "not (counted in the run's final message). The weights "
           "and their gradients are continuous as a point crosses a face; a "
           "point influences the nodes of the 3^dim cells around its cell "
-          "(truncated at the grid's boundary), and Newton uses the GIMP "
+          "(truncated at the grid's boundary), and Newton uses these "
           "gradients in its consistent tangent. F-bar averages over the "
           "points of a cell, whose derivatives then reach the whole patch. "
           "Boundary particles (and material-point contact) act on the grid's "
-          "Q1 field at their location, as with 'linear'. uGIMP and cpGIMP: "
+          "Q1 field at their location, as with 'linear'. uGIMP, cpGIMP and "
+          "CPDI: "
           "Cartesian background grids only ('grid type = box'); not with "
           "grid friction boundaries, APIC or the ghost penalty.");
         prm.declare_entry(
@@ -591,6 +601,7 @@ namespace Talus
       shape_name           = prm.get("shape functions");
       gimp                 = shape_name != "linear";
       convected_domain     = shape_name == "cpGIMP";
+      cpdi                 = shape_name == "CPDI";
       domain_bounding_box  = prm.get("cpGIMP domain stretch") == "bounding box";
       shape_stride         = gimp ? (dim == 2 ? 16 : 64) : (1u << dim);
       if (!convected_domain && prm.get("cpGIMP domain stretch") != "diagonal")

@@ -188,6 +188,55 @@ namespace Talus
       // the Newton tangent is that of uGIMP), capped at h: beyond it the
       // point would reach nodes outside the 4^dim patch.
       const dealii::Tensor<1, dim> &h = grid.cell_extent;
+      if (cpdi)
+        {
+          // CPDI (internal::cpdi_weights()): the parallelogram
+          // (parallelepiped) spanned by r_i = F_n r_i^0, r_i^0 = l0_i e_i,
+          // with the committed F_n (frozen over the step, as cpGIMP: the
+          // weights stay functions of the start-of-step position and the
+          // tangent is unchanged); its corners are kept in the 3^dim cells
+          // around the point's cell (the patch) and in the grid by scaling
+          // the domain down.
+          using Properties = MaterialPointProperties<dim>;
+          std::vector<std::array<int, dim>> nodes(slot.size());
+          for (unsigned int j = 0; j < slot.size(); ++j)
+            for (unsigned int d = 0, rest = slot[j]; d < dim; ++d, rest /= 4)
+              nodes[j][d] = static_cast<int>(rest % 4) - 1;
+          dealii::Tensor<1, dim> lowest, highest; // in cell units
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lowest[d] = std::max(-1., -static_cast<double>(base[d]));
+              highest[d] =
+                std::min(2.,
+                         static_cast<double>(lattice_size[d] - 1 - base[d]));
+            }
+          for (unsigned int q = 0; q < reference_points.size(); ++q)
+            {
+              const auto props = particles[c.first + q]->get_properties();
+              const dealii::Tensor<2, dim> F =
+                read_tensor<dim>(props, Properties::deformation);
+              dealii::Tensor<2, dim> R;
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = 0; j < dim; ++j)
+                  R[i][j] = F[i][j] * gimp_half_width[j];
+              const std::size_t first = shape_values.size();
+              shape_values.resize(first + shape_stride, 0.);
+              shape_gradients.resize(first + shape_stride);
+              const double scale =
+                internal::cpdi_weights<dim>(reference_points[q],
+                                            R,
+                                            h,
+                                            lowest,
+                                            highest,
+                                            nodes,
+                                            &shape_values[first],
+                                            &shape_gradients[first]);
+              ++n_domain_evaluations;
+              if (scale < 1. - 1e-12)
+                ++n_capped_domains;
+            }
+          return;
+        }
       for (unsigned int q = 0; q < reference_points.size(); ++q)
         {
           const auto            &xi = reference_points[q];

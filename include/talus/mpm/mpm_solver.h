@@ -231,17 +231,27 @@ namespace Talus
         return n_ghost_faces;
       }
 
-      /** Whether 'shape functions = cpGIMP' (convected point domains). */
+      /**
+       * Whether 'shape functions = cpGIMP' or 'CPDI' (convected point
+       * domains).
+       */
       bool
       convected_point_domains() const
       {
-        return convected_domain;
+        return convected_domain || cpdi;
+      }
+      /** The chosen 'shape functions' (linear, uGIMP, cpGIMP or CPDI). */
+      const std::string &
+      shape_functions() const
+      {
+        return shape_name;
       }
       /**
        * cpGIMP: the point evaluations (one per point and prepared step,
        * rejected attempts included) whose half-width reached the cap, the
-       * cell size, in some direction, and all evaluations, summed over the
-       * ranks (collective).
+       * cell size, in some direction; CPDI: those whose domain was scaled
+       * down to keep its corners in the 4^dim node patch and the grid;
+       * and all evaluations, summed over the ranks (collective).
        */
       std::pair<unsigned long long, unsigned long long>
       capped_point_domains() const;
@@ -727,7 +737,7 @@ namespace Talus
         CellCache                             &c);
 
       /**
-       * uGIMP and cpGIMP: check the grid, fill lattice_dofs and the
+       * uGIMP, cpGIMP and CPDI: check the grid, fill lattice_dofs and the
        * (initial) half-widths.
        */
       void
@@ -1208,7 +1218,20 @@ namespace Talus
        * diagonal, l_i = |F_ii| l0_i (Wallstedt and Guilkey 2008).
        */
       bool domain_bounding_box = false;
-      /** The chosen 'shape functions' (uGIMP or cpGIMP, for messages). */
+      /**
+       * 'shape functions = CPDI' (convected particle domain interpolation,
+       * CPDI1 of Sadeghirad, Brannon and Burghardt 2011, IJNME 86): the
+       * point's domain is the parallelogram (parallelepiped in 3D) spanned
+       * by r_i = F_n r_i^0, r_i^0 = l0_i e_i, frozen over a step; the
+       * weights average the Q1 functions over its 2^dim corners. Uses the
+       * uGIMP patch (gimp is true with it); corners are kept in the patch
+       * and the grid by scaling the domain down (internal::cpdi_weights()).
+       */
+      bool cpdi = false;
+      /**
+       * The chosen 'shape functions' (uGIMP, cpGIMP or CPDI, for
+       * messages).
+       */
       std::string shape_name = "linear";
       /**
        * cpGIMP: point-steps whose half-width reached the cap h in some
