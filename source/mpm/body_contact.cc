@@ -170,8 +170,19 @@ namespace Talus
       const auto        &owned    = grid.locally_owned_dofs;
       const auto        &relevant = grid.locally_relevant_dofs;
 
-      // mass gradients sum_p m_p grad N_I(x_p) at the nodes, on the dofs
-      // of field b: they point out of body b (Bardenhagen et al. 2000)
+      // the current volume V_0 det F of point k
+      const auto point_volume = [this](const unsigned int k) {
+        const auto             props = particles[k]->get_properties();
+        dealii::Tensor<2, dim> F;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            F[i][j] = props[Properties::deformation + i * dim + j];
+        return props[Properties::initial_volume] * dealii::determinant(F);
+      };
+
+      // volume gradients sum_p V_p grad N_I(x_p) at the nodes, on the dofs
+      // of field b: they point out of body b (Bardenhagen et al. 2000;
+      // volumes rather than masses, Nairn 2013: independent of density)
       dealii::TrilinosWrappers::MPI::Vector gradient(owned, comm);
       dealii::Vector<double>                g_local(dim * n_nodes);
       for (const auto &c : cells)
@@ -179,13 +190,13 @@ namespace Talus
           g_local.reinit(c.dofs.size());
           for (unsigned int q = 0; q < c.n; ++q)
             {
-              const unsigned int k = c.first + q;
-              const double m = particles[k]->get_properties()[Properties::mass];
+              const unsigned int k      = c.first + q;
+              const double       volume = point_volume(k);
               for (unsigned int i = 0; i < c.dofs.size(); ++i)
                 {
                   const auto ci = internal::component_and_node<dim>(i);
                   g_local[i] +=
-                    m * shape_gradients[k * n_nodes + ci.second][ci.first];
+                    volume * shape_gradients[k * n_nodes + ci.second][ci.first];
                 }
             }
           gradient.add(c.dofs, g_local);
@@ -220,18 +231,26 @@ namespace Talus
             for (unsigned int a = 0; a < n_fields; ++a)
               for (unsigned int b = a + 1; b < n_fields; ++b)
                 {
-                  if (!(nodal_mass(dof(c.cell, v, a, 0)) > 0.) ||
-                      !(nodal_mass(dof(c.cell, v, b, 0)) > 0.))
+                  const double m_a = nodal_mass(dof(c.cell, v, a, 0));
+                  const double m_b = nodal_mass(dof(c.cell, v, b, 0));
+                  if (!(m_a > 0.) || !(m_b > 0.))
                     continue;
                   Pair p;
                   p.a = a;
                   p.b = b;
+                  // the normal of the body with the larger volume gradient
+                  // (Nairn 2013): a body's gradient is exact inside a flat
+                  // face and tilted at its corners, where the other's is
+                  // not (a block on a wider base)
+                  dealii::Tensor<1, dim> g_a, g_b;
                   for (unsigned int d = 0; d < dim; ++d)
                     {
                       p.dofs_a[d] = dof(c.cell, v, a, d);
                       p.dofs_b[d] = dof(c.cell, v, b, d);
-                      p.normal[d] = grad(p.dofs_a[d]) - grad(p.dofs_b[d]);
+                      g_a[d]      = grad(p.dofs_a[d]);
+                      g_b[d]      = grad(p.dofs_b[d]);
                     }
+                  p.normal          = g_a.norm() >= g_b.norm() ? g_a : -g_b;
                   const double norm = p.normal.norm();
                   if (!(norm > 0.))
                     continue;
@@ -265,17 +284,9 @@ namespace Talus
                       relevant.index_within_set(dof(c.cell, v, field, 0));
                     for (unsigned int q = 0; q < c.n; ++q)
                       {
-                        const unsigned int k = c.first + q;
-                        const auto props     = particles[k]->get_properties();
-                        dealii::Tensor<2, dim> F;
-                        for (unsigned int i = 0; i < dim; ++i)
-                          for (unsigned int j = 0; j < dim; ++j)
-                            F[i][j] =
-                              props[Properties::deformation + i * dim + j];
-                        const double volume =
-                          props[Properties::initial_volume] *
-                          dealii::determinant(F);
-                        const double l =
+                        const unsigned int k      = c.first + q;
+                        const double       volume = point_volume(k);
+                        const double       l =
                           0.5 * std::pow(std::max(volume, 0.), 1. / dim);
                         const double xn    = particles[k]->get_location() * n;
                         const double value = field == a ? xn + l : -(xn - l);
