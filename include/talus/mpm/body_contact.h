@@ -19,9 +19,10 @@ namespace Talus
      * grid (Bardenhagen, Brackbill and Sulsky 2000, CMAME 187, 529-541),
      * the grid element becomes FE_Q(1)^(dim n_bodies) and the points of
      * body b assemble only into field b. At a node where bodies a and b
-     * both carry mass the contact normal is the average of the bodies'
-     * outward normals, n = (g_a - g_b) / |g_a - g_b| (from a to b) with the
-     * nodal mass gradients g_b = sum_{p in b} m_p grad N_I(x_p), and
+     * both carry mass the contact normal (from a to b) is the outward
+     * normal of the body with the larger nodal volume gradient g_b =
+     * sum_{p in b} V_p grad N_I(x_p) (Nairn 2013): g_a / |g_a| or
+     * -g_b / |g_b|, and
      * the normal gap is measured from the points' domains (Nairn 2013,
      * CMES 92, 271-299, separation from the particles rather than from the
      * nodal velocities): g_0 = min_{p in b} (x_p . n - l_p) - max_{p in a}
