@@ -214,11 +214,14 @@ namespace Talus
       // The pairs of bodies at the nodes of this rank's cells with points
       // (the same on every rank that sees the node): the key is the dof
       // of component 0 of field a; the normal from a to b.
+      constexpr unsigned int n_candidates = 3;
       struct Pair
       {
         unsigned int                                     a, b;
-        dealii::Tensor<1, dim>                           normal;
+        std::array<dealii::Tensor<1, dim>, n_candidates> normals;
         std::array<dealii::types::global_dof_index, dim> dofs_a, dofs_b;
+        /** The candidate of the larger volume gradient. */
+        unsigned int preferred = 0;
       };
       std::map<std::pair<dealii::types::global_dof_index, unsigned int>, Pair>
                                                 pairs;
@@ -238,10 +241,13 @@ namespace Talus
                   Pair p;
                   p.a = a;
                   p.b = b;
-                  // the normal of the body with the larger volume gradient
-                  // (Nairn 2013): a body's gradient is exact inside a flat
-                  // face and tilted at its corners, where the other's is
-                  // not (a block on a wider base)
+                  // candidate normals: the outward normal of body a, minus
+                  // that of body b, and their average (Nairn 2013's
+                  // options); the one along which the bodies' domains are
+                  // separated most is taken below. A body's gradient is
+                  // exact inside a flat face but tilts at its corners and
+                  // where its points cross cells; along a tilted normal the
+                  // domains overlap.
                   dealii::Tensor<1, dim> g_a, g_b;
                   for (unsigned int d = 0; d < dim; ++d)
                     {
@@ -250,24 +256,30 @@ namespace Talus
                       g_a[d]      = grad(p.dofs_a[d]);
                       g_b[d]      = grad(p.dofs_b[d]);
                     }
-                  p.normal          = g_a.norm() >= g_b.norm() ? g_a : -g_b;
-                  const double norm = p.normal.norm();
-                  if (!(norm > 0.))
+                  if (!(g_a.norm() > 0.) || !(g_b.norm() > 0.))
                     continue;
-                  p.normal /= norm;
+                  p.normals[0] = g_a / g_a.norm();
+                  p.normals[1] = -g_b / g_b.norm();
+                  p.normals[2] = p.normals[0] + p.normals[1];
+                  if (!(p.normals[2].norm() > 1e-12))
+                    p.normals[2] = p.normals[0];
+                  p.normals[2] /= p.normals[2].norm();
+                  p.preferred             = g_a.norm() >= g_b.norm() ? 0 : 1;
                   pairs[{p.dofs_a[0], b}] = p;
                 }
           }
 
-      // The extremes of the points' domains along the normal, per pair:
-      // on dof a_0 the largest x.n + l of body a, on dof b_0 the largest
-      // -(x.n - l) of body b, over the points whose cell holds the node.
+      // The extremes of the points' domains along each candidate normal,
+      // per pair: on dof a_0 the largest x.n + l of body a, on dof b_0 the
+      // largest -(x.n - l) of body b, over the points whose cell holds the
+      // node.
       const double lowest = -std::numeric_limits<double>::max();
       for (unsigned int a = 0; a < n_fields; ++a)
         for (unsigned int b = a + 1; b < n_fields; ++b)
           {
-            std::vector<double> local(relevant.n_elements(), lowest);
-            bool                any = false;
+            std::vector<std::vector<double>> local(
+              n_candidates, std::vector<double>(relevant.n_elements(), lowest));
+            bool any = false;
             for (const auto &c : cells)
               {
                 const unsigned int field = c.field;
@@ -278,9 +290,8 @@ namespace Talus
                     const auto it = pairs.find({dof(c.cell, v, a, 0), b});
                     if (it == pairs.end())
                       continue;
-                    any                             = true;
-                    const dealii::Tensor<1, dim> &n = it->second.normal;
-                    const auto                    slot =
+                    any = true;
+                    const auto slot =
                       relevant.index_within_set(dof(c.cell, v, field, 0));
                     for (unsigned int q = 0; q < c.n; ++q)
                       {
@@ -288,35 +299,55 @@ namespace Talus
                         const double       volume = point_volume(k);
                         const double       l =
                           0.5 * std::pow(std::max(volume, 0.), 1. / dim);
-                        const double xn    = particles[k]->get_location() * n;
-                        const double value = field == a ? xn + l : -(xn - l);
-                        local[slot]        = std::max(local[slot], value);
+                        for (unsigned int i = 0; i < n_candidates; ++i)
+                          {
+                            const double xn = particles[k]->get_location() *
+                                              it->second.normals[i];
+                            const double value =
+                              field == a ? xn + l : -(xn - l);
+                            local[i][slot] = std::max(local[i][slot], value);
+                          }
                       }
                   }
               }
             if (!dealii::Utilities::MPI::logical_or(any, comm))
               continue;
-            const auto result = max_to_owners(owned, relevant, local, comm);
+            std::vector<std::vector<double>> result(n_candidates);
+            for (unsigned int i = 0; i < n_candidates; ++i)
+              result[i] = max_to_owners(owned, relevant, local[i], comm);
             for (const auto &entry : pairs)
               {
                 const Pair &p = entry.second;
                 if (p.a != a || p.b != b || !owned.is_element(p.dofs_a[0]))
                   continue;
-                const double top_a =
-                  result[owned.index_within_set(p.dofs_a[0])];
-                const double top_b =
-                  result[owned.index_within_set(p.dofs_b[0])];
-                if (top_a <= lowest || top_b <= lowest)
+                // the normal of the larger volume gradient (Nairn 2013),
+                // unless another candidate separates the domains by more
+                // than 5 % of the cell diameter (the preferred one is
+                // tilted: its domains overlap)
+                const auto gap = [&](const unsigned int i) {
+                  const double top_a =
+                    result[i][owned.index_within_set(p.dofs_a[0])];
+                  const double top_b =
+                    result[i][owned.index_within_set(p.dofs_b[0])];
+                  return (top_a <= lowest || top_b <= lowest) ? lowest :
+                                                                -top_b - top_a;
+                };
+                const double tolerance = 0.05 * grid.minimal_cell_diameter;
+                unsigned int best      = p.preferred;
+                for (unsigned int i = 0; i < n_candidates; ++i)
+                  if (gap(i) > gap(best) + tolerance)
+                    best = i;
+                if (gap(best) <= lowest)
                   continue;
                 ContactNode node;
+                node.gap    = gap(best);
+                node.normal = p.normals[best];
                 for (unsigned int d = 0; d < dim; ++d)
                   {
                     node.dofs.push_back(p.dofs_a[d]);
                   }
                 for (unsigned int d = 0; d < dim; ++d)
                   node.dofs.push_back(p.dofs_b[d]);
-                node.normal = p.normal;
-                node.gap    = -top_b - top_a;
                 node.stiffness =
                   body_penalty *
                   std::min(nodal_mass(p.dofs_a[0]), nodal_mass(p.dofs_b[0])) *
