@@ -21,8 +21,10 @@ namespace Talus
      * body b assemble only into field b. At a node where bodies a and b
      * both carry mass the contact normal (from a to b) is the outward
      * normal of the body with the larger nodal volume gradient g_b =
-     * sum_{p in b} V_p grad N_I(x_p) (Nairn 2013): g_a / |g_a| or
-     * -g_b / |g_b|, and
+     * sum_{p in b} V_p grad N_I(x_p) (Nairn 2013), g_a / |g_a| or
+     * -g_b / |g_b|, unless the other or their normalised sum separates
+     * the bodies' point domains by more than 5 % of the cell diameter
+     * (a gradient tilted by points crossing a cell), and
      * the normal gap is measured from the points' domains (Nairn 2013,
      * CMES 92, 271-299, separation from the particles rather than from the
      * nodal velocities): g_0 = min_{p in b} (x_p . n - l_p) - max_{p in a}
