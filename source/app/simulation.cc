@@ -521,7 +521,8 @@ namespace Talus
                     communicator,
                     names,
                     time_control.error_control.enabled(),
-                    problem.points().n_bodies());
+                    problem.points().n_bodies(),
+                    problem.solver().multi_velocity_field());
       }
 
     pcout << "Talus: " << dim << "D implicit MPM, "
@@ -768,7 +769,8 @@ namespace Talus
         series.resume(output.directory() + "/time_series.csv",
                       communicator,
                       resume_path + "/time_series.csv",
-                      time_control.error_control.enabled());
+                      time_control.error_control.enabled(),
+                      problem.solver().multi_velocity_field());
         output.write_index(communicator);
         pcout << "  resumed from " << resume_path << " at step "
               << time_control.step << ", t = " << time_control.time << " s\n";
@@ -1087,6 +1089,10 @@ namespace Talus
           pcout << ' ' << round(final_state.momentum[d]);
         pcout << "\n  kinetic energy: " << round(final_state.kinetic_energy)
               << "\n  strain energy: " << round(final_state.strain_energy);
+        if (problem.solver().multi_velocity_field())
+          pcout << "\n  body contact dissipation: "
+                << round(final_state.body_contact_dissipation)
+                << " J, nodes in contact: " << final_state.body_contact_nodes;
         for (unsigned int b = 0; b < final_state.body_mass.size(); ++b)
           {
             pcout << "\n  body " << b + 1 << ": mass "

@@ -16,11 +16,13 @@ namespace Talus
                           const MPI_Comm                  communicator,
                           const std::vector<std::string> &boundary_names,
                           const bool                      error_column,
-                          const unsigned int              n_bodies)
+                          const unsigned int              n_bodies,
+                          const bool                      body_contact_columns)
     {
-      with_error = error_column;
-      is_root    = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
-      file_name  = filename;
+      with_error        = error_column;
+      with_body_contact = body_contact_columns;
+      is_root   = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+      file_name = filename;
       if (is_root)
         file.open(filename);
       const int ok =
@@ -57,6 +59,8 @@ namespace Talus
                  << "xyz"[d];
           file << ',' << body << "_kinetic_energy," << body << "_strain_energy";
         }
+      if (with_body_contact)
+        file << ",body_contact_dissipation,body_contact_nodes";
       if (with_error)
         file << ",error_estimate";
       file << '\n';
@@ -90,12 +94,14 @@ namespace Talus
     TimeSeries<dim>::resume(const std::string &filename,
                             const MPI_Comm     communicator,
                             const std::string &saved,
-                            const bool         error_column)
+                            const bool         error_column,
+                            const bool         body_contact_columns)
     {
-      with_error = error_column;
-      is_root    = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
-      file_name  = filename;
-      int ok     = 1;
+      with_error        = error_column;
+      with_body_contact = body_contact_columns;
+      is_root   = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
+      file_name = filename;
+      int ok    = 1;
       if (is_root)
         {
           file.close();
@@ -166,6 +172,9 @@ namespace Talus
           file << ',' << d.body_kinetic_energy[b] << ','
                << d.body_strain_energy[b];
         }
+      if (with_body_contact)
+        file << ',' << d.body_contact_dissipation << ','
+             << d.body_contact_nodes;
       if (with_error)
         file << ',' << error;
       file << '\n';

@@ -142,15 +142,26 @@ namespace Talus
                                    "subdomain",
                                    dealii::DataOut<dim>::type_cell_data);
           if (grid_velocity != nullptr && grid_velocity->size() > 0)
-            grid_out.add_data_vector(
-              *grid_velocity,
-              std::vector<std::string>(dim, "grid_velocity"),
-              dealii::DataOut<dim>::type_dof_data,
-              std::vector<dealii::DataComponentInterpretation::
-                            DataComponentInterpretation>(
-                dim,
-                dealii::DataComponentInterpretation::
-                  component_is_part_of_vector));
+            {
+              // one vector per velocity field (multi-velocity-field
+              // contact: grid_velocity_1, _2, ... per body)
+              const unsigned int       n_fields = grid.n_velocity_fields();
+              std::vector<std::string> names;
+              for (unsigned int f = 0; f < n_fields; ++f)
+                for (unsigned int d = 0; d < dim; ++d)
+                  names.push_back(n_fields == 1 ?
+                                    std::string("grid_velocity") :
+                                    "grid_velocity_" + std::to_string(f + 1));
+              grid_out.add_data_vector(
+                *grid_velocity,
+                names,
+                dealii::DataOut<dim>::type_dof_data,
+                std::vector<dealii::DataComponentInterpretation::
+                              DataComponentInterpretation>(
+                  dim * n_fields,
+                  dealii::DataComponentInterpretation::
+                    component_is_part_of_vector));
+            }
           grid_out.build_patches();
         }
 

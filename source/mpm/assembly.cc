@@ -691,6 +691,10 @@ namespace Talus
             constraints.distribute_local_to_global(r_local, c.dofs, residual);
         }
 
+      // Multi-velocity field: contact between the bodies' fields.
+      if (ok)
+        assemble_body_contact(du, with_matrix);
+
       // Ghost penalty: linear in the increment, r = -K_g du.
       for (const auto &g : ghost_faces)
         {

@@ -420,10 +420,39 @@ namespace Talus
     void
     BackgroundGrid<dim>::setup_dofs()
     {
-      dof_handler.distribute_dofs(fe);
+      dof_handler.distribute_dofs(system_fe());
       locally_owned_dofs = dof_handler.locally_owned_dofs();
       dealii::DoFTools::extract_locally_relevant_dofs(dof_handler,
                                                       locally_relevant_dofs);
+    }
+
+
+    template <int dim>
+    void
+    BackgroundGrid<dim>::set_velocity_fields(const unsigned int n)
+    {
+      AssertThrow(n >= 1, dealii::ExcInternalError());
+      n_fields = n;
+      if (n == 1)
+        multi_field_fe.reset();
+      else
+        multi_field_fe =
+          std::make_unique<dealii::FESystem<dim>>(dealii::FE_Q<dim>(1),
+                                                  dim * n);
+    }
+
+
+    template <int dim>
+    dealii::ComponentMask
+    BackgroundGrid<dim>::component_mask(
+      const std::vector<bool> &directions) const
+    {
+      AssertDimension(directions.size(), dim);
+      std::vector<bool> mask(dim * n_fields, false);
+      for (unsigned int f = 0; f < n_fields; ++f)
+        for (unsigned int d = 0; d < dim; ++d)
+          mask[f * dim + d] = directions[d];
+      return dealii::ComponentMask(mask);
     }
 
 

@@ -113,11 +113,13 @@ namespace Talus
         dealii::Utilities::MPI::sum(d.gravitational_energy, comm);
       d.plastic_dissipation =
         dealii::Utilities::MPI::sum(d.plastic_dissipation, comm);
-      d.volume                 = dealii::Utilities::MPI::sum(d.volume, comm);
-      d.friction_dissipation   = accounts.friction_dissipation;
-      d.reset_dissipation      = accounts.reset_dissipation;
-      d.transfer_dissipation   = accounts.transfer_dissipation;
-      d.integrator_dissipation = accounts.integrator_dissipation;
+      d.volume                   = dealii::Utilities::MPI::sum(d.volume, comm);
+      d.friction_dissipation     = accounts.friction_dissipation;
+      d.reset_dissipation        = accounts.reset_dissipation;
+      d.transfer_dissipation     = accounts.transfer_dissipation;
+      d.integrator_dissipation   = accounts.integrator_dissipation;
+      d.body_contact_dissipation = accounts.body_contact_dissipation;
+      d.body_contact_nodes       = n_active_contact_nodes;
       d.boundary_friction_dissipation = accounts.boundary_friction_dissipation;
       d.contact_force                 = contact_force;
       if (grid_kinetic_energy >= 0.)

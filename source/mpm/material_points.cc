@@ -130,9 +130,11 @@ namespace Talus
               std::to_string(max_bodies) +
               ": this subsection is body 1, subsections 'Body 2' ... "
               "'Body N' (the same parameters) the others. Each body has "
-              "its own material ('material') and initial velocity; all "
-              "share the background grid and its one velocity field, so "
-              "bodies that meet stick together (standard MPM contact). Box "
+              "its own material ('material') and initial velocity; by "
+              "default all share the background grid and its one velocity "
+              "field, so bodies that meet stick together (standard MPM "
+              "contact; subsection Body contact for one velocity field per "
+              "body with separation and friction). Box "
               "and polygon bodies must not overlap. With N > 1 the points "
               "carry a property 'body' (0 for body 1, 1 for body 2, ...).");
         prm.declare_entry(

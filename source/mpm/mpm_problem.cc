@@ -45,6 +45,7 @@ namespace Talus
       LoadBalancing<dim>::declare_parameters(prm);
       AdaptiveGrid<dim>::declare_parameters(prm);
       MemoryEstimate<dim>::declare_parameters(prm);
+      BodyContact::declare_parameters(prm);
     }
 
 
@@ -84,7 +85,13 @@ namespace Talus
           memory.parse_parameters(prm, communicator, refinement, n_history);
           memory.check(prm);
         }
+      // contact between bodies: one grid velocity field per body or one
+      // for all (the grid's element depends on it)
+      BodyContact body_contact;
+      body_contact.parse_parameters(prm, body_materials.size());
       background_grid = std::make_unique<BackgroundGrid<dim>>(communicator);
+      if (body_contact.multi_velocity_field)
+        background_grid->set_velocity_fields(body_materials.size());
       background_grid->parse_parameters_and_create(prm);
       if (!box_grid)
         {
@@ -101,6 +108,13 @@ namespace Talus
       // the adaptive grid starts at its finest level (setup() coarsens)
       adaptive.parse_parameters(prm);
       adaptive.check_refined_boundaries(*background_grid);
+      if (body_contact.multi_velocity_field && adaptive.enabled())
+        InputFile::reject("Body contact",
+                          "contact",
+                          "multi-velocity field",
+                          "an adaptive background grid (subsection Adaptive "
+                          "grid, 'enable = true') is not implemented with "
+                          "it; use 'single velocity field' or a uniform grid");
       base_refinement = refinement;
       const unsigned int total_level =
         refinement + adaptive.initial_refinement();
@@ -142,6 +156,7 @@ namespace Talus
                                                     newmark,
                                                     timer);
       mpm_solver->parse_parameters(prm);
+      mpm_solver->set_body_contact(body_contact);
       if (body_materials.size() > 1)
         {
           std::vector<const Materials::ConstitutiveModel *> models;
@@ -153,6 +168,14 @@ namespace Talus
       boundary_particles =
         std::make_unique<Boundaries::BoundaryParticles<dim>>(*background_grid);
       boundary_particles->parse_parameters(prm);
+      if (body_contact.multi_velocity_field &&
+          boundary_particles->n_boundaries() > 0)
+        InputFile::reject("Body contact",
+                          "contact",
+                          "multi-velocity field",
+                          "boundaries of boundary particles are not "
+                          "implemented with it; use grid boundaries (fixed "
+                          "or slip) or 'single velocity field'");
       balancing.parse_parameters(prm);
     }
 

@@ -717,7 +717,9 @@ namespace Talus
       fixed_dofs = dealii::IndexSet(dof_handler.n_dofs());
       if (!grid.fixed_boundaries.empty())
         fixed_dofs = dealii::DoFTools::extract_boundary_dofs(
-          dof_handler, dealii::ComponentMask(dim, true), grid.fixed_boundaries);
+          dof_handler,
+          grid.component_mask(std::vector<bool>(dim, true)),
+          grid.fixed_boundaries);
       if (grid.fixed_region_given)
         {
           // every grid node inside the fixed region, on the boundary or not
@@ -734,7 +736,8 @@ namespace Talus
             if (!cell->is_artificial())
               for (const unsigned int v : cell->vertex_indices())
                 if (inside(cell->vertex(v)))
-                  for (unsigned int d = 0; d < dim; ++d)
+                  for (unsigned int d = 0; d < dim * grid.n_velocity_fields();
+                       ++d)
                     dofs.push_back(cell->vertex_dof_index(v, d));
           std::sort(dofs.begin(), dofs.end());
           dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
@@ -786,8 +789,9 @@ namespace Talus
                               "boundaries; boundary " +
                                 std::to_string(id) + " is not axis aligned");
           std::set<dealii::types::boundary_id> ids{id};
-          dealii::ComponentMask                mask(dim, false);
-          mask.set(axis, true);
+          std::vector<bool>                    directions(dim, false);
+          directions[axis]                 = true;
+          const dealii::ComponentMask mask = grid.component_mask(directions);
           slip_dofs[axis].add_indices(
             dealii::DoFTools::extract_boundary_dofs(dof_handler, mask, ids));
         }
@@ -804,7 +808,7 @@ namespace Talus
         owned_support_points.resize(grid.locally_owned_dofs.n_elements());
         owned_components.resize(grid.locally_owned_dofs.n_elements());
         std::vector<dealii::types::global_dof_index> dofs(
-          grid.fe.dofs_per_cell);
+          grid.system_fe().dofs_per_cell);
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())
             {
@@ -817,13 +821,14 @@ namespace Talus
                     owned_support_points[k] =
                       dealii::Point<dim>(points[dofs[i]] - centre);
                     owned_components[k] =
-                      grid.fe.system_to_component_index(i).first;
+                      grid.system_fe().system_to_component_index(i).first % dim;
                   }
             }
       }
-      dealii::DoFTools::extract_constant_modes(dof_handler,
-                                               dealii::ComponentMask(dim, true),
-                                               constant_modes);
+      dealii::DoFTools::extract_constant_modes(
+        dof_handler,
+        dealii::ComponentMask(grid.system_fe().n_components(), true),
+        constant_modes);
       setup_friction_nodes();
     }
 
@@ -1002,6 +1007,7 @@ namespace Talus
       dt   = step;
       cache_particles();
       project_to_grid();
+      prepare_body_contact();
       acceleration_p2g = acceleration_n;
       // the initial acceleration's projection (zero step) is not a step
       p2g_current = !initializing;
@@ -1106,6 +1112,7 @@ namespace Talus
       add(cells);
       add(boundary_cells);
       add(ghost_faces);
+      add(contact_nodes);
       const bool changed = dealii::Utilities::MPI::logical_or(
         !pattern_current || blocks != pattern_blocks, grid.mpi_communicator);
       // The saddle-point factorisation and the preconditioner are built
@@ -1154,6 +1161,8 @@ namespace Talus
         add_block(c.dofs);
       for (const auto &g : ghost_faces)
         add_block(g.dofs);
+      for (const auto &n : contact_nodes)
+        add_block(n.dofs);
       dealii::SparsityTools::distribute_sparsity_pattern(
         dsp,
         grid.locally_owned_dofs,

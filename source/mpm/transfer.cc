@@ -75,6 +75,11 @@ namespace Talus
             const unsigned int n = handler.n_particles_in_cell(tria_cell);
             if (n == 0)
               continue;
+            if (multi_field)
+              {
+                cache_cell_per_body(cell);
+                continue;
+              }
             CellCache c;
             c.cell  = cell;
             c.first = particles.size();
@@ -132,6 +137,83 @@ namespace Talus
             cells.push_back(std::move(c));
           }
       (void)Properties::mass;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::cache_cell_per_body(
+      const typename dealii::DoFHandler<dim>::active_cell_iterator &cell)
+    {
+      // (multi-velocity field: linear shape functions, checked)
+      auto              &handler = points.particle_handler();
+      const auto        &base    = grid.fe.base_element(0);
+      const unsigned int n_nodes = base.dofs_per_cell;
+      const auto        &system  = grid.system_fe();
+      const typename dealii::Triangulation<dim>::active_cell_iterator tria_cell(
+        cell);
+      std::vector<dealii::types::global_dof_index> all(system.dofs_per_cell);
+      cell->get_dof_indices(all);
+      for (unsigned int b = 0; b < grid.n_velocity_fields(); ++b)
+        {
+          std::vector<typename dealii::Particles::ParticleIterator<dim>> mine;
+          for (auto p = handler.particles_in_cell(tria_cell).begin();
+               p != handler.particles_in_cell(tria_cell).end();
+               ++p)
+            if (points.body_of(p->get_properties()) == b)
+              mine.push_back(p);
+          if (mine.empty())
+            continue;
+          CellCache c;
+          c.cell  = cell;
+          c.first = particles.size();
+          c.n     = mine.size();
+          c.field = b;
+          c.dofs.resize(grid.fe.dofs_per_cell);
+          for (unsigned int i = 0; i < c.dofs.size(); ++i)
+            {
+              const auto ci = internal::component_and_node<dim>(i);
+              c.dofs[i] =
+                all[system.component_to_system_index(b * dim + ci.first,
+                                                     ci.second)];
+            }
+          std::vector<dealii::Point<dim>> reference_points;
+          for (const auto &p : mine)
+            {
+              particles.push_back(p);
+              reference_points.push_back(p->get_reference_location());
+            }
+          if (grid.is_cartesian)
+            {
+              dealii::Tensor<1, dim> h = grid.cell_extent;
+              for (const auto &xi : reference_points)
+                for (unsigned int k = 0; k < n_nodes; ++k)
+                  {
+                    shape_values.push_back(base.shape_value(k, xi));
+                    dealii::Tensor<1, dim> g = base.shape_grad(k, xi);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      g[d] /= h[d];
+                    shape_gradients.push_back(g);
+                  }
+            }
+          else
+            {
+              const dealii::Quadrature<dim> quadrature(reference_points);
+              dealii::FEValues<dim>         fe_values(grid.mapping,
+                                              base,
+                                              quadrature,
+                                              dealii::update_values |
+                                                dealii::update_gradients);
+              fe_values.reinit(tria_cell);
+              for (unsigned int q = 0; q < c.n; ++q)
+                for (unsigned int k = 0; k < n_nodes; ++k)
+                  {
+                    shape_values.push_back(fe_values.shape_value(k, q));
+                    shape_gradients.push_back(fe_values.shape_grad(k, q));
+                  }
+            }
+          cells.push_back(std::move(c));
+        }
     }
 
 
@@ -470,6 +552,7 @@ namespace Talus
       warm_start = false;
       last_increment.clear();
       commit_friction_states();
+      commit_body_contact();
       accounts.friction_dissipation += step_impact_dissipation;
       accounts.reset_dissipation += step_reset_dissipation;
       using Properties             = MaterialPointProperties<dim>;
@@ -826,14 +909,16 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-#define TALUS_INSTANTIATE(dim)                                \
-  template void MPMSolver<dim>::cache_particles();            \
-  template std::pair<unsigned long long, unsigned long long>  \
-                MPMSolver<dim>::capped_point_domains() const; \
-  template void MPMSolver<dim>::project_to_grid();            \
-  template void MPMSolver<dim>::compute_xpic_correction(      \
-    std::vector<dealii::Tensor<1, dim>> &w) const;            \
-  template void MPMSolver<dim>::commit_step();                \
+#define TALUS_INSTANTIATE(dim)                                       \
+  template void MPMSolver<dim>::cache_particles();                   \
+  template void MPMSolver<dim>::cache_cell_per_body(                 \
+    const typename dealii::DoFHandler<dim>::active_cell_iterator &); \
+  template std::pair<unsigned long long, unsigned long long>         \
+                MPMSolver<dim>::capped_point_domains() const;        \
+  template void MPMSolver<dim>::project_to_grid();                   \
+  template void MPMSolver<dim>::compute_xpic_correction(             \
+    std::vector<dealii::Tensor<1, dim>> &w) const;                   \
+  template void MPMSolver<dim>::commit_step();                       \
   template void MPMSolver<dim>::project_stress_to_grid();
 
     TALUS_INSTANTIATE(2)

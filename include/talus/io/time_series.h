@@ -35,14 +35,19 @@ namespace Talus
        * holds the estimated relative truncation error of each step [-].
        * With @p n_bodies > 1 each body b adds (before it)
        * body<b>_mass, body<b>_momentum_x, _y, (_z), body<b>_kinetic_energy,
-       * body<b>_strain_energy.
+       * body<b>_strain_energy. With @p body_contact_columns
+       * (multi-velocity-field contact between bodies) two columns follow
+       * the bodies': body_contact_dissipation (minus the work of the contact
+       * forces on the bodies since the start [J]) and body_contact_nodes
+       * (the nodes in contact at the end of the step).
        */
       void
       open(const std::string              &filename,
            const MPI_Comm                  communicator,
-           const std::vector<std::string> &boundary_names = {},
-           const bool                      error_column   = false,
-           const unsigned int              n_bodies       = 1);
+           const std::vector<std::string> &boundary_names       = {},
+           const bool                      error_column         = false,
+           const unsigned int              n_bodies             = 1,
+           const bool                      body_contact_columns = false);
 
       /** One row; @p error is written only with the error column. */
       void
@@ -75,13 +80,15 @@ namespace Talus
       resume(const std::string &filename,
              const MPI_Comm     communicator,
              const std::string &saved,
-             const bool         error_column = false);
+             const bool         error_column         = false,
+             const bool         body_contact_columns = false);
 
     private:
       std::ofstream file;
       std::string   file_name;
-      bool          is_root    = false;
-      bool          with_error = false;
+      bool          is_root           = false;
+      bool          with_error        = false;
+      bool          with_body_contact = false;
     };
   } // namespace IO
 } // namespace Talus

@@ -7,12 +7,14 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <deal.II/fe/component_mask.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q1.h>
 
 #include <deal.II/distributed/tria.h>
 
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 
@@ -59,11 +61,49 @@ namespace Talus
       void
       setup_dofs();
 
+      /**
+       * Multi-velocity-field contact between bodies (subsection Body
+       * contact): the grid carries @p n velocity fields, one per body, on
+       * the element FE_Q(1)^(dim n) (components b dim ... b dim + dim - 1
+       * are the displacement increment of body b). Call before
+       * parse_parameters_and_create(); 1 (the default) is the one field of
+       * standard MPM on FE_Q(1)^dim.
+       */
+      void
+      set_velocity_fields(const unsigned int n);
+
+      /** Number of velocity fields on the grid (1 or the number of bodies). */
+      unsigned int
+      n_velocity_fields() const
+      {
+        return n_fields;
+      }
+
+      /**
+       * The element the dof handler is distributed with: fe with one
+       * velocity field, FE_Q(1)^(dim n) with n fields. Cell dofs of
+       * dof_handler are ordered by this element; fe describes the dim
+       * components of one field (the solver's per-body cell caches).
+       */
+      const dealii::FESystem<dim> &
+      system_fe() const
+      {
+        return multi_field_fe ? *multi_field_fe : fe;
+      }
+
+      /**
+       * Component mask of all fields' components d in @p directions (size
+       * dim n_velocity_fields()).
+       */
+      dealii::ComponentMask
+      component_mask(const std::vector<bool> &directions) const;
+
       MPI_Comm                                          mpi_communicator;
       dealii::parallel::distributed::Triangulation<dim> triangulation;
-      dealii::FESystem<dim>                             fe;
-      dealii::DoFHandler<dim>                           dof_handler;
-      dealii::MappingQ1<dim>                            mapping;
+      /** FE_Q(1)^dim: one velocity field (see system_fe()). */
+      dealii::FESystem<dim>   fe;
+      dealii::DoFHandler<dim> dof_handler;
+      dealii::MappingQ1<dim>  mapping;
 
       dealii::IndexSet locally_owned_dofs;
       dealii::IndexSet locally_relevant_dofs;
@@ -136,9 +176,11 @@ namespace Talus
       double separation_lift_height = 0.05;
 
     private:
-      std::string               type;
-      std::string               mesh_file;
-      std::vector<unsigned int> subdivisions;
+      unsigned int                           n_fields = 1;
+      std::unique_ptr<dealii::FESystem<dim>> multi_field_fe;
+      std::string                            type;
+      std::string                            mesh_file;
+      std::vector<unsigned int>              subdivisions;
     };
 
     /**

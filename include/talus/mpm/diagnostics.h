@@ -112,6 +112,17 @@ namespace Talus
         return e;
       }
 
+      /**
+       * Multi-velocity-field contact between bodies: energy the contact
+       * has dissipated since the start [J], minus the work of the contact
+       * forces on the bodies (the penalty springs start every step
+       * unloaded: the inelastic part of the nodal impacts and the friction
+       * between bodies; zero with one velocity field).
+       */
+      double body_contact_dissipation = 0.;
+      /** Multi-velocity field: nodes in contact at the end of the step. */
+      unsigned int body_contact_nodes = 0;
+
       /** Kinetic + strain + gravitational + spring energy [J]. */
       double
       mechanical_energy() const
@@ -120,12 +131,16 @@ namespace Talus
                spring_energy();
       }
 
-      /** Plastic + friction + reset + transfer + integrator dissipation [J]. */
+      /**
+       * Plastic + friction + reset + transfer + integrator + body contact
+       * dissipation [J].
+       */
       double
       dissipated_energy() const
       {
         return plastic_dissipation + friction_dissipation + reset_dissipation +
-               transfer_dissipation + integrator_dissipation;
+               transfer_dissipation + integrator_dissipation +
+               body_contact_dissipation;
       }
 
       /**

@@ -6,6 +6,7 @@
 #include <talus/boundaries/boundary_particles.h>
 #include <talus/materials/constitutive_model.h>
 #include <talus/mpm/background_grid.h>
+#include <talus/mpm/body_contact.h>
 #include <talus/mpm/diagnostics.h>
 #include <talus/mpm/material_points.h>
 
@@ -120,6 +121,37 @@ namespace Talus
       /** Parse subsection "Solver". */
       void
       parse_parameters(dealii::ParameterHandler &prm);
+
+      /**
+       * Contact between bodies (subsection Body contact; after
+       * parse_parameters()): with 'multi-velocity field' each body moves
+       * on its own grid velocity field (the grid has one per body, see
+       * BackgroundGrid::set_velocity_fields()) and the fields interact by
+       * the penalty contact of BodyContact at the nodes they share.
+       * Rejects the options it is not implemented with.
+       */
+      void
+      set_body_contact(const BodyContact &contact);
+
+      /** Whether each body has its own velocity field. */
+      bool
+      multi_velocity_field() const
+      {
+        return multi_field;
+      }
+
+      /**
+       * Multi-velocity field: the nodes where two bodies carry mass in the
+       * last step and those of them in contact at its end (all ranks).
+       */
+      std::pair<unsigned int, unsigned int>
+      body_contact_nodes() const
+      {
+        return {dealii::Utilities::MPI::sum(static_cast<unsigned int>(
+                                              contact_nodes.size()),
+                                            grid.mpi_communicator),
+                n_active_contact_nodes};
+      }
 
       /** Sparsity pattern, matrix and boundary dofs of the grid. */
       void
@@ -461,7 +493,65 @@ namespace Talus
          * (contact side = material points) rather than boundary particles.
          */
         bool point_contact = false;
+        /**
+         * Multi-velocity field: the body of the cache's points (the cell
+         * has one cache per body in it; dofs are those of this body's
+         * field, in the order of FE_Q(1)^dim); 0 otherwise.
+         */
+        unsigned int field = 0;
       };
+
+      /**
+       * Multi-velocity field: a node where bodies a < b both carry mass
+       * (owned by this rank) for one step: the dofs of field a then of
+       * field b (dim each), the unit normal from a to b, the normal gap at
+       * the start of the step [m] and the penalty stiffness [N/m].
+       */
+      struct ContactNode
+      {
+        std::vector<dealii::types::global_dof_index> dofs;
+        dealii::Tensor<1, dim>                       normal;
+        double                                       gap       = 0.;
+        double                                       stiffness = 0.;
+      };
+      /** The force of a contact node on body b (on a: its negative). */
+      struct ContactForce
+      {
+        bool                   active   = false;
+        bool                   slip     = false;
+        double                 pressure = 0.;
+        dealii::Tensor<1, dim> force;
+        /** Derivative with respect to the jump du_b - du_a. */
+        dealii::Tensor<2, dim> dforce;
+      };
+      std::vector<ContactNode> contact_nodes;
+      bool                     multi_field            = false;
+      double                   body_friction          = 0.;
+      double                   body_penalty           = 100.;
+      unsigned int             n_active_contact_nodes = 0;
+
+      /** Contact nodes, normals and gaps of the step (after the P2G). */
+      void
+      prepare_body_contact();
+
+      /** Contact force of @p node at the increment @p du (ghosted). */
+      ContactForce
+      body_contact_force(const ContactNode                           &node,
+                         const dealii::TrilinosWrappers::MPI::Vector &du) const;
+
+      /** Contact force of @p node at the jump du_b - du_a @p jump. */
+      ContactForce
+      body_contact_force(const ContactNode            &node,
+                         const dealii::Tensor<1, dim> &jump) const;
+
+      /** Add the contact forces (and tangent) of the contact nodes. */
+      void
+      assemble_body_contact(const dealii::TrilinosWrappers::MPI::Vector &du,
+                            const bool with_matrix);
+
+      /** Book the contact work of the converged step (commit_step()). */
+      void
+      commit_body_contact();
 
       /** A boundary particle in a cell with material, for one step. */
       struct BoundaryPoint
@@ -722,6 +812,14 @@ namespace Talus
 
       void
       cache_particles();
+
+      /**
+       * Multi-velocity field: one cache per body with points in @p cell,
+       * on the dofs of that body's field (cache_particles()).
+       */
+      void
+      cache_cell_per_body(
+        const typename dealii::DoFHandler<dim>::active_cell_iterator &cell);
 
       /**
        * uGIMP and cpGIMP: the patch dofs of a material cell into @p c and
@@ -1372,6 +1470,12 @@ namespace Talus
         double reset_dissipation      = 0.;
         double transfer_dissipation   = 0.;
         double integrator_dissipation = 0.;
+        /**
+         * Multi-velocity field: energy the contact between bodies has
+         * dissipated [J], minus the work of the contact forces on the
+         * bodies (not in checkpoints).
+         */
+        double body_contact_dissipation = 0.;
         /**
          * Friction dissipation of each boundary of boundary particles
          * (part of friction_dissipation).

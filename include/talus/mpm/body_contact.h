@@ -1,0 +1,67 @@
+#ifndef talus_mpm_body_contact_h
+#define talus_mpm_body_contact_h
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    /**
+     * Contact between the bodies of material points (subsection "Body
+     * contact").
+     *
+     * 'single velocity field' (default): all bodies share the grid's one
+     * velocity field (standard MPM); bodies stick where their points share
+     * a node, about a cell before they touch.
+     *
+     * 'multi-velocity field': each body has its own velocity field on the
+     * grid (Bardenhagen, Brackbill and Sulsky 2000, CMAME 187, 529-541),
+     * the grid element becomes FE_Q(1)^(dim n_bodies) and the points of
+     * body b assemble only into field b. At a node where bodies a and b
+     * both carry mass the contact normal (from a to b) is the outward
+     * normal of the body with the larger nodal volume gradient g_b =
+     * sum_{p in b} V_p grad N_I(x_p) (Nairn 2013), g_a / |g_a| or
+     * -g_b / |g_b|, unless the other or their normalised sum separates
+     * the bodies' point domains by more than 5 % of the cell diameter
+     * (a gradient tilted by points crossing a cell), and
+     * the normal gap is measured from the points' domains (Nairn 2013,
+     * CMES 92, 271-299, separation from the particles rather than from the
+     * nodal velocities): g_0 = min_{p in b} (x_p . n - l_p) - max_{p in a}
+     * (x_p . n + l_p) over the points whose cells hold the node, with l_p
+     * half the edge of the point's current domain, (V_0 det F)^(1/dim) / 2.
+     * In the implicit step the gap follows the nodal displacement
+     * increments, g = g_0 + (du_b - du_a) . n, and a penalty pressure
+     * p = k max(0, -g) pushes the two fields apart (no tension: they
+     * separate freely), with k = 'penalty factor' min(m_a, m_b) / (beta
+     * dt^2), the inertia stiffness of the lighter field at the node. The
+     * force is part of the Newton residual with its exact tangent (the
+     * active set follows the iterate). Coulomb friction between bodies
+     * ('friction coefficient') acts on the tangential increment
+     * (du_b - du_a)_t with a stick penalty k and slip at mu p.
+     */
+    class BodyContact
+    {
+    public:
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
+      /**
+       * Parse subsection "Body contact"; @p n_bodies is 'number of bodies'
+       * (the multi-velocity field needs two or more).
+       */
+      void
+      parse_parameters(dealii::ParameterHandler &prm,
+                       const unsigned int        n_bodies);
+
+      /** Whether each body has its own velocity field. */
+      bool multi_velocity_field = false;
+      /** Coulomb friction coefficient between bodies [-]. */
+      double friction_coefficient = 0.;
+      /** Penalty factor of the normal (and stick) contact stiffness [-]. */
+      double penalty_factor = 100.;
+    };
+  } // namespace MPM
+} // namespace Talus
+
+#endif

@@ -1,0 +1,519 @@
+#include <talus/base/input.h>
+#include <talus/mpm/body_contact.h>
+#include <talus/mpm/mpm_solver.h>
+#include <talus/mpm/point_tensors.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <Epetra_Export.h>
+#include <Epetra_Map.h>
+#include <Epetra_Vector.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+namespace Talus
+{
+  void
+  MPM::BodyContact::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    using namespace dealii;
+    prm.enter_subsection("Body contact");
+    prm.declare_entry(
+      "contact",
+      "single velocity field",
+      Patterns::Selection("single velocity field|multi-velocity field"),
+      "How bodies (Body, Body 2, ...) meet. 'single velocity field': all "
+      "share the grid's one velocity field (standard MPM): they stick where "
+      "their points share a node, about a cell before they touch, and cannot "
+      "separate while they do. 'multi-velocity field': each body has its own "
+      "velocity field on the grid (Bardenhagen, Brackbill and Sulsky 2000); "
+      "at nodes where two bodies carry mass a penalty pressure acts on the "
+      "normal gap measured from the points' domains (Nairn 2013), so contact "
+      "starts when the bodies touch, they separate freely, and Coulomb "
+      "friction ('friction coefficient') acts between them. Needs 'number of "
+      "bodies' >= 2, linear shape functions, the lumped mass matrix, inertia "
+      "(not quasi-static), no boundary particles, grid friction boundaries, "
+      "ghost penalty or adaptive grid (doc/theory.md, 'Contact between "
+      "bodies').");
+    prm.declare_entry(
+      "friction coefficient",
+      "0",
+      Patterns::Anything(),
+      "Coulomb friction coefficient mu between bodies [-], >= 0 "
+      "(multi-velocity field): the tangential force at a contact node is "
+      "that of a stick penalty with the normal stiffness, bounded by mu "
+      "times the normal pressure (slip).");
+    prm.declare_entry(
+      "penalty factor",
+      "100",
+      Patterns::Anything(),
+      "Factor of the contact stiffness k = factor * min(m_a, m_b) / (beta "
+      "dt^2) at a node shared by bodies a and b [-], > 0 (multi-velocity "
+      "field): the inertia stiffness of the lighter field, so that the "
+      "penetration within a step is about 1/factor of the approach per step.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  MPM::BodyContact::parse_parameters(dealii::ParameterHandler &prm,
+                                     const unsigned int        n_bodies)
+  {
+    const std::string sub = "Body contact";
+    prm.enter_subsection(sub);
+    multi_velocity_field = prm.get("contact") == "multi-velocity field";
+    friction_coefficient = get_non_negative(prm, sub, "friction coefficient");
+    penalty_factor       = get_positive(prm, sub, "penalty factor");
+    prm.leave_subsection();
+    if (multi_velocity_field && n_bodies < 2)
+      InputFile::reject(sub,
+                        "contact",
+                        "multi-velocity field",
+                        "it needs two or more bodies (subsection Body, "
+                        "'number of bodies' is " +
+                          std::to_string(n_bodies) +
+                          "); use 'single velocity field'");
+  }
+
+
+  namespace MPM
+  {
+    namespace
+    {
+      /**
+       * Max-reduction of a vector given on the locally relevant dofs
+       * (@p local, this rank's values, -infinity where it has none) onto
+       * the owners: the owned entries of the result are the maximum over
+       * the ranks.
+       */
+      std::vector<double>
+      max_to_owners(const dealii::IndexSet    &owned,
+                    const dealii::IndexSet    &relevant,
+                    const std::vector<double> &local,
+                    const MPI_Comm             comm)
+      {
+        const Epetra_Map relevant_map = relevant.make_trilinos_map(comm, true);
+        const Epetra_Map owned_map    = owned.make_trilinos_map(comm, false);
+        Epetra_Vector    source(relevant_map), target(owned_map);
+        for (unsigned int k = 0; k < local.size(); ++k)
+          source[k] = local[k];
+        target.PutScalar(-std::numeric_limits<double>::max());
+        const Epetra_Export exporter(relevant_map, owned_map);
+        target.Export(source, exporter, Epetra_Max);
+        std::vector<double> result(owned.n_elements());
+        for (unsigned int k = 0; k < result.size(); ++k)
+          result[k] = target[k];
+        return result;
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::set_body_contact(const BodyContact &contact)
+    {
+      multi_field = contact.multi_velocity_field;
+      if (!multi_field)
+        return;
+      body_friction     = contact.friction_coefficient;
+      body_penalty      = contact.penalty_factor;
+      const auto reject = [](const std::string &sub,
+                             const std::string &entry,
+                             const std::string &value,
+                             const std::string &what) {
+        InputFile::reject(sub,
+                          entry,
+                          value,
+                          what +
+                            " is not implemented with 'contact = "
+                            "multi-velocity field' (subsection Body contact)");
+      };
+      if (gimp)
+        reject("Solver", "shape functions", shape_name, shape_name);
+      if (consistent_mass)
+        reject("Solver", "mass matrix", "consistent", "the consistent mass");
+      if (quasi_static)
+        reject("Solver",
+               "quasi-static",
+               "true",
+               "a quasi-static analysis (the contact stiffness is that of "
+               "the nodal inertia)");
+      if (ghost_penalty_factor > 0.)
+        reject("Solver",
+               "ghost penalty factor",
+               std::to_string(ghost_penalty_factor),
+               "the ghost penalty");
+      if (!grid.friction_boundaries.empty())
+        reject("Background grid",
+               "friction boundaries",
+               "(not empty)",
+               "a grid friction boundary");
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::prepare_body_contact()
+    {
+      contact_nodes.clear();
+      if (!multi_field)
+        return;
+      using Properties            = MaterialPointProperties<dim>;
+      const unsigned int n_nodes  = shape_stride;
+      const unsigned int n_fields = grid.n_velocity_fields();
+      const MPI_Comm     comm     = grid.mpi_communicator;
+      const auto        &owned    = grid.locally_owned_dofs;
+      const auto        &relevant = grid.locally_relevant_dofs;
+
+      // the current volume V_0 det F of point k
+      const auto point_volume = [this](const unsigned int k) {
+        const auto             props = particles[k]->get_properties();
+        dealii::Tensor<2, dim> F;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            F[i][j] = props[Properties::deformation + i * dim + j];
+        return props[Properties::initial_volume] * dealii::determinant(F);
+      };
+
+      // volume gradients sum_p V_p grad N_I(x_p) at the nodes, on the dofs
+      // of field b: they point out of body b (Bardenhagen et al. 2000;
+      // volumes rather than masses, Nairn 2013: independent of density)
+      dealii::TrilinosWrappers::MPI::Vector gradient(owned, comm);
+      dealii::Vector<double>                g_local(dim * n_nodes);
+      for (const auto &c : cells)
+        {
+          g_local.reinit(c.dofs.size());
+          for (unsigned int q = 0; q < c.n; ++q)
+            {
+              const unsigned int k      = c.first + q;
+              const double       volume = point_volume(k);
+              for (unsigned int i = 0; i < c.dofs.size(); ++i)
+                {
+                  const auto ci = internal::component_and_node<dim>(i);
+                  g_local[i] +=
+                    volume * shape_gradients[k * n_nodes + ci.second][ci.first];
+                }
+            }
+          gradient.add(c.dofs, g_local);
+        }
+      gradient.compress(dealii::VectorOperation::add);
+      dealii::TrilinosWrappers::MPI::Vector grad(owned, relevant, comm);
+      grad = gradient;
+
+      const auto dof = [&](const auto        &cell,
+                           const unsigned int v,
+                           const unsigned int field,
+                           const unsigned int d) {
+        return cell->vertex_dof_index(v, field * dim + d);
+      };
+      // The pairs of bodies at the nodes of this rank's cells with points
+      // (the same on every rank that sees the node): the key is the dof
+      // of component 0 of field a; the normal from a to b.
+      constexpr unsigned int n_candidates = 3;
+      struct Pair
+      {
+        unsigned int                                     a, b;
+        std::array<dealii::Tensor<1, dim>, n_candidates> normals;
+        std::array<dealii::types::global_dof_index, dim> dofs_a, dofs_b;
+        /** The candidate of the larger volume gradient. */
+        unsigned int preferred = 0;
+      };
+      std::map<std::pair<dealii::types::global_dof_index, unsigned int>, Pair>
+                                                pairs;
+      std::set<dealii::types::global_dof_index> visited;
+      for (const auto &c : cells)
+        for (const unsigned int v : c.cell->vertex_indices())
+          {
+            if (!visited.insert(dof(c.cell, v, 0, 0)).second)
+              continue;
+            for (unsigned int a = 0; a < n_fields; ++a)
+              for (unsigned int b = a + 1; b < n_fields; ++b)
+                {
+                  const double m_a = nodal_mass(dof(c.cell, v, a, 0));
+                  const double m_b = nodal_mass(dof(c.cell, v, b, 0));
+                  if (!(m_a > 0.) || !(m_b > 0.))
+                    continue;
+                  Pair p;
+                  p.a = a;
+                  p.b = b;
+                  // candidate normals: the outward normal of body a, minus
+                  // that of body b, and their average (Nairn 2013's
+                  // options); the one along which the bodies' domains are
+                  // separated most is taken below. A body's gradient is
+                  // exact inside a flat face but tilts at its corners and
+                  // where its points cross cells; along a tilted normal the
+                  // domains overlap.
+                  dealii::Tensor<1, dim> g_a, g_b;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      p.dofs_a[d] = dof(c.cell, v, a, d);
+                      p.dofs_b[d] = dof(c.cell, v, b, d);
+                      g_a[d]      = grad(p.dofs_a[d]);
+                      g_b[d]      = grad(p.dofs_b[d]);
+                    }
+                  if (!(g_a.norm() > 0.) || !(g_b.norm() > 0.))
+                    continue;
+                  p.normals[0] = g_a / g_a.norm();
+                  p.normals[1] = -g_b / g_b.norm();
+                  p.normals[2] = p.normals[0] + p.normals[1];
+                  if (!(p.normals[2].norm() > 1e-12))
+                    p.normals[2] = p.normals[0];
+                  p.normals[2] /= p.normals[2].norm();
+                  p.preferred             = g_a.norm() >= g_b.norm() ? 0 : 1;
+                  pairs[{p.dofs_a[0], b}] = p;
+                }
+          }
+
+      // The extremes of the points' domains along each candidate normal,
+      // per pair: on dof a_0 the largest x.n + l of body a, on dof b_0 the
+      // largest -(x.n - l) of body b, over the points whose cell holds the
+      // node.
+      const double lowest = -std::numeric_limits<double>::max();
+      for (unsigned int a = 0; a < n_fields; ++a)
+        for (unsigned int b = a + 1; b < n_fields; ++b)
+          {
+            std::vector<std::vector<double>> local(
+              n_candidates, std::vector<double>(relevant.n_elements(), lowest));
+            bool any = false;
+            for (const auto &c : cells)
+              {
+                const unsigned int field = c.field;
+                if (field != a && field != b)
+                  continue;
+                for (const unsigned int v : c.cell->vertex_indices())
+                  {
+                    const auto it = pairs.find({dof(c.cell, v, a, 0), b});
+                    if (it == pairs.end())
+                      continue;
+                    any = true;
+                    const auto slot =
+                      relevant.index_within_set(dof(c.cell, v, field, 0));
+                    for (unsigned int q = 0; q < c.n; ++q)
+                      {
+                        const unsigned int k      = c.first + q;
+                        const double       volume = point_volume(k);
+                        const double       l =
+                          0.5 * std::pow(std::max(volume, 0.), 1. / dim);
+                        for (unsigned int i = 0; i < n_candidates; ++i)
+                          {
+                            const double xn = particles[k]->get_location() *
+                                              it->second.normals[i];
+                            const double value =
+                              field == a ? xn + l : -(xn - l);
+                            local[i][slot] = std::max(local[i][slot], value);
+                          }
+                      }
+                  }
+              }
+            if (!dealii::Utilities::MPI::logical_or(any, comm))
+              continue;
+            std::vector<std::vector<double>> result(n_candidates);
+            for (unsigned int i = 0; i < n_candidates; ++i)
+              result[i] = max_to_owners(owned, relevant, local[i], comm);
+            for (const auto &entry : pairs)
+              {
+                const Pair &p = entry.second;
+                if (p.a != a || p.b != b || !owned.is_element(p.dofs_a[0]))
+                  continue;
+                // the normal of the larger volume gradient (Nairn 2013),
+                // unless another candidate separates the domains by more
+                // than 5 % of the cell diameter (the preferred one is
+                // tilted: its domains overlap)
+                const auto gap = [&](const unsigned int i) {
+                  const double top_a =
+                    result[i][owned.index_within_set(p.dofs_a[0])];
+                  const double top_b =
+                    result[i][owned.index_within_set(p.dofs_b[0])];
+                  return (top_a <= lowest || top_b <= lowest) ? lowest :
+                                                                -top_b - top_a;
+                };
+                const double tolerance = 0.05 * grid.minimal_cell_diameter;
+                unsigned int best      = p.preferred;
+                for (unsigned int i = 0; i < n_candidates; ++i)
+                  if (gap(i) > gap(best) + tolerance)
+                    best = i;
+                if (gap(best) <= lowest)
+                  continue;
+                ContactNode node;
+                node.gap    = gap(best);
+                node.normal = p.normals[best];
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    node.dofs.push_back(p.dofs_a[d]);
+                  }
+                for (unsigned int d = 0; d < dim; ++d)
+                  node.dofs.push_back(p.dofs_b[d]);
+                node.stiffness =
+                  body_penalty *
+                  std::min(nodal_mass(p.dofs_a[0]), nodal_mass(p.dofs_b[0])) *
+                  newmark.mass_factor(dt);
+                contact_nodes.push_back(node);
+              }
+          }
+    }
+
+
+    template <int dim>
+    typename MPMSolver<dim>::ContactForce
+    MPMSolver<dim>::body_contact_force(
+      const ContactNode                           &node,
+      const dealii::TrilinosWrappers::MPI::Vector &du) const
+    {
+      // relative increment of b against a
+      dealii::Tensor<1, dim> jump;
+      for (unsigned int d = 0; d < dim; ++d)
+        jump[d] = du(node.dofs[dim + d]) - du(node.dofs[d]);
+      return body_contact_force(node, jump);
+    }
+
+
+    template <int dim>
+    typename MPMSolver<dim>::ContactForce
+    MPMSolver<dim>::body_contact_force(const ContactNode            &node,
+                                       const dealii::Tensor<1, dim> &jump) const
+    {
+      ContactForce result;
+      const auto  &n = node.normal;
+      const double k = node.stiffness;
+      // a gap the bodies may close within the step; a negative one (the
+      // domains overlap at the start) is not pushed out: only the
+      // approach of this step is resisted
+      const double g = std::max(node.gap, 0.) + jump * n;
+      if (!(g < 0.))
+        return result;
+      result.active   = true;
+      result.pressure = -k * g;
+      // force on b (on a: its negative): p n + t
+      result.force                    = result.pressure * n;
+      const dealii::Tensor<2, dim> nn = dealii::outer_product(n, n);
+      result.dforce                   = -k * nn;
+      if (body_friction > 0.)
+        {
+          // stick penalty on the tangential increment, bounded by mu p
+          const dealii::Tensor<1, dim> s     = jump - (jump * n) * n;
+          const dealii::Tensor<1, dim> trial = -k * s;
+          const double                 limit = body_friction * result.pressure;
+          dealii::Tensor<2, dim>       tangential_projector =
+            dealii::unit_symmetric_tensor<dim>() - nn;
+          if (trial.norm() <= limit)
+            {
+              result.force += trial;
+              result.dforce += -k * tangential_projector;
+            }
+          else
+            {
+              const double                 s_norm = s.norm();
+              const dealii::Tensor<1, dim> t      = s / s_norm;
+              result.force -= limit * t;
+              result.slip = true;
+              // d(-mu p t)/d jump = -mu (dp/djump) t - mu p dt/djump,
+              // dp/djump = -k n, dt/djump = (P - t t)/|s| P
+              result.dforce += body_friction * k * dealii::outer_product(t, n);
+              result.dforce -=
+                limit / s_norm *
+                (tangential_projector - dealii::outer_product(t, t));
+            }
+        }
+      return result;
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::assemble_body_contact(
+      const dealii::TrilinosWrappers::MPI::Vector &du,
+      const bool                                   with_matrix)
+    {
+      dealii::FullMatrix<double> k_local(2 * dim, 2 * dim);
+      dealii::Vector<double>     r_local(2 * dim);
+      for (const auto &node : contact_nodes)
+        {
+          const ContactForce f = body_contact_force(node, du);
+          if (!f.active)
+            continue;
+          k_local = 0.;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              r_local[d]       = -f.force[d];
+              r_local[dim + d] = f.force[d];
+              // K = -dR/du: R_b = f(jump), R_a = -f(jump), jump = u_b - u_a
+              for (unsigned int e = 0; e < dim; ++e)
+                {
+                  const double D            = f.dforce[d][e];
+                  k_local(dim + d, dim + e) = -D;
+                  k_local(dim + d, e)       = D;
+                  k_local(d, dim + e)       = D;
+                  k_local(d, e)             = -D;
+                }
+            }
+          if (with_matrix)
+            constraints.distribute_local_to_global(
+              k_local, r_local, node.dofs, matrix, residual);
+          else
+            constraints.distribute_local_to_global(r_local,
+                                                   node.dofs,
+                                                   residual);
+        }
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::commit_body_contact()
+    {
+      if (!multi_field)
+        return;
+      // The work of the contact forces on the bodies over the step, by the
+      // trapezoidal rule of the time integrator, (f(0) + f(j)) . j / 2 with
+      // the converged jump j = du_b - du_a: the grid's energy changes by
+      // it (Newmark's energy identity). The penalty starts every step
+      // unloaded (f(0) = 0 unless the friction pulls), so what the contact
+      // takes is dissipated: the inelastic nodal impact of the fields and
+      // the friction between the bodies.
+      double       work   = 0.;
+      unsigned int active = 0;
+      for (const auto &node : contact_nodes)
+        {
+          dealii::Tensor<1, dim> jump;
+          for (unsigned int d = 0; d < dim; ++d)
+            jump[d] =
+              displacement(node.dofs[dim + d]) - displacement(node.dofs[d]);
+          const ContactForce end = body_contact_force(node, jump);
+          if (end.active)
+            ++active;
+          work += 0.5 *
+                  (body_contact_force(node, dealii::Tensor<1, dim>()).force +
+                   end.force) *
+                  jump;
+        }
+      accounts.body_contact_dissipation -=
+        dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
+      n_active_contact_nodes =
+        dealii::Utilities::MPI::sum(active, grid.mpi_communicator);
+    }
+
+
+    // Explicit instantiation of the members defined in this file.
+#define TALUS_INSTANTIATE(dim)                                                            \
+  template void MPMSolver<dim>::set_body_contact(const BodyContact &);                    \
+  template void MPMSolver<dim>::prepare_body_contact();                                   \
+  template typename MPMSolver<dim>::ContactForce                                          \
+  MPMSolver<dim>::body_contact_force(                                                     \
+    const ContactNode &, const dealii::TrilinosWrappers::MPI::Vector &) const;            \
+  template typename MPMSolver<dim>::ContactForce                                          \
+                MPMSolver<dim>::body_contact_force(const ContactNode &,                   \
+                                     const dealii::Tensor<1, dim> &) const; \
+  template void MPMSolver<dim>::assemble_body_contact(                                    \
+    const dealii::TrilinosWrappers::MPI::Vector &, const bool);                           \
+  template void MPMSolver<dim>::commit_body_contact();
+
+    TALUS_INSTANTIATE(2)
+    TALUS_INSTANTIATE(3)
+#undef TALUS_INSTANTIATE
+  } // namespace MPM
+} // namespace Talus
