@@ -889,7 +889,8 @@ namespace Talus
         pcout << energy_jumps.assess(time_control.step,
                                      time_control.time,
                                      change,
-                                     max_released + final_kinetic);
+                                     max_released + final_kinetic,
+                                     lost.n_points > 0);
         const double scale = std::max({std::abs(result.work_structure),
                                        std::abs(result.work_points),
                                        1e-300});

@@ -970,7 +970,8 @@ namespace Talus
                                        time_control.time,
                                        b,
                                        max_released +
-                                         diagnostics.kinetic_energy);
+                                         diagnostics.kinetic_energy,
+                                       n_lost > 0);
           const double p = diagnostics.momentum[0];
           if (p * last_momentum < 0.)
             crossings.push_back(time_control.time -

@@ -45,11 +45,12 @@ namespace Talus
   EnergyJumpMonitor::assess(const unsigned int step,
                             const double       time,
                             const double       balance,
-                            const double       scale)
+                            const double       scale,
+                            const bool         points_lost)
   {
     const std::optional<double> last = last_balance;
     last_balance                     = balance;
-    if (!(fraction > 0.) || !last)
+    if (!(fraction > 0.) || !last || points_lost)
       return "";
     const double jump = balance - *last;
     // the mean change per step before this one

@@ -8,6 +8,7 @@
 //   mean) does not warn;
 // - the first steps (fewer than 3 changes before) are not assessed, even
 //   with a jump of 50 %;
+// - a jump in a step that lost points (reported on its own) does not warn;
 // - f = 0 turns the monitor off.
 #include <talus/base/energy_jump_monitor.h>
 
@@ -71,6 +72,15 @@ main()
       {0., 0.5, 500.},
       {false, false, false});
   run("off", monitor("0"), {0., 0.5, 1., 1.5, 2., 150.}, std::vector<bool>(6));
+  {
+    auto m = monitor("0.01");
+    for (unsigned int n = 0; n < 5; ++n)
+      m.assess(n, 0.01 * n, 0.5 * n, 1000.);
+    const bool quiet = m.assess(5, 0.05, 150., 1000., true).empty();
+    std::cout << "a jump with lost points: " << (quiet ? "no warning" : "WRONG")
+              << '\n';
+    failures += quiet ? 0 : 1;
+  }
   std::cout << (failures == 0 ? "OK" : "FAILED") << '\n';
   return failures;
 }

@@ -49,13 +49,17 @@ namespace Talus
     /**
      * After the committed step @p step ending at @p time: @p balance is
      * the energy balance B [J], @p scale the energy moved so far [J]. An
-     * empty string, or the warning line (with its newline).
+     * empty string, or the warning line (with its newline). A step in which
+     * material points left the grid (@p points_lost; their energy leaves
+     * B, and the loss is reported on its own) is not assessed and does not
+     * count in the mean change.
      */
     std::string
     assess(const unsigned int step,
            const double       time,
            const double       balance,
-           const double       scale);
+           const double       scale,
+           const bool         points_lost = false);
 
     /** The number of steps warned about so far. */
     unsigned int
