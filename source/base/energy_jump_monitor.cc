@@ -11,7 +11,7 @@ namespace Talus
   {
     prm.declare_entry(
       "energy jump warning",
-      "0.01",
+      "0.03",
       dealii::Patterns::Double(0.),
       "Warn about a committed step whose energy balance (kinetic + strain + "
       "gravitational energy plus the booked dissipation; coupled: of both "
@@ -22,7 +22,7 @@ namespace Talus
       "step.");
     prm.declare_entry(
       "energy jump outlier factor",
-      "10",
+      "100",
       dealii::Patterns::Double(1.),
       "A step is warned about only if its change of the energy balance is "
       "also this many times the mean change per step of the steps before "

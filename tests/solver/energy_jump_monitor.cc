@@ -1,7 +1,7 @@
 // The warning for a step whose energy balance jumps
 // (Talus::EnergyJumpMonitor, subsection Time, 'energy jump warning' f =
-// 0.01, 'energy jump outlier factor' c = 10), against an energy moved of
-// 1000 J (10 J at f):
+// 0.01, 'energy jump outlier factor' c = 100, the default), against an energy
+// moved of 1000 J (10 J at f):
 // - balances 0, 0.5, 1, 1.5, 2, 150, 150.5: only the step 4 -> 5 (a jump
 //   of 148 J, 14.8 % and 296 times the mean change 0.5 J) warns;
 // - a steady drift of 15 J per step (1.5 %, but not above c times the

@@ -70,10 +70,10 @@ namespace Talus
 
   private:
     /** f, the fraction of the energy moved ('energy jump warning'). */
-    double fraction = 0.01;
+    double fraction = 0.03;
 
     /** c ('energy jump outlier factor'). */
-    double outlier_factor = 10.;
+    double outlier_factor = 100.;
 
     /** Sum and number of the changes |B_{k+1} - B_k| so far. */
     double       sum_of_changes = 0.;
