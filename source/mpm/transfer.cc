@@ -99,41 +99,8 @@ namespace Talus
               }
             if (gimp)
               cache_gimp_cell(cell, reference_points, c);
-            else if (grid.is_cartesian)
-              {
-                // the extent of this cell: that of the finest level,
-                // doubled per level above it (locally refined grids)
-                dealii::Tensor<1, dim> h = grid.cell_extent;
-                if (cell->level() != grid.cell_extent_level)
-                  for (unsigned int d = 0; d < dim; ++d)
-                    h[d] = std::ldexp(grid.cell_extent[d],
-                                      grid.cell_extent_level - cell->level());
-                for (const auto &xi : reference_points)
-                  for (unsigned int k = 0; k < n_nodes; ++k)
-                    {
-                      shape_values.push_back(base.shape_value(k, xi));
-                      dealii::Tensor<1, dim> g = base.shape_grad(k, xi);
-                      for (unsigned int d = 0; d < dim; ++d)
-                        g[d] /= h[d];
-                      shape_gradients.push_back(g);
-                    }
-              }
             else
-              {
-                const dealii::Quadrature<dim> quadrature(reference_points);
-                dealii::FEValues<dim>         fe_values(grid.mapping,
-                                                base,
-                                                quadrature,
-                                                dealii::update_values |
-                                                  dealii::update_gradients);
-                fe_values.reinit(tria_cell);
-                for (unsigned int q = 0; q < n; ++q)
-                  for (unsigned int k = 0; k < n_nodes; ++k)
-                    {
-                      shape_values.push_back(fe_values.shape_value(k, q));
-                      shape_gradients.push_back(fe_values.shape_grad(k, q));
-                    }
-              }
+              cache_q1_shapes(tria_cell, reference_points);
             cells.push_back(std::move(c));
           }
       (void)Properties::mass;
@@ -146,10 +113,8 @@ namespace Talus
       const typename dealii::DoFHandler<dim>::active_cell_iterator &cell)
     {
       // (multi-velocity field: linear shape functions, checked)
-      auto              &handler = points.particle_handler();
-      const auto        &base    = grid.fe.base_element(0);
-      const unsigned int n_nodes = base.dofs_per_cell;
-      const auto        &system  = grid.system_fe();
+      auto       &handler = points.particle_handler();
+      const auto &system  = grid.system_fe();
       const typename dealii::Triangulation<dim>::active_cell_iterator tria_cell(
         cell);
       std::vector<dealii::types::global_dof_index> all(system.dofs_per_cell);
@@ -183,37 +148,53 @@ namespace Talus
               particles.push_back(p);
               reference_points.push_back(p->get_reference_location());
             }
-          if (grid.is_cartesian)
-            {
-              dealii::Tensor<1, dim> h = grid.cell_extent;
-              for (const auto &xi : reference_points)
-                for (unsigned int k = 0; k < n_nodes; ++k)
-                  {
-                    shape_values.push_back(base.shape_value(k, xi));
-                    dealii::Tensor<1, dim> g = base.shape_grad(k, xi);
-                    for (unsigned int d = 0; d < dim; ++d)
-                      g[d] /= h[d];
-                    shape_gradients.push_back(g);
-                  }
-            }
-          else
-            {
-              const dealii::Quadrature<dim> quadrature(reference_points);
-              dealii::FEValues<dim>         fe_values(grid.mapping,
-                                              base,
-                                              quadrature,
-                                              dealii::update_values |
-                                                dealii::update_gradients);
-              fe_values.reinit(tria_cell);
-              for (unsigned int q = 0; q < c.n; ++q)
-                for (unsigned int k = 0; k < n_nodes; ++k)
-                  {
-                    shape_values.push_back(fe_values.shape_value(k, q));
-                    shape_gradients.push_back(fe_values.shape_grad(k, q));
-                  }
-            }
+          cache_q1_shapes(tria_cell, reference_points);
           cells.push_back(std::move(c));
         }
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::cache_q1_shapes(
+      const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
+      const std::vector<dealii::Point<dim>> &reference_points)
+    {
+      const auto        &base    = grid.fe.base_element(0);
+      const unsigned int n_nodes = base.dofs_per_cell;
+      if (grid.is_cartesian)
+        {
+          // the extent of this cell: that of the finest level, doubled per
+          // level above it (locally refined grids)
+          dealii::Tensor<1, dim> h = grid.cell_extent;
+          if (cell->level() != grid.cell_extent_level)
+            for (unsigned int d = 0; d < dim; ++d)
+              h[d] = std::ldexp(grid.cell_extent[d],
+                                grid.cell_extent_level - cell->level());
+          for (const auto &xi : reference_points)
+            for (unsigned int k = 0; k < n_nodes; ++k)
+              {
+                shape_values.push_back(base.shape_value(k, xi));
+                dealii::Tensor<1, dim> g = base.shape_grad(k, xi);
+                for (unsigned int d = 0; d < dim; ++d)
+                  g[d] /= h[d];
+                shape_gradients.push_back(g);
+              }
+          return;
+        }
+      const dealii::Quadrature<dim> quadrature(reference_points);
+      dealii::FEValues<dim>         fe_values(grid.mapping,
+                                      base,
+                                      quadrature,
+                                      dealii::update_values |
+                                        dealii::update_gradients);
+      fe_values.reinit(cell);
+      for (unsigned int q = 0; q < reference_points.size(); ++q)
+        for (unsigned int k = 0; k < n_nodes; ++k)
+          {
+            shape_values.push_back(fe_values.shape_value(k, q));
+            shape_gradients.push_back(fe_values.shape_grad(k, q));
+          }
     }
 
 

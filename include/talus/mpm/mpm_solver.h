@@ -822,6 +822,17 @@ namespace Talus
         const typename dealii::DoFHandler<dim>::active_cell_iterator &cell);
 
       /**
+       * Linear shape functions: the values and gradients of the cell's Q1
+       * functions at @p reference_points (unit cell coordinates) onto
+       * shape_values and shape_gradients (scaled by the cell's extent on
+       * Cartesian grids, through the mapping otherwise).
+       */
+      void
+      cache_q1_shapes(
+        const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
+        const std::vector<dealii::Point<dim>> &reference_points);
+
+      /**
        * uGIMP and cpGIMP: the patch dofs of a material cell into @p c and
        * the weights and gradients of its points (at @p reference_points,
        * the unit cell coordinates; the points are particles[c.first ...],
