@@ -12,6 +12,7 @@
 #include <talus/base/input.h>
 #include <talus/base/memory_usage.h>
 #include <talus/base/time_control.h>
+#include <talus/boundaries/material_behind_boundaries.h>
 #include <talus/coupling/coupling_parameters.h>
 #include <talus/coupling/gauss_seidel_coupling.h>
 #include <talus/coupling/structure_interface.h>
@@ -700,6 +701,9 @@ namespace Talus
       return std::max(e_mpm, e_structure);
     };
     double dt_taken = 0.;
+
+    Boundaries::MaterialBehindBoundaries<dim> behind_boundaries(
+      mpm.boundaries(), mpm.grid());
     while (!time_control.finished())
       {
         // an exception in the attempts stops the run with a checkpoint of
@@ -874,6 +878,12 @@ namespace Talus
                   << mpm.boundaries().name(b)
                   << "' left the background grid at t = " << time_control.time
                   << " s and no longer act.\n";
+
+        pcout << behind_boundaries.assess(
+          behind_boundaries.survey(mpm.points().particle_handler(),
+                                   MPM::MaterialPointProperties<dim>::mass,
+                                   communicator),
+          time_control.time);
 
         const auto diagnostics = mpm.diagnostics();
         const auto e           = energies(diagnostics);
@@ -1092,6 +1102,7 @@ namespace Talus
                                  std::to_string(change))
             << '\n';
     }
+    pcout << behind_boundaries.summary();
     // (not in test mode: the test outputs do not depend on the machine)
     {
       const std::string memory = memory_summary(communicator);

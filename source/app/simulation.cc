@@ -8,6 +8,7 @@
 #include <talus/base/parsed_functions.h>
 #include <talus/base/time_control.h>
 #include <talus/boundaries/boundary_particles.h>
+#include <talus/boundaries/material_behind_boundaries.h>
 #include <talus/io/checkpointing.h>
 #include <talus/io/deposit_profile.h>
 #include <talus/io/point_dump.h>
@@ -364,10 +365,12 @@ namespace Talus
 
     MPM::MPMProblem<dim> problem(communicator, time_control.newmark, timer);
     problem.parse_parameters(prm, refinement);
-    auto &grid       = problem.grid();
-    auto &points     = problem.points();
-    auto &solver     = problem.solver();
-    auto &boundaries = problem.boundaries();
+    auto                                     &grid       = problem.grid();
+    auto                                     &points     = problem.points();
+    auto                                     &solver     = problem.solver();
+    auto                                     &boundaries = problem.boundaries();
+    Boundaries::MaterialBehindBoundaries<dim> behind_boundaries(boundaries,
+                                                                grid);
 
     IO::VisualizationOutput<dim> output;
     output.parse_parameters(prm);
@@ -936,6 +939,12 @@ namespace Talus
               }
         }
 
+        pcout << behind_boundaries.assess(
+          behind_boundaries.survey(points.particle_handler(),
+                                   MPM::MaterialPointProperties<dim>::mass,
+                                   communicator),
+          time_control.time);
+
         const auto diagnostics = solver.compute_diagnostics();
         if (speed_window > 0. &&
             time_control.time >=
@@ -1116,6 +1125,7 @@ namespace Talus
           }
         pcout << "\n  max speed: " << round(v_max)
               << "\n  lost mass: " << round(total_lost_mass) << " kg\n";
+        pcout << behind_boundaries.summary();
         problem.print_adaptive_grid(pcout);
         if (time_control.error_control.enabled())
           pcout << "  steps chosen by the error: " << time_control.step
