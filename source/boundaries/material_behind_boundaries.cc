@@ -2,6 +2,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/numerics/rtree.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -49,7 +51,7 @@ namespace Talus
       for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
         {
           const auto &desc = boundaries.boundary(b);
-          if (!surveyed(b) ||
+          if (!analytic(b) ||
               (desc.geometry != "plane" && desc.geometry != "line"))
             continue;
           for (unsigned int d = 0; d < dim && !on_faces[b]; ++d)
@@ -78,7 +80,7 @@ namespace Talus
 
     template <int dim>
     bool
-    MaterialBehindBoundaries<dim>::surveyed(const unsigned int b) const
+    MaterialBehindBoundaries<dim>::analytic(const unsigned int b) const
     {
       const auto &desc = boundaries.boundary(b);
       if (desc.moving || desc.external_displacement)
@@ -95,7 +97,7 @@ namespace Talus
                                          const dealii::Point<dim> &x) const
     {
       constexpr double none = -std::numeric_limits<double>::infinity();
-      if (!surveyed(b))
+      if (!analytic(b))
         return none;
       const auto  &desc = boundaries.boundary(b);
       const double flip = desc.flip_normals ? -1. : 1.;
@@ -171,24 +173,76 @@ namespace Talus
       const unsigned int                             mass_index,
       const MPI_Comm                                 communicator) const
     {
-      const unsigned int        n = boundaries.n_boundaries();
-      std::vector<double>       count(n, 0.), mass(n, 0.), deepest(n, 0.);
+      using BP              = BoundaryParticleProperties<dim>;
+      const unsigned int  n = boundaries.n_boundaries();
+      std::vector<double> count(n, 0.), mass(n, 0.), deepest(n, 0.);
+      const auto          add =
+        [&](const unsigned int b, const double d, const double m) {
+          if (d > 0.)
+            {
+              count[b] += 1.;
+              mass[b] += m;
+              deepest[b] = std::max(deepest[b], d);
+            }
+        };
       std::vector<unsigned int> checked;
       for (unsigned int b = 0; b < n; ++b)
-        if (surveyed(b))
+        if (analytic(b))
           checked.push_back(b);
       if (!checked.empty())
         for (const auto &p : points)
           for (const unsigned int b : checked)
+            add(b, depth(b, p.get_location()), p.get_properties()[mass_index]);
+
+      // the other boundaries by their particles: every rank gets the whole
+      // surface (positions and normals), the nearest particle decides
+      for (unsigned int b = 0; b < n; ++b)
+        {
+          if (analytic(b))
+            continue;
+          std::vector<double> local;
+          for (const auto &q : boundaries.particle_handler())
             {
-              const double d = depth(b, p.get_location());
-              if (d > 0.)
-                {
-                  count[b] += 1.;
-                  mass[b] += p.get_properties()[mass_index];
-                  deepest[b] = std::max(deepest[b], d);
-                }
+              const auto props = q.get_properties();
+              if (static_cast<unsigned int>(props[BP::boundary]) != b)
+                continue;
+              for (unsigned int d = 0; d < dim; ++d)
+                local.push_back(q.get_location()[d]);
+              for (unsigned int d = 0; d < dim; ++d)
+                local.push_back(props[BP::normal + d]);
             }
+          std::vector<dealii::Point<dim>>     x_b;
+          std::vector<dealii::Tensor<1, dim>> n_b;
+          for (const auto &part :
+               dealii::Utilities::MPI::all_gather(communicator, local))
+            for (unsigned int k = 0; k + 2 * dim <= part.size(); k += 2 * dim)
+              {
+                dealii::Point<dim>     x;
+                dealii::Tensor<1, dim> normal;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    x[d]      = part[k + d];
+                    normal[d] = part[k + dim + d];
+                  }
+                x_b.push_back(x);
+                n_b.push_back(normal);
+              }
+          if (x_b.empty())
+            continue;
+          const auto tree = dealii::pack_rtree_of_indices(x_b);
+          for (const auto &p : points)
+            {
+              const auto                x = p.get_location();
+              std::vector<unsigned int> nearest;
+              tree.query(boost::geometry::index::nearest(x, 1),
+                         std::back_inserter(nearest));
+              const unsigned int           j            = nearest[0];
+              const dealii::Tensor<1, dim> r            = x - x_b[j];
+              const double                 along_normal = r * n_b[j];
+              if ((r - along_normal * n_b[j]).norm() <= cell_size)
+                add(b, -along_normal, p.get_properties()[mass_index]);
+            }
+        }
       dealii::Utilities::MPI::sum(count, communicator, count);
       dealii::Utilities::MPI::sum(mass, communicator, mass);
       dealii::Utilities::MPI::max(deepest, communicator, deepest);

@@ -35,10 +35,14 @@ namespace Talus
      * - plane (3D): d = -(x - p0) . n on the parallelogram p0, p1, p2
      *   (points whose projection lies outside it are not behind it);
      * - line (2D): the same on the nearest segment of the polyline;
-     * - box and circle: the distance into the side without material.
-     *
-     * Moving boundaries (a displacement function or the coupling's
-     * surface), 'mesh' and 'external' surfaces are not surveyed.
+     * - box and circle: the distance into the side without material;
+     * - moving boundaries (a displacement function or the coupling's
+     *   surface, e.g. the net) and 'mesh' and 'external' surfaces: by their
+     *   boundary particles at their current positions, d = -(x - x_b) . n_b
+     *   with x_b and n_b the position and normal of the particle nearest to
+     *   x, counted only where x lies within one cell of x_b along the
+     *   surface (a point beyond the surface's edge, e.g. over the top of
+     *   the net, is not behind it).
      */
     template <int dim>
     class MaterialBehindBoundaries
@@ -70,14 +74,20 @@ namespace Talus
       bool
       on_grid_faces(const unsigned int b) const;
 
-      /** Whether boundary @p b is surveyed (see the class documentation). */
+      /**
+       * Whether boundary @p b is surveyed by its analytic geometry (a fixed
+       * plane, line, box or circle); the others are surveyed by their
+       * boundary particles (see the class documentation).
+       */
       bool
-      surveyed(const unsigned int b) const;
+      analytic(const unsigned int b) const;
 
       /**
        * Signed distance of @p x behind the undisplaced surface of boundary
-       * @p b [m]: positive behind it, negative in front of it or beside a
-       * finite plane or segment; -infinity for boundaries not surveyed.
+       * @p b [m] for the analytic geometries (fixed plane, line, box,
+       * circle): positive behind it, negative in front of it or beside a
+       * finite plane or segment; -infinity for the boundaries surveyed by
+       * their particles.
        */
       double
       depth(const unsigned int b, const dealii::Point<dim> &x) const;
