@@ -26,7 +26,7 @@ namespace Talus
       /**
        * Multi-velocity field: energy the contact between bodies has
        * dissipated [J], minus the work of the contact forces on the
-       * bodies (not in checkpoints).
+       * bodies.
        */
       double body_contact_dissipation = 0.;
       /**
@@ -41,7 +41,8 @@ namespace Talus
       serialize(Archive &ar, const unsigned int /*version*/)
       {
         ar &friction_dissipation &reset_dissipation &transfer_dissipation
-          &integrator_dissipation &boundary_friction_dissipation;
+          &integrator_dissipation &body_contact_dissipation
+            &boundary_friction_dissipation;
       }
     };
   } // namespace MPM

@@ -386,10 +386,10 @@ namespace Talus
 
       /**
        * Keep a copy of what commit_step() changes in the solver: the
-       * energy accounts (friction, reset and transfer dissipation), the
-       * committed grid velocity and its kinetic energy, the grid friction
-       * states the next step starts from. The points and boundary
-       * particles are saved by their owners (MPMProblem::save_state()).
+       * energy accounts (EnergyAccounts), the committed grid velocity and its
+       * kinetic energy, the grid friction states the next step starts from. The
+       * points and boundary particles are saved by their owners
+       * (MPMProblem::save_state()).
        */
       void
       save_state();
@@ -401,7 +401,8 @@ namespace Talus
       /**
        * Read or write, with a boost archive, the committed scalars a
        * checkpoint needs (MPMProblem::save_checkpoint()): the energy
-       * accounts (friction, reset and transfer dissipation), the grid
+       * accounts (friction, reset, transfer, integrator and body contact
+       * dissipation; EnergyAccounts::serialize()), the grid
        * kinetic energy and largest grid speed of the last commit and the
        * friction boundaries' resultant. The same on every rank.
        */
