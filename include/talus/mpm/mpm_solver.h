@@ -7,7 +7,9 @@
 #include <talus/materials/constitutive_model.h>
 #include <talus/mpm/background_grid.h>
 #include <talus/mpm/body_contact.h>
+#include <talus/mpm/boundary_contact_state.h>
 #include <talus/mpm/diagnostics.h>
+#include <talus/mpm/energy_accounts.h>
 #include <talus/mpm/material_points.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -384,10 +386,10 @@ namespace Talus
 
       /**
        * Keep a copy of what commit_step() changes in the solver: the
-       * energy accounts (friction, reset and transfer dissipation), the
-       * committed grid velocity and its kinetic energy, the grid friction
-       * states the next step starts from. The points and boundary
-       * particles are saved by their owners (MPMProblem::save_state()).
+       * energy accounts (EnergyAccounts), the committed grid velocity and its
+       * kinetic energy, the grid friction states the next step starts from. The
+       * points and boundary particles are saved by their owners
+       * (MPMProblem::save_state()).
        */
       void
       save_state();
@@ -399,7 +401,8 @@ namespace Talus
       /**
        * Read or write, with a boost archive, the committed scalars a
        * checkpoint needs (MPMProblem::save_checkpoint()): the energy
-       * accounts (friction, reset and transfer dissipation), the grid
+       * accounts (friction, reset, transfer, integrator and body contact
+       * dissipation; EnergyAccounts::serialize()), the grid
        * kinetic energy and largest grid speed of the last commit and the
        * friction boundaries' resultant. The same on every rank.
        */
@@ -554,133 +557,9 @@ namespace Talus
       commit_body_contact();
 
       /** A boundary particle in a cell with material, for one step. */
-      struct BoundaryPoint
-      {
-        typename dealii::Particles::ParticleIterator<dim> particle;
-        unsigned int                                      boundary;
-        double                                            weight;
-        double                                            beta;
-        double                                            mu;
-        Boundaries::Condition                             condition;
-        dealii::Tensor<1, dim>                            normal;
-        /** Prescribed displacement increment of the step [m]. */
-        dealii::Tensor<1, dim> du_bar;
-        /**
-         * Prescribed acceleration [m/s^2] at the initial time, set only
-         * while initialize_acceleration() prepares its step (zero
-         * otherwise and for a boundary at rest).
-         */
-        dealii::Tensor<1, dim> a_bar;
-        /** Gap at the start of the step [m]. */
-        dealii::Tensor<1, dim> gap_old;
-        /**
-         * Augmented Lagrangian: the multiplier, a force on the material
-         * [N] (the converged force of the last step, then of the last
-         * Uzawa update); zero for penalty.
-         */
-        dealii::Tensor<1, dim> lambda;
-        bool                   augmented = false;
-        /**
-         * Lagrange multiplier method: lambda is a Newton unknown. The
-         * assembly keeps the force f(lambda, u) of the iterate and its
-         * derivative D = df/dF with respect to the trial force
-         * F = lambda - k g (k = beta w), which the saddle-point solve
-         * needs; dlambda is the last Newton correction of lambda.
-         */
-        bool                   monolithic = false;
-        dealii::Tensor<1, dim> lm_force;
-        dealii::Tensor<2, dim> lm_D;
-        dealii::Tensor<1, dim> dlambda;
-        /**
-         * Changes of state in the current Newton solve; a Lagrange
-         * multiplier point that changed 6 times (semi-smooth Newton cycling
-         * between two active sets) is held in the more constrained of its
-         * states (frozen) for the rest of the solve. A held point that the
-         * converged solution does not satisfy is moved to the state the
-         * solution asks for, at most three times per step (counted from
-         * 100 on).
-         */
-        unsigned int switches = 0;
-        /**
-         * Nitsche's method: lambda is w times the traction of the material
-         * at the particle, lambda = -w S(u) n, recomputed at each iterate;
-         * theta is the symmetry parameter (1 symmetric, 0 incomplete, -1
-         * skew).
-         */
-        bool   nitsche = false;
-        double theta   = 1.;
-        /**
-         * Nitsche: Cauchy stress at the particle at the start of the step
-         * (from the nodal projection of the points' stresses) and the
-         * gradients of the cell's shape functions at the particle.
-         */
-        dealii::Tensor<2, dim>              sigma_n;
-        std::vector<dealii::Tensor<1, dim>> dN;
-        /** Whether sigma_n is known (a node of the cell has mass). */
-        bool with_stress = false;
-        /**
-         * Whether every node of the cell has mass: only then does the
-         * stress follow the increment within the step (the massless nodes
-         * are held at zero and would read as a strain).
-         */
-        bool full_cell = false;
-        /** Shape values of the cell's nodes at the particle. */
-        std::vector<double> N;
-        /**
-         * For a cell-wise constraint: the particles merged into this
-         * point (weight-averaged N, normal, gaps; summed weight) and
-         * their weights; empty for a single particle.
-         */
-        std::vector<typename dealii::Particles::ParticleIterator<dim>> members;
-        std::vector<double> member_weights;
-        /**
-         * Contact state the point is held in (-1: free to change; 0 open,
-         * 1 closed/stick, 2 slip while pressed, 3 closed and sliding
-         * whatever the normal force); used by the initial acceleration
-         * iteration after 3 changes of state and by the Lagrange
-         * multiplier Newton iteration against cycling.
-         */
-        int frozen = -1;
-        /** State at the last Newton iterate (-1: none yet). */
-        int last_state = -1;
-        /** Slip direction (against the tangential force) at the last iterate.
-         */
-        dealii::Tensor<1, dim> last_slip;
-        /**
-         * Material-point contact (contact side = material points): particle
-         * is the material point, N the shape values of its cell at its
-         * contact point x_c, gap_old the geometric normal gap at the start
-         * of the step plus the point's tangential stick spring.
-         */
-        bool on_material_point = false;
-        /**
-         * Material-point contact: the id of the boundary particle whose
-         * tangent line (plane) the point touches; the point's reaction is
-         * booked on it (boundary_reactions(), for a coupling interface).
-         */
-        dealii::types::particle_index surface_particle =
-          dealii::numbers::invalid_unsigned_int;
-        /**
-         * Material-point contact: the normal dashpot of the contact,
-         * eta = 'contact damping', a force eta k (g - g_old) . n n added to
-         * the spring's -k g while the point is pressed (0: none).
-         */
-        double damping = 0.;
-        /**
-         * Penetration over which the dashpot grows from zero to its full
-         * value (so that the force is continuous at first contact) [m].
-         */
-        double damping_onset = 1.;
-      };
-
+      using BoundaryPoint = MPM::BoundaryPoint<dim>;
       /** Force of a boundary particle on the material and its state. */
-      struct BoundaryForce
-      {
-        dealii::Tensor<1, dim> force; ///< on the material [N]
-        dealii::Tensor<2, dim> dforce_du;
-        dealii::Tensor<1, dim> gap; ///< new elastic gap [m]
-        int                    state = 0;
-      };
+      using BoundaryForce = MPM::BoundaryForce<dim>;
 
       /**
        * Penalty force of boundary particle @p b for the material
@@ -709,35 +588,10 @@ namespace Talus
                         dealii::Tensor<1, dim>              &T,
                         std::vector<dealii::Tensor<1, dim>> &dT) const;
 
-      /**
-       * The trial state of the boundary particles at a converged iterate
-       * (solve_step()): new gap, multiplier, reaction and state per
-       * particle; for material-point contact the point's tangential stick
-       * gap and its contribution to the boundary's resultant; the
-       * dissipated work. commit_step() writes it (commit_boundary_trial()).
-       */
-      struct BoundaryParticleTrial
-      {
-        typename dealii::Particles::ParticleIterator<dim> particle;
-        dealii::Tensor<1, dim>                            gap;
-        dealii::Tensor<1, dim>                            multiplier;
-        dealii::Tensor<1, dim>                            reaction;
-        int                                               state = 0;
-      };
-      struct PointContactTrial
-      {
-        typename dealii::Particles::ParticleIterator<dim> point;
-        unsigned int                                      boundary = 0;
-        dealii::Tensor<1, dim>                            tangential_gap;
-        bool                                              active = false;
-        dealii::Tensor<1, dim>                            reaction;
-        dealii::Tensor<1, dim>                            normal;
-        double                                            penetration = 0.;
-        /** beta w |g|^2 / 2 of the point's penalty spring [J]. */
-        double                        spring_energy = 0.;
-        dealii::types::particle_index surface_particle =
-          dealii::numbers::invalid_unsigned_int;
-      };
+      /** Trial state of the boundary particles (evaluate_boundary_trial()). */
+      using BoundaryParticleTrial = MPM::BoundaryParticleTrial<dim>;
+      /** Trial state of the material points in contact. */
+      using PointContactTrial = MPM::PointContactTrial<dim>;
       std::vector<BoundaryParticleTrial> boundary_trial;
       std::vector<PointContactTrial>     point_contact_trial;
       /**
@@ -1471,36 +1325,6 @@ namespace Talus
        */
       std::vector<bool> committed_stuck;
 
-      /**
-       * The energies the scheme has taken out since the start [J] (all
-       * ranks; the same on every rank); see Diagnostics for each term.
-       */
-      struct EnergyAccounts
-      {
-        double friction_dissipation   = 0.;
-        double reset_dissipation      = 0.;
-        double transfer_dissipation   = 0.;
-        double integrator_dissipation = 0.;
-        /**
-         * Multi-velocity field: energy the contact between bodies has
-         * dissipated [J], minus the work of the contact forces on the
-         * bodies (not in checkpoints).
-         */
-        double body_contact_dissipation = 0.;
-        /**
-         * Friction dissipation of each boundary of boundary particles
-         * (part of friction_dissipation).
-         */
-        std::vector<double> boundary_friction_dissipation;
-
-        template <class Archive>
-        void
-        serialize(Archive &ar, const unsigned int /*version*/)
-        {
-          ar &friction_dissipation &reset_dissipation &transfer_dissipation
-            &integrator_dissipation &boundary_friction_dissipation;
-        }
-      };
       /** The accumulated energy accounts (committed steps only). */
       EnergyAccounts accounts;
 
