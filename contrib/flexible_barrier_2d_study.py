@@ -69,6 +69,12 @@ VARIANTS = [
     ("cell size", "h=0.1 Newton 1e-6",
      sub("Solver", NEWTON_1E6) +
      sub("Background grid", {"subdivisions": "140, 76"})),
+    # the same with the step of the spurious solution at 3.27 s rejected
+    # and retried with half the step (EnergyJumpMonitor)
+    ("cell size", "h=0.1 Newton 1e-6 reject",
+     sub("Solver", NEWTON_1E6) +
+     sub("Background grid", {"subdivisions": "140, 76"}) +
+     sub("Time", {"energy jump action": "reject"})),
     ("cell size", "h=0.05 Newton 1e-6",
      sub("Solver", NEWTON_1E6) +
      sub("Background grid", {"subdivisions": "280, 152"})),

@@ -163,4 +163,48 @@ namespace Talus
                               reason.str(),
                               time_control.next_step());
   }
+
+
+  std::string
+  reject_energy_jump(const std::ostream &format,
+                     TimeControl        &time_control,
+                     const double        dt,
+                     const std::string  &jump)
+  {
+    // halve the step tried (with the error control dt is already the
+    // proposal for the next step)
+    const double proposed = time_control.dt;
+    time_control.dt       = dt;
+    if (!time_control.reject())
+      {
+        time_control.dt = proposed;
+        return "";
+      }
+    return rejected_step_line(format,
+                              time_control.step,
+                              time_control.time,
+                              dt,
+                              jump + " ('energy jump action = reject')",
+                              time_control.next_step());
+  }
+
+
+  std::string
+  energy_jump_kept_line(const std::ostream &format,
+                        const TimeControl  &time_control,
+                        const double        dt,
+                        const std::string  &jump)
+  {
+    std::ostringstream line;
+    line.copyfmt(format);
+    line << "  Warning: *** step " << time_control.step + 1
+         << " at t = " << time_control.time << " s (dt = " << dt
+         << " s) is COMMITTED WITH " << jump
+         << ": 'energy jump action = reject' cannot halve the step "
+         << "again (" << time_control.halvings << " of 'maximum step "
+         << "halvings' = " << time_control.max_halvings
+         << " used, 'minimum time step' = " << time_control.min_dt
+         << " s in subsection Time) ***\n";
+    return line.str();
+  }
 } // namespace Talus

@@ -42,6 +42,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace Talus
@@ -700,6 +701,73 @@ namespace Talus
                   << '\n';
       return std::max(e_mpm, e_structure);
     };
+    // the balance of the interface forces on a locally refined grid
+    // (before the commit of the step solved last)
+    const auto reaction_balance = [&]() {
+      // the interface reactions are conservative across hanging
+      // nodes: the particles' forces on the grid (condensed by
+      // deal.II) and their reactions add up to zero
+      const auto [on_grid, reactions] = mpm.solver().boundary_force_balance();
+      const double scale = std::max(on_grid.norm(), reactions.norm());
+      return scale > 0. ? (on_grid + reactions).norm() / scale : 0.;
+    };
+    // 'energy jump action = reject' (EnergyJumpMonitor): an accepted step
+    // is committed on a copy of the committed state of both fields and
+    // the coupling and checked; whether the step in hand was committed
+    // so, and its reaction balance
+    bool                  committed_for_check = false;
+    std::optional<double> checked_reaction_balance;
+    unsigned int          energy_rejections = 0, energy_jumps_kept = 0;
+    // true: keep the accepted step of size dt (committed if checked),
+    // false: it jumps and was undone, retry with the halved step
+    const auto keep_energy = [&](const double dt) {
+      if (!energy_jumps.rejects())
+        return true;
+      if (adaptive_grid)
+        checked_reaction_balance = reaction_balance();
+      coupling.save_state();
+      double change = 0., scale = 0.;
+      try
+        {
+          coupling.commit_step();
+          const auto d = mpm.diagnostics();
+          const auto e = energies(d);
+          change       = e.mpm + e.structure + e.dissipation - initial_total;
+          const double released =
+            std::max(max_released,
+                     std::abs(d.gravitational_energy -
+                              initial_diagnostics.gravitational_energy));
+          scale = released + d.kinetic_energy + structure.kinetic_energy();
+        }
+      catch (...)
+        {
+          coupling.restore_state(time_control.time);
+          checked_reaction_balance.reset();
+          throw;
+        }
+      committed_for_check = true;
+      if (!energy_jumps.is_jump(change, scale, mpm.points().count_lost() > 0))
+        return true;
+      const std::string jump = energy_jumps.describe_jump(change, scale);
+      const std::string line =
+        reject_energy_jump(pcout.get_stream(), time_control, dt, jump);
+      if (line.empty())
+        {
+          ++energy_jumps_kept;
+          pcout << energy_jump_kept_line(pcout.get_stream(),
+                                         time_control,
+                                         dt,
+                                         jump);
+          return true;
+        }
+      coupling.restore_state(time_control.time);
+      committed_for_check = false;
+      checked_reaction_balance.reset();
+      ++total_rejected;
+      ++energy_rejections;
+      pcout << line;
+      return false;
+    };
     double dt_taken = 0.;
 
     Boundaries::MaterialBehindBoundaries<dim> behind_boundaries(
@@ -746,11 +814,19 @@ namespace Talus
                         continue;
                       }
                     if (!time_control.error_control.enabled())
-                      break;
+                      {
+                        if (keep_energy(dt))
+                          break;
+                        continue;
+                      }
                     // the step chosen by the error (TruncationErrorControl)
                     const double error = step_error(dt);
                     if (time_control.assess_error(dt, error))
-                      break;
+                      {
+                        if (keep_energy(dt))
+                          break;
+                        continue;
+                      }
                     ++total_rejected;
                     coupling.reject_step();
                     if (!test_mode)
@@ -795,19 +871,14 @@ namespace Talus
           communicator);
         const double dt = dt_taken;
         if (adaptive_grid)
-          {
-            // the interface reactions are conservative across hanging
-            // nodes: the particles' forces on the grid (condensed by
-            // deal.II) and their reactions add up to zero
-            const auto [on_grid, reactions] =
-              mpm.solver().boundary_force_balance();
-            const double scale = std::max(on_grid.norm(), reactions.norm());
-            if (scale > 0.)
-              max_reaction_balance =
-                std::max(max_reaction_balance,
-                         (on_grid + reactions).norm() / scale);
-          }
-        coupling.commit_step();
+          max_reaction_balance =
+            std::max(max_reaction_balance,
+                     checked_reaction_balance ? *checked_reaction_balance :
+                                                reaction_balance());
+        checked_reaction_balance.reset();
+        if (!committed_for_check)
+          coupling.commit_step();
+        committed_for_check = false;
         structure_committed = structure.displacement();
         time_control.accept(dt);
         contact_onset.accepted(time_control);
@@ -1022,6 +1093,11 @@ namespace Talus
           << std::setprecision(8)
           << "  interface force at the end: " << result.interface_force
           << " N\n";
+    // (counted in this process: a checkpoint does not carry them)
+    if (energy_jumps.rejects())
+      pcout << "  energy jumps ('energy jump action = reject'): "
+            << energy_rejections << " steps rejected, " << energy_jumps_kept
+            << " committed with their jump (no halving left)\n";
     if (time_control.error_control.enabled())
       pcout << "  steps chosen by the error: " << time_control.step
             << " steps, " << time_control.error_rejections

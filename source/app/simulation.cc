@@ -39,6 +39,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace Talus
@@ -778,6 +779,58 @@ namespace Talus
         pcout << "  resumed from " << resume_path << " at step "
               << time_control.step << ", t = " << time_control.time << " s\n";
       }
+    // 'energy jump action = reject' (EnergyJumpMonitor): an accepted step
+    // is committed on a copy of the committed state and checked; whether
+    // the step in hand was committed so, and its diagnostics
+    bool                                 committed_for_check = false;
+    std::optional<MPM::Diagnostics<dim>> checked_diagnostics;
+    unsigned int energy_rejections = 0, energy_jumps_kept = 0;
+    // true: keep the accepted step of size dt_try (committed if checked),
+    // false: it jumps and was undone, retry with the halved step
+    const auto keep_energy = [&](const double dt_try) {
+      if (!energy_jumps.rejects())
+        return true;
+      problem.save_state();
+      try
+        {
+          problem.commit_step();
+          checked_diagnostics = solver.compute_diagnostics();
+        }
+      catch (...)
+        {
+          problem.restore_state();
+          checked_diagnostics.reset();
+          throw;
+        }
+      committed_for_check   = true;
+      const auto  &d        = *checked_diagnostics;
+      const double released = std::max(max_released,
+                                       std::abs(d.gravitational_energy -
+                                                initial.gravitational_energy));
+      const double b        = d.energy_balance();
+      const double scale    = released + d.kinetic_energy;
+      if (!energy_jumps.is_jump(b, scale, points.count_lost() > 0))
+        return true;
+      const std::string jump = energy_jumps.describe_jump(b, scale);
+      const std::string line =
+        reject_energy_jump(pcout.get_stream(), time_control, dt_try, jump);
+      if (line.empty())
+        {
+          ++energy_jumps_kept;
+          pcout << energy_jump_kept_line(pcout.get_stream(),
+                                         time_control,
+                                         dt_try,
+                                         jump);
+          return true;
+        }
+      problem.restore_state();
+      committed_for_check = false;
+      checked_diagnostics.reset();
+      ++total_rejected;
+      ++energy_rejections;
+      pcout << line;
+      return false;
+    };
     balance_load();
     while (!time_control.finished())
       {
@@ -822,7 +875,11 @@ namespace Talus
                     continue;
                   }
                 if (result.converged && !time_control.error_control.enabled())
-                  break;
+                  {
+                    if (keep_energy(dt_try))
+                      break;
+                    continue;
+                  }
                 if (result.converged)
                   {
                     // the step chosen by the error (TruncationErrorControl)
@@ -831,7 +888,11 @@ namespace Talus
                       dt_try,
                       time_control.newmark.beta);
                     if (time_control.assess_error(dt_try, error))
-                      break;
+                      {
+                        if (keep_energy(dt_try))
+                          break;
+                        continue;
+                      }
                     ++total_rejected;
                     if (!test_mode)
                       pcout << error_rejected_step_line(pcout.get_stream(),
@@ -883,7 +944,9 @@ namespace Talus
           time_control.time,
           write_checkpoint,
           communicator);
-        problem.commit_step();
+        if (!committed_for_check)
+          problem.commit_step();
+        committed_for_check = false;
         time_control.accept(dt_taken);
         contact_onset.accepted(time_control);
         if (time_control.error_control.enabled() || contact_onset.enabled())
@@ -945,7 +1008,10 @@ namespace Talus
                                    communicator),
           time_control.time);
 
-        const auto diagnostics = solver.compute_diagnostics();
+        const auto diagnostics = checked_diagnostics ?
+                                   *checked_diagnostics :
+                                   solver.compute_diagnostics();
+        checked_diagnostics.reset();
         if (speed_window > 0. &&
             time_control.time >=
               time_control.end_time - speed_window * (1. + 1e-9))
@@ -1189,6 +1255,11 @@ namespace Talus
               std::string())
         << "wall time " << format_seconds(wall_seconds()) << "\n"
         << "Output in " << output.directory() << "/\n";
+    // (counted in this process: a checkpoint does not carry them)
+    if (energy_jumps.rejects())
+      pcout << "  energy jumps ('energy jump action = reject'): "
+            << energy_rejections << " steps rejected, " << energy_jumps_kept
+            << " committed with their jump (no halving left)\n";
     // (not in test mode: a diagnostic of this process's run, which a
     // checkpoint does not carry)
     if (solver.convected_point_domains())

@@ -18,8 +18,8 @@ namespace Talus
       "fields) changes by more than this fraction of the energy moved so "
       "far (the largest released gravitational energy plus the kinetic "
       "energy) [-]: a sign of a spurious solution of the step (a shorter "
-      "'time step' avoids it). 0: off. The warning does not reject the "
-      "step.");
+      "'time step' avoids it). 0: off. What happens to such a step: "
+      "'energy jump action'.");
     prm.declare_entry(
       "energy jump outlier factor",
       "100",
@@ -28,6 +28,17 @@ namespace Talus
       "also this many times the mean change per step of the steps before "
       "(at least 3 of them) [-], >= 1: the steady drift of the booking "
       "(e.g. friction on a soft penalty) is not a jump.");
+    prm.declare_entry(
+      "energy jump action",
+      "warn",
+      dealii::Patterns::Selection("warn|reject"),
+      "What the time loop does with a step whose energy balance jumps "
+      "('energy jump warning'): warn: commit it and print a warning; "
+      "reject: discard it like a step whose Newton iteration failed and "
+      "retry it with half the time step (at most 'maximum step halvings' "
+      "times, not below 'minimum time step'; then it is committed with a "
+      "warning). reject keeps a copy of the committed state in every step "
+      "(MPM points, boundary particles; coupled: the structure too).");
   }
 
 
@@ -37,7 +48,40 @@ namespace Talus
     prm.enter_subsection("Time");
     fraction       = prm.get_double("energy jump warning");
     outlier_factor = prm.get_double("energy jump outlier factor");
+    action =
+      prm.get("energy jump action") == "reject" ? Action::reject : Action::warn;
     prm.leave_subsection();
+  }
+
+
+  bool
+  EnergyJumpMonitor::is_jump(const double balance,
+                             const double scale,
+                             const bool   points_lost) const
+  {
+    if (!(fraction > 0.) || !last_balance || points_lost)
+      return false;
+    const double jump = std::abs(balance - *last_balance);
+    // the mean change per step before this one
+    const double mean = n_changes > 0 ? sum_of_changes / n_changes : 0.;
+    return scale > 0. && n_changes >= 3 && jump > fraction * scale &&
+           jump > outlier_factor * mean;
+  }
+
+
+  std::string
+  EnergyJumpMonitor::describe_jump(const double balance,
+                                   const double scale) const
+  {
+    const double       jump = last_balance ? balance - *last_balance : 0.;
+    const double       mean = n_changes > 0 ? sum_of_changes / n_changes : 0.;
+    std::ostringstream msg;
+    msg << "an energy jump of " << jump << " J ("
+        << (scale > 0. ? 100. * std::abs(jump) / scale : 0.)
+        << " % of the energy moved so far, "
+        << (mean > 0. ? std::abs(jump) / mean : 0.)
+        << " times the mean change per step before)";
+    return msg.str();
   }
 
 
@@ -48,18 +92,17 @@ namespace Talus
                             const double       scale,
                             const bool         points_lost)
   {
+    const bool                  warn = is_jump(balance, scale, points_lost);
     const std::optional<double> last = last_balance;
     last_balance                     = balance;
     if (!(fraction > 0.) || !last || points_lost)
       return "";
     const double jump = balance - *last;
     // the mean change per step before this one
-    const double       mean = n_changes > 0 ? sum_of_changes / n_changes : 0.;
-    const unsigned int n_before = n_changes;
+    const double mean = n_changes > 0 ? sum_of_changes / n_changes : 0.;
     sum_of_changes += std::abs(jump);
     ++n_changes;
-    if (!(scale > 0.) || n_before < 3 || !(std::abs(jump) > fraction * scale) ||
-        !(std::abs(jump) > outlier_factor * mean))
+    if (!warn)
       return "";
     ++warnings;
     std::ostringstream msg;

@@ -488,6 +488,35 @@ namespace Talus
     }
 
 
+    template <int dim>
+    void
+    GaussSeidelCoupling<dim>::save_state()
+    {
+      mpm.save_state();
+      structure.save_state();
+      saved_committed       = committed;
+      saved_committed_force = committed_force;
+      saved_predictor       = predictor;
+    }
+
+
+    template <int dim>
+    void
+    GaussSeidelCoupling<dim>::restore_state(const double t)
+    {
+      mpm.restore_state();
+      structure.restore_state();
+      committed       = saved_committed;
+      committed_force = saved_committed_force;
+      force           = committed_force;
+      predictor       = saved_predictor;
+      step_end        = t;
+      // the boundary particles at the committed interface displacement
+      interface.set_step_displacement(committed, committed, t, t);
+      reject_step();
+    }
+
+
     template class GaussSeidelCoupling<2>;
     template class GaussSeidelCoupling<3>;
   } // namespace Coupling

@@ -893,6 +893,14 @@ namespace Talus
 
 
     template <int dim>
+    unsigned int
+    MaterialPoints<dim>::count_lost() const
+    {
+      return dealii::Utilities::MPI::sum(lost_count, grid.mpi_communicator);
+    }
+
+
+    template <int dim>
     std::pair<dealii::Point<dim>, dealii::Point<dim>>
     MaterialPoints<dim>::take_lost_region()
     {

@@ -99,6 +99,33 @@ namespace Talus
                            const TimeControl  &time_control,
                            const double        dt,
                            const double        error);
+
+  /**
+   * A step of size @p dt whose energy balance jumps (@p jump, from
+   * EnergyJumpMonitor::describe_jump()) with 'energy jump action' =
+   * reject: halve the step tried (TimeControl::reject() from @p dt, the
+   * failure path of both time loops) and return the log line of the
+   * rejection with the retry step. If no halving is left ('maximum step
+   * halvings', 'minimum time step'), @p time_control is left as it was
+   * and the string is empty: the caller commits the step and prints
+   * energy_jump_kept_line().
+   */
+  std::string
+  reject_energy_jump(const std::ostream &format,
+                     TimeControl        &time_control,
+                     const double        dt,
+                     const std::string  &jump);
+
+  /**
+   * The warning that the step of size @p dt from the time of
+   * @p time_control is committed with its energy jump @p jump because the
+   * step cannot be halved again.
+   */
+  std::string
+  energy_jump_kept_line(const std::ostream &format,
+                        const TimeControl  &time_control,
+                        const double        dt,
+                        const std::string  &jump);
 } // namespace Talus
 
 #endif

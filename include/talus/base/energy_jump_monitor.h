@@ -29,8 +29,16 @@ namespace Talus
    * where E_scale is the largest released gravitational energy plus the
    * kinetic energy and c the outlier factor (the steady drift of the
    * booking, e.g. friction on a soft penalty, is not a jump), and returns a
-   * warning line naming the step. It does not reject the step (the
-   * energies are known after the commit only).
+   * warning line naming the step.
+   *
+   * With 'energy jump action' = reject the time loop also rejects such a
+   * step: it commits the trial step on a copy of the committed state
+   * (MPMProblem::save_state(), for the coupled problem both fields and the
+   * coupling), asks is_jump() (which changes none of the statistics), and
+   * if the step jumps restores the copy and retries the step with half the
+   * time step, as a step whose Newton iteration failed ('maximum step
+   * halvings'); when no halving is left the step is committed with a
+   * warning. Only committed steps enter the statistics (assess()).
    *
    * Off with f = 0. The first four steps after the start or a resume are
    * not assessed (B_n and the mean change are not known to the monitor).
@@ -38,6 +46,15 @@ namespace Talus
   class EnergyJumpMonitor
   {
   public:
+    /** What the time loop does with a step that jumps. */
+    enum class Action
+    {
+      /** commit it and print the warning of assess() */
+      warn,
+      /** reject it and retry with half the time step */
+      reject
+    };
+
     /** Declare the entries in the current subsection ("Time"). */
     static void
     declare_parameters(dealii::ParameterHandler &prm);
@@ -61,6 +78,33 @@ namespace Talus
            const double       scale,
            const bool         points_lost = false);
 
+    /**
+     * Whether the trial step with the energy balance @p balance [J] and the
+     * energy moved @p scale [J] (arguments as for assess()) is a jump
+     * against the committed steps assessed so far. Changes nothing: the
+     * statistics include committed steps only (assess()).
+     */
+    bool
+    is_jump(const double balance,
+            const double scale,
+            const bool   points_lost = false) const;
+
+    /**
+     * The jump of a step with @p balance and @p scale for a log line: "an
+     * energy jump of ... J (... % of the energy moved so far, ... times the
+     * mean change per step before)".
+     */
+    std::string
+    describe_jump(const double balance, const double scale) const;
+
+    /** Whether a step that jumps is rejected ('energy jump action' =
+     * reject and the monitor on). */
+    bool
+    rejects() const
+    {
+      return action == Action::reject && fraction > 0.;
+    }
+
     /** The number of steps warned about so far. */
     unsigned int
     n_warnings() const
@@ -74,6 +118,9 @@ namespace Talus
 
     /** c ('energy jump outlier factor'). */
     double outlier_factor = 100.;
+
+    /** 'energy jump action'. */
+    Action action = Action::warn;
 
     /** Sum and number of the changes |B_{k+1} - B_k| so far. */
     double       sum_of_changes = 0.;

@@ -116,6 +116,25 @@ namespace Talus
       void
       reject_step();
 
+      /**
+       * Keep a copy of the committed state of both fields and the coupling
+       * (MPM::MPMProblem::save_state(), Structure::StructureProblem::
+       * save_state(), the committed interface displacement and force, the
+       * predictor's windows), before a commit_step() that may be undone
+       * (a step rejected for its energy jump, EnergyJumpMonitor).
+       */
+      void
+      save_state();
+
+      /**
+       * Undo the commit_step() after the last save_state(): both fields
+       * and the coupling are back at the state committed at time @p t,
+       * the interface at its committed displacement, and the accelerator's
+       * history is dropped as for a rejected step (reject_step()).
+       */
+      void
+      restore_state(const double t);
+
       /** The interface force of the last solve_step() (structure DoFs). */
       const dealii::Vector<double> &
       interface_forces() const
@@ -177,6 +196,10 @@ namespace Talus
        * step (structure DoFs) [N]. */
       dealii::Vector<double> force, committed_force;
       double                 step_end = 0.;
+
+      /** The copy of save_state(). */
+      dealii::Vector<double> saved_committed, saved_committed_force;
+      InterfacePredictor     saved_predictor;
 
       /** k_R of the Robin springs for the step @p dt [Pa/m]
        * (CouplingParameters::robin_stiffness). */

@@ -301,6 +301,14 @@ namespace Talus
       take_lost_count();
 
       /**
+       * Number of points lost since the last take_lost_count() (global,
+       * collective), without resetting the count: whether a trial commit
+       * lost points (EnergyJumpMonitor::is_jump()).
+       */
+      unsigned int
+      count_lost() const;
+
+      /**
        * Bounding box of the positions (outside the grid) of the points lost
        * since the last call (global); empty when none was lost. Called with
        * take_lost_count() so that a report can say where points left.
