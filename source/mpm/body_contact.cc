@@ -47,7 +47,9 @@ namespace Talus
       "Coulomb friction coefficient mu between bodies [-], >= 0 "
       "(multi-velocity field): the tangential force at a contact node is "
       "that of a stick penalty with the normal stiffness, bounded by mu "
-      "times the normal pressure (slip).");
+      "times the normal pressure (slip). With friction the tangent is not "
+      "symmetric: 'linear solver' (subsection Solver) must be 'GMRES' or "
+      "'direct'.");
     prm.declare_entry(
       "penalty factor",
       "100",
@@ -153,6 +155,20 @@ namespace Talus
                "friction boundaries",
                "(not empty)",
                "a grid friction boundary");
+      // The sliding tangent of the friction between bodies is not
+      // symmetric (mu k t n; in 3D also mu p / |s| (P - t t)): CG, which
+      // needs a symmetric positive definite matrix, stalls at 2000
+      // iterations (tests/mpm/block_on_block_3d_mu02 from its third step,
+      // tests/mpm/block_on_block_mu02 on the grid h/2 from its first).
+      if (body_friction > 0. && linear_solver_type == "CG")
+        InputFile::reject(
+          "Solver",
+          "linear solver",
+          "CG",
+          "CG needs a symmetric matrix, and the tangent of the friction "
+          "between bodies (subsection Body contact, 'contact = "
+          "multi-velocity field', 'friction coefficient' > 0) is not "
+          "symmetric: use 'GMRES' or 'direct'");
     }
 
 
