@@ -207,4 +207,28 @@ namespace Talus
          << " s in subsection Time) ***\n";
     return line.str();
   }
+
+
+  std::string
+  energy_jump_rejection(const EnergyJumpMonitor    &monitor,
+                        const double                balance,
+                        const double                scale,
+                        const bool                  points_lost,
+                        dealii::ConditionalOStream &out,
+                        TimeControl                &time_control,
+                        const double                dt,
+                        unsigned int               &kept)
+  {
+    if (!monitor.is_jump(balance, scale, points_lost))
+      return "";
+    const std::string jump = monitor.describe_jump(balance, scale);
+    const std::string line =
+      reject_energy_jump(out.get_stream(), time_control, dt, jump);
+    if (line.empty())
+      {
+        ++kept;
+        out << energy_jump_kept_line(out.get_stream(), time_control, dt, jump);
+      }
+    return line;
+  }
 } // namespace Talus

@@ -746,20 +746,17 @@ namespace Talus
           throw;
         }
       committed_for_check = true;
-      if (!energy_jumps.is_jump(change, scale, mpm.points().count_lost() > 0))
-        return true;
-      const std::string jump = energy_jumps.describe_jump(change, scale);
       const std::string line =
-        reject_energy_jump(pcout.get_stream(), time_control, dt, jump);
+        energy_jump_rejection(energy_jumps,
+                              change,
+                              scale,
+                              mpm.points().count_lost() > 0,
+                              pcout,
+                              time_control,
+                              dt,
+                              energy_jumps_kept);
       if (line.empty())
-        {
-          ++energy_jumps_kept;
-          pcout << energy_jump_kept_line(pcout.get_stream(),
-                                         time_control,
-                                         dt,
-                                         jump);
-          return true;
-        }
+        return true;
       coupling.restore_state(time_control.time);
       committed_for_check = false;
       checked_reaction_balance.reset();

@@ -802,27 +802,23 @@ namespace Talus
           checked_diagnostics.reset();
           throw;
         }
-      committed_for_check   = true;
-      const auto  &d        = *checked_diagnostics;
-      const double released = std::max(max_released,
+      committed_for_check        = true;
+      const auto       &d        = *checked_diagnostics;
+      const double      released = std::max(max_released,
                                        std::abs(d.gravitational_energy -
                                                 initial.gravitational_energy));
-      const double b        = d.energy_balance();
-      const double scale    = released + d.kinetic_energy;
-      if (!energy_jumps.is_jump(b, scale, points.count_lost() > 0))
-        return true;
-      const std::string jump = energy_jumps.describe_jump(b, scale);
-      const std::string line =
-        reject_energy_jump(pcout.get_stream(), time_control, dt_try, jump);
+      const double      b        = d.energy_balance();
+      const double      scale    = released + d.kinetic_energy;
+      const std::string line     = energy_jump_rejection(energy_jumps,
+                                                     b,
+                                                     scale,
+                                                     points.count_lost() > 0,
+                                                     pcout,
+                                                     time_control,
+                                                     dt_try,
+                                                     energy_jumps_kept);
       if (line.empty())
-        {
-          ++energy_jumps_kept;
-          pcout << energy_jump_kept_line(pcout.get_stream(),
-                                         time_control,
-                                         dt_try,
-                                         jump);
-          return true;
-        }
+        return true;
       problem.restore_state();
       committed_for_check = false;
       checked_diagnostics.reset();

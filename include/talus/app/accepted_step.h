@@ -1,9 +1,11 @@
 #ifndef talus_app_accepted_step_h
 #define talus_app_accepted_step_h
 
+#include <talus/base/energy_jump_monitor.h>
 #include <talus/base/time_control.h>
 #include <talus/io/checkpointing.h>
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/mpi.h>
 
 #include <functional>
@@ -126,6 +128,26 @@ namespace Talus
                         const TimeControl  &time_control,
                         const double        dt,
                         const std::string  &jump);
+
+  /**
+   * The check of a trial step committed on a copy of the committed state
+   * ('energy jump action' = reject), the same in both time loops: if the
+   * step of size @p dt with the energy balance @p balance and the scale
+   * @p scale (EnergyJumpMonitor::is_jump(), @p points_lost) jumps and can
+   * be halved, @p time_control is set for the retry and the rejection line
+   * is returned: the caller restores its copy and prints it. Otherwise the
+   * step is kept and the string is empty; a jump kept because no halving is
+   * left prints energy_jump_kept_line() on @p out and counts @p kept.
+   */
+  std::string
+  energy_jump_rejection(const EnergyJumpMonitor    &monitor,
+                        const double                balance,
+                        const double                scale,
+                        const bool                  points_lost,
+                        dealii::ConditionalOStream &out,
+                        TimeControl                &time_control,
+                        const double                dt,
+                        unsigned int               &kept);
 } // namespace Talus
 
 #endif
