@@ -1258,6 +1258,49 @@ namespace Talus
     }
 
 
+    template <int dim>
+    GatheredSurface<dim>
+    BoundaryParticles<dim>::gather_surface(const unsigned int b) const
+    {
+      using Properties = BoundaryParticleProperties<dim>;
+      std::vector<double> local;
+      for (const auto &p : handler)
+        {
+          const auto props = p.get_properties();
+          if (static_cast<unsigned int>(props[Properties::boundary]) != b)
+            continue;
+          for (unsigned int d = 0; d < dim; ++d)
+            local.push_back(p.get_location()[d]);
+          for (unsigned int d = 0; d < dim; ++d)
+            local.push_back(props[Properties::normal + d]);
+          for (unsigned int d = 0; d < dim; ++d)
+            local.push_back(props[Properties::reference_position + d]);
+          local.push_back(static_cast<double>(p.get_id()));
+        }
+      GatheredSurface<dim>   surface;
+      constexpr unsigned int stride = 3 * dim + 1;
+      for (const auto &part :
+           dealii::Utilities::MPI::all_gather(grid.mpi_communicator, local))
+        for (unsigned int k = 0; k + stride <= part.size(); k += stride)
+          {
+            dealii::Point<dim>     x, X;
+            dealii::Tensor<1, dim> n;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                x[d] = part[k + d];
+                n[d] = part[k + dim + d];
+                X[d] = part[k + 2 * dim + d];
+              }
+            surface.x.push_back(x);
+            surface.n.push_back(n);
+            surface.X.push_back(X);
+            surface.id.push_back(
+              static_cast<dealii::types::particle_index>(part[k + 3 * dim]));
+          }
+      return surface;
+    }
+
+
     template class BoundaryParticles<2>;
     template class BoundaryParticles<3>;
   } // namespace Boundaries

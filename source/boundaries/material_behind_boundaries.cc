@@ -173,7 +173,6 @@ namespace Talus
       const unsigned int                             mass_index,
       const MPI_Comm                                 communicator) const
     {
-      using BP              = BoundaryParticleProperties<dim>;
       const unsigned int  n = boundaries.n_boundaries();
       std::vector<double> count(n, 0.), mass(n, 0.), deepest(n, 0.);
       const auto          add =
@@ -200,33 +199,9 @@ namespace Talus
         {
           if (analytic(b))
             continue;
-          std::vector<double> local;
-          for (const auto &q : boundaries.particle_handler())
-            {
-              const auto props = q.get_properties();
-              if (static_cast<unsigned int>(props[BP::boundary]) != b)
-                continue;
-              for (unsigned int d = 0; d < dim; ++d)
-                local.push_back(q.get_location()[d]);
-              for (unsigned int d = 0; d < dim; ++d)
-                local.push_back(props[BP::normal + d]);
-            }
-          std::vector<dealii::Point<dim>>     x_b;
-          std::vector<dealii::Tensor<1, dim>> n_b;
-          for (const auto &part :
-               dealii::Utilities::MPI::all_gather(communicator, local))
-            for (unsigned int k = 0; k + 2 * dim <= part.size(); k += 2 * dim)
-              {
-                dealii::Point<dim>     x;
-                dealii::Tensor<1, dim> normal;
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    x[d]      = part[k + d];
-                    normal[d] = part[k + dim + d];
-                  }
-                x_b.push_back(x);
-                n_b.push_back(normal);
-              }
+          const auto  surface = boundaries.gather_surface(b);
+          const auto &x_b     = surface.x;
+          const auto &n_b     = surface.n;
           if (x_b.empty())
             continue;
           const auto tree = dealii::pack_rtree_of_indices(x_b);

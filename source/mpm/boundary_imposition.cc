@@ -588,43 +588,7 @@ namespace Talus
             contact_surfaces.assign(boundary_particles->n_boundaries(), {});
           ContactSurface &surface = contact_surfaces[b];
           if (!updating_boundaries)
-            {
-              std::vector<double> local;
-              for (const auto &p : boundary_particles->particle_handler())
-                {
-                  const auto props = p.get_properties();
-                  if (static_cast<unsigned int>(props[BP::boundary]) != b)
-                    continue;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    local.push_back(p.get_location()[d]);
-                  for (unsigned int d = 0; d < dim; ++d)
-                    local.push_back(props[BP::normal + d]);
-                  for (unsigned int d = 0; d < dim; ++d)
-                    local.push_back(props[BP::reference_position + d]);
-                  local.push_back(static_cast<double>(p.get_id()));
-                }
-              surface = ContactSurface();
-              for (const auto &part :
-                   dealii::Utilities::MPI::all_gather(comm, local))
-                for (unsigned int k = 0; k + 3 * dim + 1 <= part.size();
-                     k += 3 * dim + 1)
-                  {
-                    surface.id.push_back(
-                      static_cast<dealii::types::particle_index>(
-                        part[k + 3 * dim]));
-                    dealii::Point<dim>     x, X;
-                    dealii::Tensor<1, dim> n;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        x[d] = part[k + d];
-                        n[d] = part[k + dim + d];
-                        X[d] = part[k + 2 * dim + d];
-                      }
-                    surface.x.push_back(x);
-                    surface.n.push_back(n);
-                    surface.X.push_back(X);
-                  }
-            }
+            surface = boundary_particles->gather_surface(b);
           const auto &x_b  = surface.x;
           const auto &n_b  = surface.n;
           const auto &X_b  = surface.X;

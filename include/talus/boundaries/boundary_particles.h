@@ -182,6 +182,20 @@ namespace Talus
     };
 
     /**
+     * The particles of one boundary as every rank sees them after
+     * BoundaryParticles::gather_surface(): current positions x, unit normals
+     * n into the material, reference positions X and particle ids.
+     */
+    template <int dim>
+    struct GatheredSurface
+    {
+      std::vector<dealii::Point<dim>>            x;
+      std::vector<dealii::Tensor<1, dim>>        n;
+      std::vector<dealii::Point<dim>>            X;
+      std::vector<dealii::types::particle_index> id;
+    };
+
+    /**
      * The boundary particles: a second Particles::ParticleHandler on the
      * background grid whose particles carry the geometry and the data of
      * boundaries that do not follow the grid (after Chandra et al. 2021,
@@ -411,6 +425,14 @@ namespace Talus
        */
       std::vector<unsigned int>
       take_lost_per_boundary();
+
+      /**
+       * The particles of boundary @p b from all ranks (collective): its
+       * surface as a point cloud, e.g. for the nearest particle to a
+       * material point.
+       */
+      GatheredSurface<dim>
+      gather_surface(const unsigned int b) const;
 
       /** The name of boundary @p b (as in the parameter file). */
       const std::string &

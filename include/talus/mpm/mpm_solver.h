@@ -733,13 +733,7 @@ namespace Talus
        * for update_boundary_displacement() (the particles move only in
        * commit_step()).
        */
-      struct ContactSurface
-      {
-        std::vector<dealii::Point<dim>>            x;
-        std::vector<dealii::Tensor<1, dim>>        n;
-        std::vector<dealii::Point<dim>>            X;
-        std::vector<dealii::types::particle_index> id;
-      };
+      using ContactSurface = Boundaries::GatheredSurface<dim>;
       std::vector<ContactSurface> contact_surfaces;
       /** Set while update_boundary_displacement() prepares. */
       bool updating_boundaries = false;
