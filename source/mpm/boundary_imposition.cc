@@ -567,7 +567,6 @@ namespace Talus
       boundary_particles->clear_point_contact();
       const auto        &base    = grid.fe.base_element(0);
       const unsigned int n_nodes = base.dofs_per_cell;
-      const MPI_Comm     comm    = grid.mpi_communicator;
       const double       h       = grid.is_cartesian ?
                                      *std::min_element(grid.cell_extent.begin_raw(),
                                            grid.cell_extent.end_raw()) :
