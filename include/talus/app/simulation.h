@@ -1,6 +1,7 @@
 #ifndef talus_app_simulation_h
 #define talus_app_simulation_h
 
+#include <talus/app/run_verification.h>
 #include <talus/boundaries/boundary_particles.h>
 
 #include <deal.II/base/mpi.h>
@@ -28,27 +29,6 @@ namespace Talus
   {
   public:
     using std::runtime_error::runtime_error;
-  };
-
-  /** Errors measured against an exact solution at one report time. */
-  struct VerificationErrors
-  {
-    double time               = 0.;
-    double displacement_error = 0.; ///< [sum V0 |u - u_ex|^2 / sum V0]^1/2
-    /** The same norm of u_ex (|u_ex(X_c)| for the center of mass) [m]. */
-    double exact_displacement = 0.;
-    double stress_error       = 0.; ///< max |sigma - sigma_ex| / max |sigma_ex|
-    /** [sum V0 |sigma - sigma_ex|^2 / sum V0]^1/2 / max |sigma_ex| */
-    double stress_rms_error = 0.;
-
-    /** Read or write with a boost archive (checkpoints). */
-    template <class Archive>
-    void
-    serialize(Archive &ar, const unsigned int /*version*/)
-    {
-      ar &time &displacement_error &exact_displacement &stress_error
-        &stress_rms_error;
-    }
   };
 
   /**
