@@ -364,47 +364,21 @@ namespace Talus
           if (n_kept == 0)
             continue;
           c.n_boundary = n_kept;
-          if (grid.is_cartesian)
+          {
+            // (the gradients for Nitsche's flux only)
+            std::vector<double>                 values;
+            std::vector<dealii::Tensor<1, dim>> gradients;
+            append_q1_shapes(tria_cell, reference_points, values, gradients);
             for (unsigned int q = 0; q < n_kept; ++q)
               {
                 auto &bp = boundary_points[c.first_boundary + q];
-                bp.N.resize(n_nodes);
-                for (unsigned int k = 0; k < n_nodes; ++k)
-                  bp.N[k] = base.shape_value(k, reference_points[q]);
+                bp.N.assign(values.begin() + q * n_nodes,
+                            values.begin() + (q + 1) * n_nodes);
                 if (bp.nitsche)
-                  {
-                    bp.dN.resize(n_nodes);
-                    for (unsigned int k = 0; k < n_nodes; ++k)
-                      {
-                        bp.dN[k] = base.shape_grad(k, reference_points[q]);
-                        for (unsigned int d = 0; d < dim; ++d)
-                          bp.dN[k][d] /= grid.cell_extent[d];
-                      }
-                  }
+                  bp.dN.assign(gradients.begin() + q * n_nodes,
+                               gradients.begin() + (q + 1) * n_nodes);
               }
-          else
-            {
-              const dealii::Quadrature<dim> quadrature(reference_points);
-              dealii::FEValues<dim>         fe_values(grid.mapping,
-                                              base,
-                                              quadrature,
-                                              dealii::update_values |
-                                                dealii::update_gradients);
-              fe_values.reinit(tria_cell);
-              for (unsigned int q = 0; q < n_kept; ++q)
-                {
-                  auto &bp = boundary_points[c.first_boundary + q];
-                  bp.N.resize(n_nodes);
-                  for (unsigned int k = 0; k < n_nodes; ++k)
-                    bp.N[k] = fe_values.shape_value(k, q);
-                  if (bp.nitsche)
-                    {
-                      bp.dN.resize(n_nodes);
-                      for (unsigned int k = 0; k < n_nodes; ++k)
-                        bp.dN[k] = fe_values.shape_grad(k, q);
-                    }
-                }
-            }
+          }
           // Nodes without mass are constrained to zero increments: in the
           // gap they stand for the boundary itself, so a point's prescribed
           // increment enters only with the share S of the nodes with mass,

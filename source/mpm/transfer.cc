@@ -100,7 +100,10 @@ namespace Talus
             if (gimp)
               cache_gimp_cell(cell, reference_points, c);
             else
-              cache_q1_shapes(tria_cell, reference_points);
+              append_q1_shapes(tria_cell,
+                               reference_points,
+                               shape_values,
+                               shape_gradients);
             cells.push_back(std::move(c));
           }
       (void)Properties::mass;
@@ -148,7 +151,10 @@ namespace Talus
               particles.push_back(p);
               reference_points.push_back(p->get_reference_location());
             }
-          cache_q1_shapes(tria_cell, reference_points);
+          append_q1_shapes(tria_cell,
+                           reference_points,
+                           shape_values,
+                           shape_gradients);
           cells.push_back(std::move(c));
         }
     }
@@ -156,9 +162,11 @@ namespace Talus
 
     template <int dim>
     void
-    MPMSolver<dim>::cache_q1_shapes(
+    MPMSolver<dim>::append_q1_shapes(
       const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
-      const std::vector<dealii::Point<dim>> &reference_points)
+      const std::vector<dealii::Point<dim>> &reference_points,
+      std::vector<double>                   &values,
+      std::vector<dealii::Tensor<1, dim>>   &gradients) const
     {
       const auto        &base    = grid.fe.base_element(0);
       const unsigned int n_nodes = base.dofs_per_cell;
@@ -174,11 +182,11 @@ namespace Talus
           for (const auto &xi : reference_points)
             for (unsigned int k = 0; k < n_nodes; ++k)
               {
-                shape_values.push_back(base.shape_value(k, xi));
+                values.push_back(base.shape_value(k, xi));
                 dealii::Tensor<1, dim> g = base.shape_grad(k, xi);
                 for (unsigned int d = 0; d < dim; ++d)
                   g[d] /= h[d];
-                shape_gradients.push_back(g);
+                gradients.push_back(g);
               }
           return;
         }
@@ -192,8 +200,8 @@ namespace Talus
       for (unsigned int q = 0; q < reference_points.size(); ++q)
         for (unsigned int k = 0; k < n_nodes; ++k)
           {
-            shape_values.push_back(fe_values.shape_value(k, q));
-            shape_gradients.push_back(fe_values.shape_grad(k, q));
+            values.push_back(fe_values.shape_value(k, q));
+            gradients.push_back(fe_values.shape_grad(k, q));
           }
     }
 
@@ -890,17 +898,22 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-#define TALUS_INSTANTIATE(dim)                                       \
-  template void MPMSolver<dim>::cache_particles();                   \
-  template void MPMSolver<dim>::cache_cell_per_body(                 \
-    const typename dealii::DoFHandler<dim>::active_cell_iterator &); \
-  template std::pair<unsigned long long, unsigned long long>         \
-                MPMSolver<dim>::capped_point_domains() const;        \
-  template void MPMSolver<dim>::project_to_grid();                   \
-  template void MPMSolver<dim>::compute_xpic_correction(             \
-    std::vector<dealii::Tensor<1, dim>> &w) const;                   \
-  template void MPMSolver<dim>::commit_step();                       \
-  template void MPMSolver<dim>::project_stress_to_grid();
+#define TALUS_INSTANTIATE(dim)                                         \
+  template void MPMSolver<dim>::cache_particles();                     \
+  template void MPMSolver<dim>::cache_cell_per_body(                   \
+    const typename dealii::DoFHandler<dim>::active_cell_iterator &);   \
+  template std::pair<unsigned long long, unsigned long long>           \
+                MPMSolver<dim>::capped_point_domains() const;          \
+  template void MPMSolver<dim>::project_to_grid();                     \
+  template void MPMSolver<dim>::compute_xpic_correction(               \
+    std::vector<dealii::Tensor<1, dim>> &w) const;                     \
+  template void MPMSolver<dim>::commit_step();                         \
+  template void MPMSolver<dim>::project_stress_to_grid();              \
+  template void MPMSolver<dim>::append_q1_shapes(                      \
+    const typename dealii::Triangulation<dim>::active_cell_iterator &, \
+    const std::vector<dealii::Point<dim>> &,                           \
+    std::vector<double> &,                                             \
+    std::vector<dealii::Tensor<1, dim>> &) const;
 
     TALUS_INSTANTIATE(2)
     TALUS_INSTANTIATE(3)

@@ -676,15 +676,20 @@ namespace Talus
         const typename dealii::DoFHandler<dim>::active_cell_iterator &cell);
 
       /**
-       * Linear shape functions: the values and gradients of the cell's Q1
-       * functions at @p reference_points (unit cell coordinates) onto
-       * shape_values and shape_gradients (scaled by the cell's extent on
-       * Cartesian grids, through the mapping otherwise).
+       * Linear shape functions: append the values and gradients of the
+       * cell's Q1 functions at @p reference_points (unit cell coordinates)
+       * to @p values and @p gradients, point by point (the gradients
+       * scaled by the extent of this cell, on any level, on Cartesian
+       * grids, through the mapping otherwise). The material points'
+       * transfer (shape_values, shape_gradients) and the boundary
+       * particles use it.
        */
       void
-      cache_q1_shapes(
+      append_q1_shapes(
         const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
-        const std::vector<dealii::Point<dim>> &reference_points);
+        const std::vector<dealii::Point<dim>> &reference_points,
+        std::vector<double>                   &values,
+        std::vector<dealii::Tensor<1, dim>>   &gradients) const;
 
       /**
        * uGIMP and cpGIMP: the patch dofs of a material cell into @p c and
