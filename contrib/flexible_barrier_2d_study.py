@@ -56,6 +56,26 @@ def sub(section, entries):
 NEWTON_1E6 = {"residual tolerance": "1e-6", "increment tolerance": "1e-6",
               "increment test": "estimated error"}
 
+# the variants of the slope and the material, shared with the 3D study
+SLOPE_AND_MATERIAL = [
+    # basal friction (0.4 in the base)
+    ("basal friction", "mu=0.3",
+     sub("Boundary particles/Boundary 1", {"friction coefficient": "0.3"})),
+    ("basal friction", "mu=0.5",
+     sub("Boundary particles/Boundary 1", {"friction coefficient": "0.5"})),
+    # material model (Mohr-Coulomb, phi 35 deg, in the base)
+    ("material", "phi=30",
+     sub("Material/Mohr-Coulomb", {"friction angle": "30"})),
+    # mu(I) rheology (Jop et al. 2006) on top of phi = 35 deg, the
+    # recoverable variant of the Bui collapse; limiting angle and grain
+    # size are assumptions for a gravel (not from a test)
+    ("material", "mu(I)",
+     sub("Material/Mohr-Coulomb", {"limiting friction angle": "45",
+                                   "reference inertial number": "0.279",
+                                   "grain diameter": "0.01",
+                                   "separated volume": "recoverable"})),
+]
+
 # (study, name, appended prm text); the first of each study is the base
 # value where the base is part of it
 VARIANTS = [
@@ -106,26 +126,11 @@ VARIANTS = [
      sub("Structure/Brake", {"activation force": "1e3"})),
     ("brake", "brake 0.5 kN/m",
      sub("Structure/Brake", {"activation force": "5e2"})),
-    # basal friction (0.4 in the base)
-    ("basal friction", "mu=0.3",
-     sub("Boundary particles/Boundary 1", {"friction coefficient": "0.3"})),
-    ("basal friction", "mu=0.5",
-     sub("Boundary particles/Boundary 1", {"friction coefficient": "0.5"})),
-    # material model (Mohr-Coulomb, phi 35 deg, in the base)
-    ("material", "phi=30",
-     sub("Material/Mohr-Coulomb", {"friction angle": "30"})),
+] + SLOPE_AND_MATERIAL + [
     # the Drucker-Prager cone matched to Mohr-Coulomb in plane strain
     ("material", "Drucker-Prager",
      sub("Material", {"model": "Drucker-Prager"}) +
      sub("Material/Drucker-Prager", {"friction angle": "35"})),
-    # mu(I) rheology (Jop et al. 2006) on top of phi = 35 deg, the
-    # recoverable variant of the Bui collapse; limiting angle and grain
-    # size are assumptions for a gravel (not from a test)
-    ("material", "mu(I)",
-     sub("Material/Mohr-Coulomb", {"limiting friction angle": "45",
-                                   "reference inertial number": "0.279",
-                                   "grain diameter": "0.01",
-                                   "separated volume": "recoverable"})),
 ]
 
 
@@ -176,7 +181,8 @@ def ringing(t, f, dt=0.01, width=0.1):
 def run_in(talus, out, text, reuse):
     """Write the input text to out/run.prm and run talus on it in out
     (log in out/log), unless reuse is set and it ran there before; return
-    the exit code, the wall time [s] and the log."""
+    the exit code, the wall time [s], the CPU time [s] of the run (user +
+    system; -1 for a run recorded without it) and the log."""
     prm = os.path.join(out, "run.prm")
     with open(prm, "w") as f:
         f.write(text)
@@ -184,29 +190,47 @@ def run_in(talus, out, text, reuse):
     if not (reuse and os.path.exists(done)):
         start = time.time()
         with open(os.path.join(out, "log"), "w") as log:
-            rc = subprocess.call(["nice", talus, prm], stdout=log,
-                                 stderr=subprocess.STDOUT, cwd=out)
+            child = subprocess.Popen(["nice", talus, prm], stdout=log,
+                                     stderr=subprocess.STDOUT, cwd=out)
+            _, status, usage = os.wait4(child.pid, 0)
+            rc = os.waitstatus_to_exitcode(status)
         with open(done, "w") as f:
-            f.write("%d %.1f\n" % (rc, time.time() - start))
+            f.write("%d %.1f %.1f\n" % (rc, time.time() - start,
+                                         usage.ru_utime + usage.ru_stime))
     with open(done) as f:
-        rc, wall = f.read().split()
+        fields = f.read().split()
     with open(os.path.join(out, "log")) as f:
         log = f.read()
-    return int(rc), float(wall), log
+    cpu = float(fields[2]) if len(fields) > 2 else -1.
+    return int(fields[0]), float(fields[1]), cpu, log
+
+
+def run_variant(talus, work, name, extra, reuse, input_file):
+    """Run prm/<input_file> with the text extra appended in
+    work/<name> (its output directories there); return that directory,
+    the exit code, the wall and CPU times [s] and the log."""
+    tag = re.sub(r"[^A-Za-z0-9.=-]+", "_", name)
+    out = os.path.join(work, tag)
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(ROOT, "prm", input_file)) as f:
+        text = f.read()
+    text = re.sub(r"set output directory = .*",
+                  "set output directory = %s" % out, text)
+    rc, wall, cpu, log = run_in(talus, out, text + "\n" + extra, reuse)
+    return out, rc, wall, cpu, log
+
+
+def failure(rc, log):
+    """The row of a run that failed."""
+    return "failed (exit %d): %s" % (rc, log.strip().splitlines()[-1])
 
 
 def run(talus, work, name, extra, reuse):
     """Run one variant, return its row of results (or an error string)."""
-    tag = re.sub(r"[^A-Za-z0-9.=-]+", "_", name)
-    out = os.path.join(work, tag)
-    os.makedirs(out, exist_ok=True)
-    with open(os.path.join(ROOT, "prm", "flexible_barrier_2d.prm")) as f:
-        text = f.read()
-    text = re.sub(r"set output directory = .*",
-                  "set output directory = %s" % out, text)
-    rc, wall, log = run_in(talus, out, text + "\n" + extra, reuse)
+    out, rc, wall, _, log = run_variant(talus, work, name, extra, reuse,
+                                        "flexible_barrier_2d.prm")
     if rc != 0:
-        return "failed (exit %d): %s" % (rc, log.strip().splitlines()[-1])
+        return failure(rc, log)
     s = read_csv(os.path.join(out, "structure.csv"))
     c = read_csv(os.path.join(out, "coupling.csv"))
     released = c["gravitational_energy"][0] - c["gravitational_energy"][-1]
@@ -244,8 +268,9 @@ COLUMNS = [("F_peak", "%.1f"), ("t_peak", "%.2f"), ("F_avg", "%.1f"),
            ("rej", "%d"), ("wall", "%.0f")]
 
 
-def plot(work, variants, results, path):
-    """Net force over time, one panel per study, each with the base."""
+def plot_studies(work, variants, results, path, series, ylabel, xmin):
+    """One panel per study, each with the base: series(run directory)
+    gives the times and the force [kN] of a run."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -258,22 +283,18 @@ def plot(work, variants, results, path):
     rows = (len(studies) + columns - 1) // columns
     fig, axes = plt.subplots(rows, columns, figsize=(12, 3.2 * rows),
                              squeeze=False, sharex=True)
-    base = os.path.join(work, "base", "structure.csv")
+    base = os.path.join(work, "base")
     for ax, study in zip(axes.flat, studies):
-        if os.path.exists(base):
-            s = read_csv(base)
-            ax.plot(s["time"], [f / 1e3 for f in s["net_force"]], "k-",
-                    lw=1, label="base")
+        if os.path.exists(os.path.join(base, "exit_code_and_wall")):
+            ax.plot(*series(base), "k-", lw=1, label="base")
         for (st, name, _), r in zip(variants, results):
             if st != study or isinstance(r, str):
                 continue
             tag = re.sub(r"[^A-Za-z0-9.=-]+", "_", name)
-            s = read_csv(os.path.join(work, tag, "structure.csv"))
-            ax.plot(s["time"], [f / 1e3 for f in s["net_force"]], lw=1,
-                    label=name)
+            ax.plot(*series(os.path.join(work, tag)), lw=1, label=name)
         ax.set_title(study, fontsize=10)
-        ax.set_ylabel("net force [kN/m]")
-        ax.set_xlim(2.0, None)
+        ax.set_ylabel(ylabel)
+        ax.set_xlim(xmin, None)
         ax.legend(fontsize=8)
     for ax in axes.flat[len(studies):]:
         ax.axis("off")
@@ -284,41 +305,57 @@ def plot(work, variants, results, path):
     print("wrote %s" % path, file=sys.stderr)
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def run_study(description, variants, run, columns, default_work, plot):
+    """The command line of a study: run the variants (run(talus, work,
+    name, appended text, reuse) returns a row or an error string), draw
+    them with plot(work, variants, results, path) and print the table."""
+    parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--talus", default=os.path.join(ROOT, "build",
                                                          "talus"))
     parser.add_argument("--only", nargs="*", help="variant names to run")
-    parser.add_argument("--work", default="flexible_barrier_2d_study")
+    parser.add_argument("--work", default=default_work)
     parser.add_argument("--jobs", type=int, default=1)
     parser.add_argument("--plot", metavar="PNG",
-                        help="draw the net force of every variant")
+                        help="draw the force of every variant")
     parser.add_argument("--reuse", action="store_true",
                         help="report the runs already in the work "
                         "directory instead of running them again")
     args = parser.parse_args()
     talus = os.path.abspath(args.talus)
     work = os.path.abspath(args.work)
-    variants = [v for v in VARIANTS
-                if not args.only or v[1] in args.only]
-    unknown = set(args.only or []) - {v[1] for v in VARIANTS}
+    chosen = [v for v in variants if not args.only or v[1] in args.only]
+    unknown = set(args.only or []) - {v[1] for v in variants}
     if unknown:
         sys.exit("unknown variants: %s (known: %s)" % (
-            ", ".join(sorted(unknown)), ", ".join(v[1] for v in VARIANTS)))
+            ", ".join(sorted(unknown)), ", ".join(v[1] for v in variants)))
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         results = list(pool.map(lambda v: run(talus, work, v[1], v[2],
                                                 args.reuse),
-                                variants))
+                                chosen))
     if args.plot:
-        plot(work, variants, results, args.plot)
-    print("| study | variant | " + " | ".join(c for c, _ in COLUMNS) + " |")
-    print("|---" * (len(COLUMNS) + 2) + "|")
-    for (study, name, _), r in zip(variants, results):
+        plot(work, chosen, results, args.plot)
+    print("| study | variant | " + " | ".join(c for c, _ in columns) + " |")
+    print("|---" * (len(columns) + 2) + "|")
+    for (study, name, _), r in zip(chosen, results):
         if isinstance(r, str):
             print("| %s | %s | %s |" % (study, name, r))
         else:
             print("| %s | %s | " % (study, name) + " | ".join(
-                f % r[c] for c, f in COLUMNS) + " |")
+                f % r[c] for c, f in columns) + " |")
+
+
+def net_force(directory):
+    """Times and net force [kN/m] of a run of the 2D study."""
+    s = read_csv(os.path.join(directory, "structure.csv"))
+    return s["time"], [f / 1e3 for f in s["net_force"]]
+
+
+def main():
+    run_study(__doc__.splitlines()[0], VARIANTS, run, COLUMNS,
+              "flexible_barrier_2d_study",
+              lambda work, variants, results, path: plot_studies(
+                  work, variants, results, path, net_force,
+                  "net force [kN/m]", 2.0))
 
 
 if __name__ == "__main__":
