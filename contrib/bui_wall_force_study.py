@@ -96,8 +96,8 @@ def run(talus, work, h, shape, barrier, reuse):
                           h * 1e3)
     out = os.path.join(work, tag)
     os.makedirs(out, exist_ok=True)
-    rc, wall, log = run_in(talus, out, prm_text(h, shape, barrier, out),
-                           reuse)
+    rc, wall, _, log = run_in(talus, out, prm_text(h, shape, barrier, out),
+                              reuse)
     if rc != 0:
         sys.exit("%s failed (exit %d): %s" % (tag, rc,
                                               log.strip().splitlines()[-1]))
