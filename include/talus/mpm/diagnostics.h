@@ -163,7 +163,7 @@ namespace Talus
           &strain_energy &gravitational_energy &plastic_dissipation &volume
             &friction_dissipation &reset_dissipation &transfer_dissipation
               &integrator_dissipation &contact_force &boundaries
-                &boundary_friction_dissipation;
+                &boundary_friction_dissipation &body_contact_dissipation;
       }
     };
   } // namespace MPM
