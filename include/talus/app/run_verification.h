@@ -178,32 +178,32 @@ namespace Talus
     MPI_Comm communicator;
 
     // what the file asks for
-    bool                                           compare = false;
-    std::vector<double>                            times;
-    mutable dealii::Functions::ParsedFunction<dim> exact_displacement;
-    mutable dealii::Functions::ParsedFunction<dim> exact_stress;
-    bool                                           compare_stress       = false;
-    bool                                           compare_center       = false;
-    double                                         u_tolerance          = 0.;
-    double                                         u_relative_tolerance = 0.;
-    double                                         s_tolerance          = 0.;
-    bool                                           stress_rms           = false;
-    bool                                           axial_stress         = false;
-    dealii::Tensor<1, dim>                         stress_axis;
-    double                                         reference_period   = 0.;
-    double                                         period_tolerance   = 0.;
-    double                                         drift_tolerance    = 0.;
-    double                                         speed_limit        = 0.;
-    double                                         speed_window       = 0.;
-    bool                                           speed_of_grid      = false;
-    double                                         balance_tolerance  = 0.;
-    double                                         penetration_limit  = 0.;
-    double                                         expected_reaction  = 0.;
-    double                                         reaction_tolerance = 0.;
-    bool                                           impulse_check      = false;
-    dealii::Tensor<1, dim>                         impulse_normal;
-    double                                         impulse_ratio           = 0.;
-    double                                         impulse_ratio_tolerance = 0.;
+    bool                                   compare = false;
+    std::vector<double>                    times;
+    dealii::Functions::ParsedFunction<dim> exact_displacement;
+    dealii::Functions::ParsedFunction<dim> exact_stress;
+    bool                                   compare_stress       = false;
+    bool                                   compare_center       = false;
+    double                                 u_tolerance          = 0.;
+    double                                 u_relative_tolerance = 0.;
+    double                                 s_tolerance          = 0.;
+    bool                                   stress_rms           = false;
+    bool                                   axial_stress         = false;
+    dealii::Tensor<1, dim>                 stress_axis;
+    double                                 reference_period   = 0.;
+    double                                 period_tolerance   = 0.;
+    double                                 drift_tolerance    = 0.;
+    double                                 speed_limit        = 0.;
+    double                                 speed_window       = 0.;
+    bool                                   speed_of_grid      = false;
+    double                                 balance_tolerance  = 0.;
+    double                                 penetration_limit  = 0.;
+    double                                 expected_reaction  = 0.;
+    double                                 reaction_tolerance = 0.;
+    bool                                   impulse_check      = false;
+    dealii::Tensor<1, dim>                 impulse_normal;
+    double                                 impulse_ratio           = 0.;
+    double                                 impulse_ratio_tolerance = 0.;
 
     // the records over the run
     double window_speed = 0., window_speed_time = 0.;
