@@ -549,7 +549,9 @@ namespace Talus
     bool                   changed_before_step  = false;
     double                 max_interface_travel = 0., max_reaction_balance = 0.;
     dealii::Vector<double> displacement_at_pass = structure.displacement();
-    const auto             loop_state           = [&](auto &archive) {
+    // steps rejected for an energy jump, jumps kept at the step limit
+    unsigned int energy_rejections = 0, energy_jumps_kept = 0;
+    const auto   loop_state = [&](auto &archive) {
       archive &time_control &output &initial_diagnostics &initial_total
         &total_iterations &total_rejected &total_restarts &max_u &max_balance
           &max_released &max_conservation &final_kinetic &final_mass &S
@@ -562,6 +564,8 @@ namespace Talus
       archive &grid_changes &iterations_after_change &steps_after_change
         &changed_before_step &max_interface_travel &max_reaction_balance
           &displacement_at_pass;
+      // the energy jumps (EnergyJumpMonitor)
+      archive &energy_jumps &energy_rejections &energy_jumps_kept;
     };
     const std::string loop_tag = "talus-coupled-time-loop";
     if (resuming)
@@ -717,7 +721,6 @@ namespace Talus
     // so, and its reaction balance
     bool                  committed_for_check = false;
     std::optional<double> checked_reaction_balance;
-    unsigned int          energy_rejections = 0, energy_jumps_kept = 0;
     // true: keep the accepted step of size dt (committed if checked),
     // false: it jumps and was undone, retry with the halved step
     const auto keep_energy = [&](const double dt) {

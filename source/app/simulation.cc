@@ -280,6 +280,9 @@ namespace Talus
     // steps accepted on the residual alone (MPM::NewtonResult)
     unsigned int total_without_descent = 0;
 
+    // steps rejected for an energy jump, jumps kept at the step limit
+    unsigned int energy_rejections = 0, energy_jumps_kept = 0;
+
     // What the time loop keeps besides the problem (checkpoints).
     const auto loop_state = [&](auto &archive) {
       archive &time_control &output &initial;
@@ -295,6 +298,8 @@ namespace Talus
       archive &last_error &error_rejections &smallest_dt &largest_dt;
       // the contact onset event
       archive &contact_onset;
+      // the energy jumps (EnergyJumpMonitor)
+      archive &energy_jumps &energy_rejections &energy_jumps_kept;
     };
     const std::string loop_tag = "talus-time-loop";
     // Write a checkpoint of the committed state; returns its path.
@@ -337,7 +342,6 @@ namespace Talus
     // the step in hand was committed so, and its diagnostics
     bool                                 committed_for_check = false;
     std::optional<MPM::Diagnostics<dim>> checked_diagnostics;
-    unsigned int energy_rejections = 0, energy_jumps_kept = 0;
     // true: keep the accepted step of size dt_try (committed if checked),
     // false: it jumps and was undone, retry with the halved step
     const auto keep_energy = [&](const double dt_try) {

@@ -112,6 +112,21 @@ namespace Talus
       return warnings;
     }
 
+    /**
+     * Read or write the state (checkpoints): the changes seen so far, the
+     * last balance and the warnings, so that a resumed run judges its
+     * steps as the uninterrupted one would.
+     */
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int /*version*/)
+    {
+      bool   has_last = last_balance.has_value();
+      double last     = has_last ? *last_balance : 0.;
+      ar &sum_of_changes &n_changes &has_last &last &warnings;
+      last_balance = has_last ? std::optional<double>(last) : std::nullopt;
+    }
+
   private:
     /** f, the fraction of the energy moved ('energy jump warning'). */
     double fraction = 0.03;
