@@ -20,6 +20,7 @@
 #include <talus/io/point_dump.h>
 #include <talus/io/structure_time_series.h>
 #include <talus/io/visualization_output.h>
+#include <talus/mpm/contact_forecast.h>
 #include <talus/mpm/material_points.h>
 #include <talus/mpm/mpm_problem.h>
 #include <talus/structure/structure_problem.h>
@@ -772,8 +773,16 @@ namespace Talus
 
     Boundaries::MaterialBehindBoundaries<dim> behind_boundaries(
       mpm.boundaries(), mpm.grid());
+    const MPM::ContactForecast<dim> contact_forecast(
+      mpm.boundaries(), behind_boundaries, mpm.grid().minimal_cell_diameter);
     while (!time_control.finished())
       {
+        // shorten the step ahead of a forecast contact onset
+        contact_forecast.shorten_ahead(contact_onset,
+                                       time_control,
+                                       mpm.points().particle_handler(),
+                                       mpm.solver().gravity(),
+                                       communicator);
         // an exception in the attempts stops the run with a checkpoint of
         // the last accepted step (the attempts change trial state only;
         // the accelerator's window is dropped as for a rejected step)
@@ -1104,7 +1113,9 @@ namespace Talus
             << " rejected for their error, dt " << std::setprecision(4)
             << smallest_dt << " .. " << largest_dt << " s\n";
     if (contact_onset.enabled())
-      pcout << "  contact onset: " << contact_onset.rejections
+      pcout << "  contact onset: " << contact_onset.shortened
+            << " steps shortened ahead of a forecast onset, "
+            << contact_onset.rejections
             << " steps rejected at a sharp change of the active set (onset "
                "step "
             << contact_onset.onset_dt << " s), dt " << std::setprecision(4)

@@ -18,6 +18,7 @@
 #include <talus/io/visualization_output.h>
 #include <talus/materials/constitutive_model.h>
 #include <talus/mpm/background_grid.h>
+#include <talus/mpm/contact_forecast.h>
 #include <talus/mpm/initial_stress.h>
 #include <talus/mpm/load_balancing.h>
 #include <talus/mpm/material_points.h>
@@ -140,6 +141,8 @@ namespace Talus
     auto                                     &boundaries = problem.boundaries();
     Boundaries::MaterialBehindBoundaries<dim> behind_boundaries(boundaries,
                                                                 grid);
+    const MPM::ContactForecast<dim>           contact_forecast(
+      boundaries, behind_boundaries, grid.minimal_cell_diameter);
 
     IO::VisualizationOutput<dim> output;
     output.parse_parameters(prm);
@@ -399,6 +402,12 @@ namespace Talus
           }
         MPM::NewtonResult result;
         double            dt_taken = 0.;
+        // shorten the step ahead of a forecast contact onset
+        contact_forecast.shorten_ahead(contact_onset,
+                                       time_control,
+                                       points.particle_handler(),
+                                       solver.gravity(),
+                                       communicator);
         // an exception in the attempts stops the run with a checkpoint of
         // the last accepted step (solve_step() leaves it whole)
         solve_or_checkpoint(
@@ -716,7 +725,9 @@ namespace Talus
                 << smallest_dt << " .. " << largest_dt << " s"
                 << std::setprecision(6) << '\n';
         if (contact_onset.enabled())
-          pcout << "  contact onset: " << contact_onset.rejections
+          pcout << "  contact onset: " << contact_onset.shortened
+                << " steps shortened ahead of a forecast onset, "
+                << contact_onset.rejections
                 << " steps rejected at a sharp change of the active set "
                    "(onset step "
                 << contact_onset.onset_dt << " s), dt " << std::setprecision(4)

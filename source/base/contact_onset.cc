@@ -24,6 +24,20 @@ namespace Talus
       "mpm' and 'coupled'. Contact with the grid's fixed or slip boundaries "
       "is not seen.");
     prm.declare_entry(
+      "contact onset forecast",
+      "true",
+      dealii::Patterns::Bool(),
+      "With 'contact onset time step' > 0: before each step, forecast when "
+      "the material points first touch each boundary with 'contact side = "
+      "material points' that no point touches yet (each point's gap to "
+      "the surface, closed at its current speed and under gravity) and "
+      "shorten a longer step to that time (at least 'contact onset time "
+      "step'), so that an impact is resolved without rejected steps; the "
+      "check after the step stays as the safety net (and is all there is "
+      "for the boundaries checked on the boundary particles' side, whose "
+      "reaction begins when material reaches their cells). false: the "
+      "check alone.");
+    prm.declare_entry(
       "contact onset threshold",
       "0.5",
       dealii::Patterns::Double(),
@@ -45,7 +59,8 @@ namespace Talus
                         "contact onset time step",
                         prm.get("contact onset time step"),
                         "at most 'time step' (" + prm.get("time step") + " s)");
-    threshold = prm.get_double("contact onset threshold");
+    forecast_on = prm.get_bool("contact onset forecast");
+    threshold   = prm.get_double("contact onset threshold");
     if (!(threshold >= 0. && threshold < 1.))
       InputFile::reject("Time",
                         "contact onset threshold",
@@ -79,6 +94,21 @@ namespace Talus
         return true;
       }
     return false;
+  }
+
+
+  bool
+  ContactOnsetEvent::forecast(TimeControl &time_control, const double arrival)
+  {
+    if (!forecasting() || !(arrival < time_control.next_step()))
+      return false;
+    const double step = std::max(arrival, onset_dt);
+    if (!(step < time_control.next_step() * (1. - 1e-9)))
+      return false;
+    time_control.dt = step;
+    growing         = true;
+    ++shortened;
+    return true;
   }
 
 

@@ -34,6 +34,19 @@ namespace Talus
    * after_accept() up to 'time step'. ('adaptive time step' keeps its own
    * growth after 'steps before growth' steps.)
    *
+   * Forecast ('contact onset forecast', on by default): before each step
+   * the time loop asks MPM::ContactForecast when the material will first
+   * touch each boundary with 'contact side = material points' that no
+   * point touches yet, and passes the
+   * earliest arrival t_a to forecast(): a planned step longer than t_a is
+   * shortened to max(t_a, Delta t_c). The step then ends at the predicted
+   * onset (or is at most Delta t_c if the onset is nearer), and the next
+   * one, whose forecast is close to zero, is Delta t_c: the onset is
+   * resolved without the rejected solves of the check after the step,
+   * which stays as the safety net for what the forecast does not see
+   * (forces other than gravity, a moving surface, contact between
+   * bodies).
+   *
    * Off (the default, Delta t_c = 0) nothing changes: the runs with a fixed
    * step give the same output as without the event.
    */
@@ -69,6 +82,23 @@ namespace Talus
            const double       step_taken,
            const unsigned int contacts);
 
+    /** Whether the step is shortened ahead of a forecast onset. */
+    bool
+    forecasting() const
+    {
+      return enabled() && forecast_on;
+    }
+
+    /**
+     * Before a step: the material is forecast to touch a boundary without
+     * contacts after @p arrival [s] (MPM::ContactForecast). A planned step
+     * of @p time_control longer than that is shortened to max(arrival,
+     * Delta t_c) (TimeControl::dt); it grows back after the onset as
+     * after a rejection. Returns whether the step was shortened.
+     */
+    bool
+    forecast(TimeControl &time_control, const double arrival);
+
     /**
      * After TimeControl::accept(): the step's active set is the committed
      * one; a fixed step grows back after an onset (x2 per step up to
@@ -86,7 +116,7 @@ namespace Talus
     void
     serialize(Archive &ar, const unsigned int /*version*/)
     {
-      ar &committed_contacts &trial_contacts &growing &rejections;
+      ar &committed_contacts &trial_contacts &growing &rejections &shortened;
     }
 
     /** Delta t_c [s]; 0: off. */
@@ -95,6 +125,10 @@ namespace Talus
     double threshold = 0.5;
     /** Steps rejected at a contact onset so far. */
     unsigned int rejections = 0;
+    /** Whether a step is shortened ahead of a forecast onset. */
+    bool forecast_on = true;
+    /** Steps shortened ahead of a forecast onset so far. */
+    unsigned int shortened = 0;
 
   private:
     /** Active contacts of the committed step (-1: not known yet) and of

@@ -4,15 +4,18 @@ steps chosen by the error", contact onset).
 
 usage: contact_onset_study.py TALUS INPUT WORKDIR REFERENCE_STEP
 
-INPUT (tests/mpm/drop_contact_onset.prm) is a block falling onto a floor of
-boundary particles named 'floor', with lines `set time step` and `set
-contact onset time step` in subsection Time. Runs: the reference (fixed
-REFERENCE_STEP, no onset event), the fixed step of INPUT without and with
-the onset event, and the step chosen by the error (tolerance 1e-2, largest
-step that of INPUT) without and with it. For each: steps, onset rejections,
-smallest step, the first time the floor carries a normal force, the step
-that contains it, the largest normal force, and the RMS over the points of
-|x - x_ref| at the end time (points matched by id; one rank).
+INPUT (tests/mpm/drop_contact_onset.prm or drop_contact_onset_points.prm)
+is a block falling onto a floor of boundary particles named 'floor', with
+lines `set time step` and `set contact onset time step` in subsection
+Time. Runs: the reference (fixed REFERENCE_STEP, no onset event), the
+fixed step of INPUT without the onset event, with it but without its
+forecast ('contact onset forecast = false'), and with both, and the step
+chosen by the error (tolerance 1e-2, largest step that of INPUT) without
+and with the event. For each: steps, steps shortened ahead of a forecast
+onset, onset rejections, smallest step, the first time the floor carries a
+normal force, the step that contains it, the largest normal force, and the
+RMS over the points of |x - x_ref| at the end time (points matched by id;
+one rank).
 """
 import csv
 import math
@@ -48,8 +51,9 @@ def run(talus, text, directory):
         sys.exit("FAIL: talus exited with %d in %s" % (p.returncode,
                                                        directory))
     steps = int(re.search(r"after (\d+) steps", p.stdout).group(1))
-    m = re.search(r"contact onset: (\d+) steps rejected", p.stdout)
-    onset = int(m.group(1)) if m else 0
+    m = re.search(r"contact onset: (\d+) steps shortened ahead of a "
+                  r"forecast onset, (\d+) steps rejected", p.stdout)
+    shortened, onset = (int(m.group(1)), int(m.group(2))) if m else (0, 0)
     rows = list(csv.DictReader(open(os.path.join(directory, "output",
                                                  "time_series.csv"))))
     first, first_dt, peak, smallest = None, None, 0., 1e300
@@ -65,7 +69,7 @@ def run(talus, text, directory):
         for line in f:
             v = line.split()
             points[v[0]] = [float(x) for x in v[1:3]]
-    return steps, onset, smallest, first, first_dt, peak, points
+    return steps, shortened, onset, smallest, first, first_dt, peak, points
 
 
 def main():
@@ -77,6 +81,8 @@ def main():
         ("reference: fixed %s s" % reference_step,
          substitute(plain, "time step", reference_step)),
         ("fixed %s s" % step, plain),
+        ("fixed %s s + onset, no forecast" % step,
+         substitute(text, "contact onset forecast", "false")),
         ("fixed %s s + onset" % step, text),
         ("error 1e-2", substitute(plain, "error tolerance", "1e-2")),
         ("error 1e-2 + onset", substitute(text, "error tolerance", "1e-2")),
@@ -84,17 +90,19 @@ def main():
     results = []
     for i, (name, t) in enumerate(cases):
         results.append((name, run(talus, t, os.path.join(work, "case%d" % i))))
-    ref = results[0][1][6]
-    print("| run | steps | onset rejections | smallest dt [s] | first floor "
-          "force at t [s] | its step [s] | largest floor force [N] | RMS "
-          "error at the end [m] |")
-    print("|---|---|---|---|---|---|---|---|")
-    for name, (steps, onset, smallest, first, first_dt, peak, pts) in results:
+    ref = results[0][1][7]
+    print("| run | steps | shortened ahead | onset rejections | smallest dt "
+          "[s] | first floor force at t [s] | its step [s] | largest floor "
+          "force [N] | RMS error at the end [m] |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name, (steps, shortened, onset, smallest, first, first_dt, peak,
+               pts) in results:
         err = math.sqrt(sum((pts[k][0] - ref[k][0]) ** 2 +
                             (pts[k][1] - ref[k][1]) ** 2 for k in ref) /
                         len(ref))
-        print("| %s | %d | %d | %.3g | %.5g | %.3g | %.4g | %.3e |" %
-              (name, steps, onset, smallest, first, first_dt, peak, err))
+        print("| %s | %d | %d | %d | %.3g | %.6g | %.3g | %.4g | %.3e |" %
+              (name, steps, shortened, onset, smallest, first, first_dt, peak,
+               err))
 
 
 if __name__ == "__main__":

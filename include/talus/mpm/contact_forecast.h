@@ -1,0 +1,124 @@
+#ifndef talus_mpm_contact_forecast_h
+#define talus_mpm_contact_forecast_h
+
+#include <talus/base/contact_onset.h>
+#include <talus/base/time_control.h>
+#include <talus/boundaries/boundary_particles.h>
+#include <talus/boundaries/material_behind_boundaries.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <vector>
+
+namespace Talus
+{
+  namespace MPM
+  {
+    /**
+     * When the material points will first touch a boundary they do not
+     * touch yet: the forecast behind the contact onset event
+     * (ContactOnsetEvent, 'contact onset forecast'), so that a step is
+     * shortened before an impact instead of being rejected after it.
+     *
+     * For every material point p in front of boundary b (signed depth
+     * d_b(x_p) < 0 behind its surface, MaterialBehindBoundaries), the gap
+     * is the distance of the surface to the point's extent, s = -d - r_p
+     * with r_p = (V_p^(1/dim))/2 the half width of its current volume, and
+     * the point approaches with the speed v_a = v_p . m and the
+     * acceleration a_a = g . m along the direction m = grad d_b into the
+     * boundary (gravity g alone: the other forces on the point are not
+     * known before the step). Its arrival time is the smallest t > 0 with
+     *
+     *   s = v_a t + a_a t^2 / 2,   t = 2 s / (v_a + sqrt(v_a^2 + 2 a_a s)),
+     *
+     * infinite where the point never arrives (v_a + sqrt(...) <= 0 or a
+     * negative discriminant). The forecast of boundary b is the earliest
+     * arrival over the points; none (infinity) once the extent of any
+     * point overlaps the surface (s <= 0): then the contact has begun (or
+     * a body rests on an initial overlap), and later contacts on the same
+     * surface are the event's check after the step. The forecast keeps no
+     * state: a resumed run forecasts as the uninterrupted one.
+     *
+     * Only boundaries with 'contact side = material points' are
+     * forecast: there the reaction begins when a point's extent touches
+     * the surface, which is what the gap above measures. On the boundary
+     * particles' side it begins when material reaches the cells of the
+     * boundary particles (up to a cell before the touch, depending on
+     * where the grid cuts the surface); a forecast from the geometry
+     * would come late by up to a cell, or, if it took a cell off, early,
+     * and then the steps would crawl at the onset step until the
+     * material arrives. Those onsets are left to the event's check after
+     * the step.
+     *
+     * The depth of a fixed plane, line, box or circle is its analytic
+     * signed distance (m by central differences); the other boundaries
+     * (moving, coupled, 'mesh', 'external') are taken at the tangent plane
+     * of the boundary particle nearest to the point, at rest, where the
+     * point lies within one cell of it along the surface. A surface that
+     * moves towards the material (the barrier's net swinging back) is
+     * therefore seen late; the event's check after the step still
+     * catches it.
+     */
+    template <int dim>
+    class ContactForecast
+    {
+    public:
+      /**
+       * The forecast for the boundaries of @p boundaries, whose analytic
+       * depths @p behind gives; @p cell_size is the smallest cell of the
+       * background grid.
+       */
+      ContactForecast(const Boundaries::BoundaryParticles<dim> &boundaries,
+                      const Boundaries::MaterialBehindBoundaries<dim> &behind,
+                      const double cell_size);
+
+      /**
+       * The earliest arrival time [s] of the points of @p points at each
+       * boundary b with @p watched[b] (infinity where none arrives, where a
+       * point already touches it and for the boundaries not watched). The
+       * points carry their velocity, initial volume and deformation gradient at
+       * the property indices of MaterialPointProperties. Collective.
+       */
+      std::vector<double>
+      arrival_times(const dealii::Particles::ParticleHandler<dim> &points,
+                    const std::vector<bool>                       &watched,
+                    const dealii::Tensor<1, dim>                  &gravity,
+                    const MPI_Comm communicator) const;
+
+      /**
+       * Before a step: when @p event forecasts (ContactOnsetEvent::
+       * forecasting()), the boundaries with material-point contact are
+       * watched, and the
+       * planned step of @p time_control is shortened ahead of the earliest
+       * arrival (ContactOnsetEvent::forecast()). Returns whether it was.
+       * Collective.
+       */
+      bool
+      shorten_ahead(ContactOnsetEvent                             &event,
+                    TimeControl                                   &time_control,
+                    const dealii::Particles::ParticleHandler<dim> &points,
+                    const dealii::Tensor<1, dim>                  &gravity,
+                    const MPI_Comm communicator) const;
+
+      /**
+       * The smallest t > 0 with @p gap = @p speed t + @p acceleration t^2 /
+       * 2 (infinity if there is none; 0 for a gap <= 0).
+       */
+      static double
+      arrival_time(const double gap,
+                   const double speed,
+                   const double acceleration);
+
+    private:
+      const Boundaries::BoundaryParticles<dim>        &boundaries;
+      const Boundaries::MaterialBehindBoundaries<dim> &behind;
+      const double                                     cell_size;
+    };
+  } // namespace MPM
+} // namespace Talus
+
+#endif
