@@ -199,24 +199,13 @@ namespace Talus
         {
           if (analytic(b))
             continue;
-          const auto  surface = boundaries.gather_surface(b);
-          const auto &x_b     = surface.x;
-          const auto &n_b     = surface.n;
-          if (x_b.empty())
-            continue;
-          const auto tree = dealii::pack_rtree_of_indices(x_b);
-          for (const auto &p : points)
-            {
-              const auto                x = p.get_location();
-              std::vector<unsigned int> nearest;
-              tree.query(boost::geometry::index::nearest(x, 1),
-                         std::back_inserter(nearest));
-              const unsigned int           j            = nearest[0];
-              const dealii::Tensor<1, dim> r            = x - x_b[j];
-              const double                 along_normal = r * n_b[j];
-              if ((r - along_normal * n_b[j]).norm() <= cell_size)
-                add(b, -along_normal, p.get_properties()[mass_index]);
-            }
+          for_points_near_particles(b,
+                                    points,
+                                    [&](const auto  &p,
+                                        const double d,
+                                        const dealii::Tensor<1, dim> &) {
+                                      add(b, d, p.get_properties()[mass_index]);
+                                    });
         }
       dealii::Utilities::MPI::sum(count, communicator, count);
       dealii::Utilities::MPI::sum(mass, communicator, mass);

@@ -109,23 +109,12 @@ namespace Talus
               continue;
             }
           // by the particles: the tangent plane of the nearest one
-          const auto surface = boundaries.gather_surface(b);
-          if (surface.x.empty())
-            continue;
-          const auto tree = dealii::pack_rtree_of_indices(surface.x);
-          for (const auto &p : points)
-            {
-              const auto                x = p.get_location();
-              std::vector<unsigned int> nearest;
-              tree.query(boost::geometry::index::nearest(x, 1),
-                         std::back_inserter(nearest));
-              const unsigned int           j            = nearest[0];
-              const dealii::Tensor<1, dim> r            = x - surface.x[j];
-              const auto                  &n_j          = surface.n[j];
-              const double                 along_normal = r * n_j;
-              if ((r - along_normal * n_j).norm() <= cell_size)
-                arrive(b, p, -along_normal, -n_j);
-            }
+          behind.for_points_near_particles(
+            b,
+            points,
+            [&](const auto                   &p,
+                const double                  d,
+                const dealii::Tensor<1, dim> &n) { arrive(b, p, d, -n); });
         }
       dealii::Utilities::MPI::min(earliest, communicator, earliest);
       dealii::Utilities::MPI::max(touching, communicator, touching);

@@ -6,6 +6,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 
+#include <deal.II/numerics/rtree.h>
+
 #include <deal.II/particles/particle_handler.h>
 
 #include <string>
@@ -91,6 +93,41 @@ namespace Talus
        */
       double
       depth(const unsigned int b, const dealii::Point<dim> &x) const;
+
+      /**
+       * For a boundary surveyed by its particles (not analytic()): calls
+       * @p f(point, d, n_b) for every point of @p points that lies within
+       * one cell of the nearest particle of boundary @p b along the
+       * surface, with d = -(x - x_b) . n_b its depth behind that
+       * particle's tangent plane (x_b, n_b its current position and
+       * normal; every rank gathers the whole surface). Collective.
+       */
+      template <class Function>
+      void
+      for_points_near_particles(
+        const unsigned int                             b,
+        const dealii::Particles::ParticleHandler<dim> &points,
+        const Function                                &f) const
+      {
+        const auto  surface = boundaries.gather_surface(b);
+        const auto &x_b     = surface.x;
+        const auto &n_b     = surface.n;
+        if (x_b.empty())
+          return;
+        const auto tree = dealii::pack_rtree_of_indices(x_b);
+        for (const auto &p : points)
+          {
+            const auto                x = p.get_location();
+            std::vector<unsigned int> nearest;
+            tree.query(boost::geometry::index::nearest(x, 1),
+                       std::back_inserter(nearest));
+            const unsigned int           j            = nearest[0];
+            const dealii::Tensor<1, dim> r            = x - x_b[j];
+            const double                 along_normal = r * n_b[j];
+            if ((r - along_normal * n_b[j]).norm() <= cell_size)
+              f(p, -along_normal, n_b[j]);
+          }
+      }
 
       /**
        * The points of @p points behind each boundary, with their mass in
