@@ -52,6 +52,13 @@ VARIANTS = [
                                "net cells over height": "16"})),
     # time step (0.02 s in the base)
     ("time step", "dt=0.01", sub("Time", {"time step": "0.01"})),
+    # the contact onset event with its forecast (off in the base): the
+    # step shortened ahead of the first touch of the net, and steps of at
+    # most 2 ms while the number of points on it changes sharply
+    ("time step", "onset 2 ms",
+     sub("Time", {"contact onset time step": "0.002"})),
+    ("time step", "dt=0.01, onset 2 ms",
+     sub("Time", {"time step": "0.01", "contact onset time step": "0.002"})),
     # coupling tolerance (relative 1e-4 in the base)
     ("coupling tolerance", "tol=1e-5",
      sub("Coupling", {"relative tolerance": "1e-5"})),
