@@ -688,23 +688,27 @@ namespace Talus
     // The estimated truncation error of the solved coupled step of size
     // dt: the larger of the MPM's and the dynamic structure's.
     const auto step_error = [&](const double dt) {
-      const auto  &control = time_control.error_control;
-      const double e_mpm = control.error(mpm.solver().truncation_error_norms(),
-                                         dt,
-                                         time_control.newmark.beta);
+      const auto  &control   = time_control.error_control;
+      const auto   mpm_norms = mpm.solver().truncation_error_norms();
+      const double e_mpm =
+        control.error(mpm_norms, dt, time_control.newmark.beta);
+      if (!structure.is_dynamic())
+        return e_mpm;
+      const auto structure_norms =
+        Structure::truncation_error_norms(structure, structure_committed, dt);
+      const double beta_structure = Structure::newmark_beta(structure);
       const double e_structure =
-        structure.is_dynamic() ?
-          control.error(Structure::truncation_error_norms(structure,
-                                                          structure_committed,
-                                                          dt),
-                        dt,
-                        Structure::newmark_beta(structure)) :
-          0.;
+        control.error(structure_norms, dt, beta_structure);
+      const double e_combined =
+        control.mass_weighted_error({{mpm_norms, time_control.newmark.beta},
+                                     {structure_norms, beta_structure}},
+                                    dt);
       if (std::getenv("TALUS_DEBUG_ERROR_ESTIMATE") && root)
         std::cerr << "t = " << time_control.time << " dt = " << dt
                   << " error: MPM " << e_mpm << " structure " << e_structure
-                  << '\n';
-      return std::max(e_mpm, e_structure);
+                  << " mass weighted " << e_combined << '\n';
+      return control.mass_weighted_coupled ? e_combined :
+                                             std::max(e_mpm, e_structure);
     };
     // the balance of the interface forces on a locally refined grid
     // (before the commit of the step solved last)
@@ -1089,6 +1093,15 @@ namespace Talus
     // (debugging and the checkpoint tests: every point in full precision)
     if (const char *dump = std::getenv("TALUS_DEBUG_DUMP_POINTS"))
       IO::write_points_text(mpm.points(), dump, communicator);
+    // (the error studies: the structure's displacement, one dof per line)
+    if (const char *dump = std::getenv("TALUS_DEBUG_DUMP_STRUCTURE"))
+      if (root)
+        {
+          std::ofstream file(dump);
+          file << std::setprecision(17);
+          for (const double u : structure.displacement())
+            file << u << '\n';
+        }
 
     const double mean_iterations =
       static_cast<double>(total_iterations) / std::max(1u, time_control.step);

@@ -26,8 +26,21 @@ namespace Talus
       "and report times and the end time. The global error follows the "
       "tolerance about linearly; 1e-3 is a period error of about 0.1 % per "
       "radian. Not with 'adaptive time step' or a quasi-static analysis. "
-      "A coupled problem: the larger of the estimates of the MPM and of "
-      "a dynamic structure (its Bossak-Newmark step, lumped mass).");
+      "A coupled problem: see 'coupled error norm'.");
+    prm.declare_entry(
+      "coupled error norm",
+      "larger field",
+      dealii::Patterns::Selection("larger field|mass weighted"),
+      "The error of a coupled step chosen by 'error tolerance' (problem = "
+      "coupled; ignored otherwise). 'larger field': the larger of the "
+      "relative errors of the MPM (grid) and of a dynamic structure (its "
+      "Bossak-Newmark step, lumped mass), each as above; the step resolves "
+      "every mode of either field, also those of a light structure that "
+      "the interface excites. 'mass weighted': one RMS over the dofs of "
+      "both fields, each weighted by its mass, divided by the RMS of both "
+      "fields' increments: the error of the whole system, in which a "
+      "structure counts by its share of the mass (doc/coupling.md, 'Time "
+      "step chosen by the error').");
     prm.declare_entry("error safety factor",
                       "0.9",
                       Double(),
@@ -108,8 +121,34 @@ namespace Talus
                         prm.get("maximum time step"),
                         "it must be 0 or at least 'time step' (" +
                           prm.get("time step") + " s), the first step");
-    max_dt = maximum > 0. ? maximum : time_step;
+    max_dt                = maximum > 0. ? maximum : time_step;
+    mass_weighted_coupled = prm.get("coupled error norm") == "mass weighted";
   }
+
+
+  namespace
+  {
+    // The error constant |beta - 1/6| of the Zienkiewicz-Xie estimate;
+    // beta = 1/6 (third order in the displacement): the bound without the
+    // cancellation.
+    double
+    error_constant(const double beta)
+    {
+      return std::abs(beta - 1. / 6.) > 1e-3 ? std::abs(beta - 1. / 6.) :
+                                               1. / 6.;
+    }
+
+
+    // eta = e / (increment + floor), 0 without an error
+    double
+    relative_error(const double e, const double increment, const double floor)
+    {
+      if (e == 0.)
+        return 0.;
+      const double scale = increment + floor;
+      return scale > 0. ? e / scale : std::numeric_limits<double>::infinity();
+    }
+  } // namespace
 
 
   double
@@ -117,15 +156,31 @@ namespace Talus
                                 const double                dt,
                                 const double                beta) const
   {
-    // beta = 1/6 (third order in the displacement): the bound without the
-    // cancellation.
-    const double c =
-      std::abs(beta - 1. / 6.) > 1e-3 ? std::abs(beta - 1. / 6.) : 1. / 6.;
-    const double e = dt * dt * c * norms.acceleration_change;
-    if (e == 0.)
+    return relative_error(dt * dt * error_constant(beta) *
+                            norms.acceleration_change,
+                          norms.increment,
+                          floor);
+  }
+
+
+  double
+  TruncationErrorControl::mass_weighted_error(
+    const std::vector<std::pair<TruncationErrorNorms, double>> &fields,
+    const double                                                dt) const
+  {
+    // sums of m e^2, m du^2 and m over the fields
+    double e2 = 0., du2 = 0., mass = 0.;
+    for (const auto &[norms, beta] : fields)
+      {
+        const double e =
+          dt * dt * error_constant(beta) * norms.acceleration_change;
+        e2 += norms.mass * e * e;
+        du2 += norms.mass * norms.increment * norms.increment;
+        mass += norms.mass;
+      }
+    if (!(mass > 0.))
       return 0.;
-    const double scale = norms.increment + floor;
-    return scale > 0. ? e / scale : std::numeric_limits<double>::infinity();
+    return relative_error(std::sqrt(e2 / mass), std::sqrt(du2 / mass), floor);
   }
 
 

@@ -1436,6 +1436,7 @@ namespace Talus
         {
           norms.acceleration_change = std::sqrt(sums[0] / sums[2]);
           norms.increment           = std::sqrt(sums[1] / sums[2]);
+          norms.mass                = sums[2];
         }
       return norms;
     }

@@ -3,6 +3,9 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <utility>
+#include <vector>
+
 namespace Talus
 {
   /**
@@ -18,6 +21,10 @@ namespace Talus
     double acceleration_change = 0.;
     /** ||du||_M, the grid displacement increment of the step [m]. */
     double increment = 0.;
+    /** The sum of the weights m_i over the dofs of the norms [kg] (kg/m
+     * in 2D): the field's share in a mass weighted error of several
+     * fields (TruncationErrorControl::mass_weighted_error()). */
+    double mass = 0.;
   };
 
 
@@ -90,6 +97,27 @@ namespace Talus
           const double                dt,
           const double                beta) const;
 
+    /**
+     * The normalised error of one step of size @p dt shared by several
+     * fields (the coupled step: the MPM grid and a dynamic structure),
+     * each given by its norms and Newmark beta, as one mass weighted RMS
+     * over the dofs of all fields:
+     * @f[ \eta = \frac{\big(\sum_f m_f e_f^2 / \sum_f m_f\big)^{1/2}}
+     *                  {\big(\sum_f m_f \|\Delta u\|_f^2 / \sum_f
+     *                   m_f\big)^{1/2} + u_0}, \qquad
+     *     e_f = \Delta t^2 |\beta_f - \tfrac16|\, \|a_{n+1} -
+     *     a_n\|_f, @f]
+     * m_f = TruncationErrorNorms::mass. The error of the whole system
+     * rather than the larger of the fields' relative errors
+     * ('coupled error norm = mass weighted'): the modes of a light
+     * structure count by their share of the mass, so that a light string
+     * excited by the interface does not alone set the step.
+     */
+    double
+    mass_weighted_error(
+      const std::vector<std::pair<TruncationErrorNorms, double>> &fields,
+      const double                                                dt) const;
+
     /** Whether a step of error @p eta must be repeated with a smaller one. */
     bool
     rejects(const double eta) const
@@ -111,6 +139,9 @@ namespace Talus
     double rejection_factor = 2.;   ///< r [-]
     double floor            = 1e-9; ///< u_0 [m]
     double max_dt           = 0.;   ///< largest step [s]
+    /** 'coupled error norm = mass weighted': a coupled step's error by
+     * mass_weighted_error(), else the larger of the fields' errors. */
+    bool mass_weighted_coupled = false;
   };
 } // namespace Talus
 

@@ -3,7 +3,8 @@
 tolerance (doc/verification.md "Time steps chosen by the error").
 
 usage: tolerance_study.py TALUS INPUT WORKDIR REFERENCE_STEP TOLERANCES
-                          MIN_SLOPE MAX_SLOPE
+                          MIN_SLOPE MAX_SLOPE [--set ENTRY=VALUE ...]
+                          [--max-steps N]
 
 INPUT is a .prm with lines `set time step`, `set error tolerance` (and
 optionally `set maximum time step`) in subsection Time. The script runs it
@@ -12,8 +13,12 @@ the same grid and points, only the time integration differs) and once per
 tolerance of the comma-separated TOLERANCES, each run writing its final
 material points (TALUS_DEBUG_DUMP_POINTS). The global time-integration
 error of a run is the RMS over the points of |x - x_ref| at the end time
-(points matched by id; one rank). Also for 'problem = coupled' (the
-points of the MPM; the structure follows from them). Prints the table tolerance / error /
+(points matched by id; one rank). Also for 'problem = coupled': the
+points of the MPM, and in an extra column the RMS over the structure's
+dofs of |u - u_ref| at the end (TALUS_DEBUG_DUMP_STRUCTURE). --set
+replaces the value of an entry the input sets (all runs, also the
+reference). --max-steps: fail if the run at the smallest tolerance takes
+more than N steps. Prints the table tolerance / error /
 steps / rejected steps / smallest and largest step, and the least-squares
 slopes of log(error) and log(steps) against log(tolerance); exits 1 unless
 the error slope lies in [MIN_SLOPE, MAX_SLOPE] and the error falls with
@@ -39,7 +44,8 @@ def run(talus, text, directory):
     text = substitute(text, "output directory", "output")
     with open(os.path.join(directory, "case.prm"), "w") as f:
         f.write(text)
-    env = dict(os.environ, TALUS_DEBUG_DUMP_POINTS="points.txt")
+    env = dict(os.environ, TALUS_DEBUG_DUMP_POINTS="points.txt",
+               TALUS_DEBUG_DUMP_STRUCTURE="structure.txt")
     p = subprocess.run([talus, "case.prm"], cwd=directory, env=env,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        universal_newlines=True, timeout=600)
@@ -61,7 +67,11 @@ def run(talus, text, directory):
         for line in f:
             v = line.split()
             points[v[0]] = [float(x) for x in v[1:4]]
-    return steps, rejected, smallest, largest, points
+    structure = None
+    if os.path.exists(os.path.join(directory, "structure.txt")):
+        with open(os.path.join(directory, "structure.txt")) as f:
+            structure = [float(x) for x in f]
+    return steps, rejected, smallest, largest, points, structure
 
 
 def slope(x, y):
@@ -80,18 +90,30 @@ def main():
     dim = int(re.search(r"^set dimension\s*=\s*(\d)",
                         open(input_file).read(), re.MULTILINE).group(1))
     text = open(input_file).read()
+    options = sys.argv[8:]
+    max_steps = None
+    while options:
+        if options[0] == "--max-steps" and len(options) >= 2:
+            max_steps = int(options[1])
+        elif options[0] == "--set" and len(options) >= 2 and \
+                "=" in options[1]:
+            entry, value = options[1].split("=", 1)
+            text = substitute(text, entry.strip(), value.strip())
+        else:
+            sys.exit("usage: ... [--set ENTRY=VALUE ...] [--max-steps N]")
+        options = options[2:]
 
     ref_text = substitute(substitute(text, "error tolerance", "0"),
                           "time step", reference_step)
     ref_text = re.sub(r"^\s*set maximum time step\s*=.*$", "", ref_text,
                       flags=re.MULTILINE)
-    ref_steps, _, _, _, ref = run(talus, ref_text,
+    ref_steps, _, _, _, ref, ref_structure = run(talus, ref_text,
                                   os.path.join(work, "reference"))
     print("reference: fixed step %s s, %d steps" % (reference_step,
                                                      ref_steps))
     rows = []
     for tol in tolerances:
-        steps, rejected, smallest, largest, points = run(
+        steps, rejected, smallest, largest, points, structure = run(
             talus, substitute(text, "error tolerance", "%g" % tol),
             os.path.join(work, "tol_%g" % tol))
         if set(points) != set(ref):
@@ -101,14 +123,23 @@ def main():
             d2 = sum((x[d] - ref[key][d]) ** 2 for d in range(dim))
             sum2 += d2
             worst = max(worst, math.sqrt(d2))
+        structure_error = None
+        if structure is not None and ref_structure is not None:
+            structure_error = math.sqrt(
+                sum((a - b) ** 2 for a, b in zip(structure, ref_structure)) /
+                len(structure))
         rows.append((tol, math.sqrt(sum2 / len(points)), worst, steps,
-                     rejected, smallest, largest))
+                     rejected, smallest, largest, structure_error))
 
+    with_structure = ref_structure is not None
     print("| tolerance | RMS error [m] | largest error [m] | steps | "
-          "rejected (error) | smallest dt [s] | largest dt [s] |")
-    print("|---|---|---|---|---|---|---|")
+          "rejected (error) | smallest dt [s] | largest dt [s] |" +
+          (" structure RMS error [m] |" if with_structure else ""))
+    print("|---|---|---|---|---|---|---|" + ("---|" if with_structure
+                                             else ""))
     for r in rows:
-        print("| %.0e | %.3e | %.3e | %d | %d | %.3g | %.3g |" % r)
+        print("| %.0e | %.3e | %.3e | %d | %d | %.3g | %.3g |" % r[:7] +
+              (" %.3e |" % r[7] if with_structure else ""))
     tol = [r[0] for r in rows]
     s_error = slope(tol, [r[1] for r in rows])
     s_steps = slope(tol, [r[3] for r in rows])
@@ -121,6 +152,10 @@ def main():
             print("FAIL: the error does not fall from tolerance %g to %g"
                   % (b[0], a[0]))
             ok = False
+    if max_steps is not None and by_tolerance[0][3] > max_steps:
+        print("FAIL: %d steps at tolerance %g, more than %d"
+              % (by_tolerance[0][3], by_tolerance[0][0], max_steps))
+        ok = False
     if not ok:
         sys.exit("FAIL: error slope %.2f outside [%g, %g]"
                  % (s_error, min_slope, max_slope))
