@@ -52,6 +52,7 @@ VARIANTS = [
                                "net cells over height": "16"})),
     # time step (0.02 s in the base)
     ("time step", "dt=0.01", sub("Time", {"time step": "0.01"})),
+    ("time step", "dt=0.005", sub("Time", {"time step": "0.005"})),
     # the contact onset event with its forecast (off in the base): the
     # step shortened ahead of the first touch of the net, and steps of at
     # most 2 ms while the number of points on it changes sharply
