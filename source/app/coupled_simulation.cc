@@ -778,7 +778,10 @@ namespace Talus
     Boundaries::MaterialBehindBoundaries<dim> behind_boundaries(
       mpm.boundaries(), mpm.grid());
     const MPM::ContactForecast<dim> contact_forecast(
-      mpm.boundaries(), behind_boundaries, mpm.grid().minimal_cell_diameter);
+      mpm.boundaries(),
+      behind_boundaries,
+      mpm.grid().minimal_cell_diameter,
+      mpm.solver().shape_functions() == "linear");
     while (!time_control.finished())
       {
         // shorten the step ahead of a forecast contact onset

@@ -28,15 +28,15 @@ namespace Talus
       "true",
       dealii::Patterns::Bool(),
       "With 'contact onset time step' > 0: before each step, forecast when "
-      "the material points first touch each boundary with 'contact side = "
-      "material points' that no point touches yet (each point's gap to "
-      "the surface, closed at its current speed and under gravity) and "
-      "shorten a longer step to that time (at least 'contact onset time "
-      "step'), so that an impact is resolved without rejected steps; the "
-      "check after the step stays as the safety net (and is all there is "
-      "for the boundaries checked on the boundary particles' side, whose "
-      "reaction begins when material reaches their cells). false: the "
-      "check alone.");
+      "the material points first touch each boundary that no point "
+      "touches yet (each point's path at its current speed and under "
+      "gravity: to the surface with 'contact side = material points'; "
+      "into the cells around the boundary particles' cells with 'contact "
+      "side = boundary particles', whose reaction begins when material "
+      "reaches them, linear shape functions only) and shorten a longer "
+      "step to that time (at least 'contact onset time step'), so that an "
+      "impact is resolved without rejected steps; the check after the "
+      "step stays as the safety net. false: the check alone.");
     prm.declare_entry(
       "contact onset threshold",
       "0.5",
@@ -98,15 +98,25 @@ namespace Talus
 
 
   bool
-  ContactOnsetEvent::forecast(TimeControl &time_control, const double arrival)
+  ContactOnsetEvent::forecast(TimeControl &time_control,
+                              double       arrival,
+                              const bool   onset_in_next_step)
   {
-    if (!forecasting() || !(arrival < time_control.next_step()))
+    if (!forecasting())
+      return false;
+    // the step after one that ended past a forecast entry contains the
+    // onset
+    if (onset_follows)
+      arrival = 0.;
+    onset_follows = false;
+    if (!(arrival < time_control.next_step()))
       return false;
     const double step = std::max(arrival, onset_dt);
     if (!(step < time_control.next_step() * (1. - 1e-9)))
       return false;
     time_control.dt = step;
     growing         = true;
+    onset_follows   = onset_in_next_step && arrival > 0.;
     ++shortened;
     return true;
   }

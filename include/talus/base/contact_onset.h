@@ -36,12 +36,13 @@ namespace Talus
    *
    * Forecast ('contact onset forecast', on by default): before each step
    * the time loop asks MPM::ContactForecast when the material will first
-   * touch each boundary with 'contact side = material points' that no
-   * point touches yet, and passes the
+   * touch each boundary that no point touches yet, and passes the
    * earliest arrival t_a to forecast(): a planned step longer than t_a is
    * shortened to max(t_a, Delta t_c). The step then ends at the predicted
    * onset (or is at most Delta t_c if the onset is nearer), and the next
-   * one, whose forecast is close to zero, is Delta t_c: the onset is
+   * one, whose forecast is close to zero (material-point contact) or
+   * which the forecast marks as the onset step (a boundary checked on the
+   * boundary particles' side), is Delta t_c: the onset is
    * resolved without the rejected solves of the check after the step,
    * which stays as the safety net for what the forecast does not see
    * (forces other than gravity, a moving surface, contact between
@@ -94,10 +95,17 @@ namespace Talus
      * contacts after @p arrival [s] (MPM::ContactForecast). A planned step
      * of @p time_control longer than that is shortened to max(arrival,
      * Delta t_c) (TimeControl::dt); it grows back after the onset as
-     * after a rejection. Returns whether the step was shortened.
+     * after a rejection. @p onset_in_next_step: the contact begins in the
+     * step after the one that contains the arrival (a boundary checked on
+     * the boundary particles' side, whose reaction begins in the step that
+     * starts with material in the cells around its particles); the next
+     * step is then Delta t_c whatever its forecast. Returns whether the
+     * step was shortened.
      */
     bool
-    forecast(TimeControl &time_control, const double arrival);
+    forecast(TimeControl &time_control,
+             const double arrival,
+             const bool   onset_in_next_step = false);
 
     /**
      * After TimeControl::accept(): the step's active set is the committed
@@ -116,7 +124,8 @@ namespace Talus
     void
     serialize(Archive &ar, const unsigned int /*version*/)
     {
-      ar &committed_contacts &trial_contacts &growing &rejections &shortened;
+      ar &committed_contacts &trial_contacts &growing &rejections &shortened
+        &onset_follows;
     }
 
     /** Delta t_c [s]; 0: off. */
@@ -137,6 +146,9 @@ namespace Talus
     int trial_contacts     = -1;
     /** A fixed step grows back after an onset. */
     bool growing = false;
+    /** The next step contains a forecast onset (forecast() with
+     * onset_in_next_step): it is Delta t_c. */
+    bool onset_follows = false;
     /** The last solved step [s]. */
     double trial_step = 0.;
   };

@@ -6,12 +6,14 @@
 #include <talus/boundaries/boundary_particles.h>
 #include <talus/boundaries/material_behind_boundaries.h>
 
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <utility>
 #include <vector>
 
 namespace Talus
@@ -43,17 +45,24 @@ namespace Talus
      * surface are the event's check after the step. The forecast keeps no
      * state: a resumed run forecasts as the uninterrupted one.
      *
-     * Only boundaries with 'contact side = material points' are
-     * forecast: there the reaction begins when a point's extent touches
-     * the surface, which is what the gap above measures. On the boundary
-     * particles' side it begins when material reaches the cells of the
-     * boundary particles (up to a cell before the touch, depending on
-     * where the grid cuts the surface); a forecast from the geometry
-     * would come late by up to a cell, or, if it took a cell off, early,
-     * and then the steps would crawl at the onset step until the
-     * material arrives. Those onsets are left to the event's check after
-     * the step.
-     *
+     * On the boundary particles' side ('contact side = boundary
+     * particles') the reaction begins when material reaches the cells of
+     * the boundary particles: a particle's cell takes part as soon as one
+     * of its nodes carries mass, which with linear shape functions is
+     * when a point enters one of the cells around that node. The halo of
+     * a boundary is therefore the union of its particles' cells, each
+     * widened by its own width on every side (the 3^dim cells around it
+     * on a uniform grid; on an adaptive grid a coarser neighbour reaches
+     * further, and the forecast is then late, which the event's check
+     * after the step catches). A point's arrival is the first t in which
+     * its path x + v t + g t^2 / 2 enters a halo box (box_entry_time()),
+     * searched among the boxes its path crosses within the planned step;
+     * none once a point lies in the halo. The step is made to end a
+     * thousandth of the arrival time before the entry, so that the entry
+     * falls into the next step, the onset step. With the other shape
+     * functions (uGIMP, cpGIMP, CPDI) a point reaches nodes beyond its
+     * cell by its domain; those boundaries are not forecast.
+
      * The depth of a fixed plane, line, box or circle is its analytic
      * signed distance (m by central differences); the other boundaries
      * (moving, coupled, 'mesh', 'external') are taken at the tangent plane
@@ -70,29 +79,35 @@ namespace Talus
       /**
        * The forecast for the boundaries of @p boundaries, whose analytic
        * depths @p behind gives; @p cell_size is the smallest cell of the
-       * background grid.
+       * background grid. @p linear_shape_functions: the boundaries checked
+       * on the boundary particles' side are forecast too.
        */
       ContactForecast(const Boundaries::BoundaryParticles<dim> &boundaries,
                       const Boundaries::MaterialBehindBoundaries<dim> &behind,
-                      const double cell_size);
+                      const double cell_size,
+                      const bool   linear_shape_functions);
 
       /**
        * The earliest arrival time [s] of the points of @p points at each
        * boundary b with @p watched[b] (infinity where none arrives, where a
        * point already touches it and for the boundaries not watched). The
        * points carry their velocity, initial volume and deformation gradient at
-       * the property indices of MaterialPointProperties. Collective.
+       * the property indices of MaterialPointProperties. The boundaries
+       * checked on the boundary particles' side are searched within
+       * @p horizon [s] only (the planned step). Collective.
        */
       std::vector<double>
       arrival_times(const dealii::Particles::ParticleHandler<dim> &points,
                     const std::vector<bool>                       &watched,
                     const dealii::Tensor<1, dim>                  &gravity,
+                    const double                                   horizon,
                     const MPI_Comm communicator) const;
 
       /**
        * Before a step: when @p event forecasts (ContactOnsetEvent::
-       * forecasting()), the boundaries with material-point contact are
-       * watched, and the
+       * forecasting()), the boundaries with material-point contact (and,
+       * with linear shape functions, those checked on the boundary
+       * particles' side) are watched, and the
        * planned step of @p time_control is shortened ahead of the earliest
        * arrival (ContactOnsetEvent::forecast()). Returns whether it was.
        * Collective.
@@ -113,10 +128,33 @@ namespace Talus
                    const double speed,
                    const double acceleration);
 
+      /**
+       * The first t in [0, @p horizon] at which x(t) = @p x + @p v t +
+       * @p a t^2 / 2 lies in @p box (infinity if none): the smallest of 0
+       * and the roots of x_d(t) = lower and upper corner of the box in
+       * each direction d at which x(t) lies in the box.
+       */
+      static double
+      box_entry_time(const dealii::Point<dim>       &x,
+                     const dealii::Tensor<1, dim>   &v,
+                     const dealii::Tensor<1, dim>   &a,
+                     const dealii::BoundingBox<dim> &box,
+                     const double                    horizon);
+
     private:
+      /**
+       * The halo boxes of the boundary particles of every boundary b with
+       * @p sides[b] (their cells widened by their own width; all ranks'),
+       * as pairs (box, b). Collective.
+       */
+      std::vector<std::pair<dealii::BoundingBox<dim>, unsigned int>>
+      halo_boxes(const std::vector<bool> &sides,
+                 const MPI_Comm           communicator) const;
+
       const Boundaries::BoundaryParticles<dim>        &boundaries;
       const Boundaries::MaterialBehindBoundaries<dim> &behind;
       const double                                     cell_size;
+      const bool                                       linear_shape_functions;
     };
   } // namespace MPM
 } // namespace Talus
