@@ -112,6 +112,16 @@ VARIANTS = [
     # time step (0.01 s in the base)
     ("time step", "dt=0.02", sub("Time", {"time step": "0.02"})),
     ("time step", "dt=0.005", sub("Time", {"time step": "0.005"})),
+    # the same with the FLIP/PIC blend 0.95 per 10 ms whatever the step
+    # ('FLIP fraction reference step'; per step in the base)
+    ("time step", "dt=0.01, FLIP per 10 ms",
+     sub("Solver", {"FLIP fraction reference step": "0.01"})),
+    ("time step", "dt=0.02, FLIP per 10 ms",
+     sub("Time", {"time step": "0.02"})
+     + sub("Solver", {"FLIP fraction reference step": "0.01"})),
+    ("time step", "dt=0.005, FLIP per 10 ms",
+     sub("Time", {"time step": "0.005"})
+     + sub("Solver", {"FLIP fraction reference step": "0.01"})),
     # coupling tolerance (relative 1e-5 in the base)
     ("coupling tolerance", "tol=1e-4",
      sub("Coupling", {"relative tolerance": "1e-4"})),

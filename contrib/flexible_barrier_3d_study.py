@@ -50,9 +50,18 @@ VARIANTS = [
     ("net mesh", "net 20x16",
      sub("Structure/Barrier", {"net cells per field": "20",
                                "net cells over height": "16"})),
-    # time step (0.02 s in the base)
+    # time step (0.02 s in the base; the FLIP/PIC blend 0.95 per 20 ms,
+    # 'FLIP fraction reference step', whatever the step)
     ("time step", "dt=0.01", sub("Time", {"time step": "0.01"})),
     ("time step", "dt=0.005", sub("Time", {"time step": "0.005"})),
+    # the blend applied once per step whatever its size (the reference
+    # step 0, the default): more PIC damping per second with shorter steps
+    ("time step", "dt=0.01, FLIP per step",
+     sub("Time", {"time step": "0.01"})
+     + sub("Solver", {"FLIP fraction reference step": "0"})),
+    ("time step", "dt=0.005, FLIP per step",
+     sub("Time", {"time step": "0.005"})
+     + sub("Solver", {"FLIP fraction reference step": "0"})),
     # the contact onset event with its forecast (off in the base): the
     # step shortened ahead of the first touch of the net, and steps of at
     # most 2 ms while the number of points on it changes sharply

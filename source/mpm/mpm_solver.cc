@@ -394,8 +394,22 @@ namespace Talus
           "Velocity update of the material points [-], 0 to 1: 1 = FLIP "
           "(v_p += interpolated grid velocity increment; no numerical "
           "dissipation), 0 = PIC (v_p = interpolated grid velocity; "
-          "dissipative), in between a blend. Used by 'velocity update = "
+          "dissipative), in between a blend, applied once per step (see "
+          "'FLIP fraction reference step'). Used by 'velocity update = "
           "FLIP' only.");
+        prm.declare_entry(
+          "FLIP fraction reference step",
+          "0",
+          Patterns::Double(0),
+          "Step to which 'FLIP fraction' f refers [s], >= 0. 0: f is "
+          "applied once per step whatever its size, so that the PIC share "
+          "per second, and with it the damping of the points' velocity "
+          "towards the grid's, grows as the step shrinks. > 0: a step of "
+          "size dt uses f^(dt / reference step): the points' departure from "
+          "the grid velocity decays as f^(t / reference step) whatever the "
+          "step (a relaxation time -reference step / ln f), so that "
+          "results converge in the step. Used with 'FLIP fraction' < 1 and "
+          "'velocity update = FLIP' only.");
         prm.declare_entry(
           "velocity update",
           "FLIP",
@@ -576,11 +590,18 @@ namespace Talus
                           "from forces",
                           "'projected' with 'mass matrix = consistent' "
                           "('from forces' needs the lumped mass)");
-      flip_fraction = prm.get_double("FLIP fraction");
-      apic          = prm.get("velocity update") == "APIC";
-      xpic_order    = prm.get("velocity update") == "XPIC" ?
-                        prm.get_integer("XPIC order") :
-                        0;
+      flip_fraction       = prm.get_double("FLIP fraction");
+      flip_reference_step = prm.get_double("FLIP fraction reference step");
+      if (flip_reference_step > 0. && flip_fraction == 1.)
+        InputFile::reject(sub,
+                          "FLIP fraction reference step",
+                          prm.get("FLIP fraction reference step"),
+                          "it applies to a 'FLIP fraction' below 1 only "
+                          "(with 1, pure FLIP, leave it at 0)");
+      apic       = prm.get("velocity update") == "APIC";
+      xpic_order = prm.get("velocity update") == "XPIC" ?
+                     prm.get_integer("XPIC order") :
+                     0;
       if (xpic_order == 0 && prm.get_integer("XPIC order") != 2)
         InputFile::reject(sub,
                           "XPIC order",

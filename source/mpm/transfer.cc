@@ -706,6 +706,10 @@ namespace Talus
       std::vector<double> du_local(max_dofs), a_local(max_dofs),
         dv_local(max_dofs), v_local(max_dofs);
       double grid_energy = 0., grid_speed = 0., transfer_energy = 0.;
+      // the FLIP/PIC blend of this step ('FLIP fraction reference step')
+      const double                        flip = flip_reference_step > 0. ?
+                                                   std::pow(flip_fraction, dt / flip_reference_step) :
+                                                   flip_fraction;
       std::vector<dealii::Tensor<2, dim>> F_cell;
       dealii::Tensor<2, 3>                P;
       for (const auto &c : cells)
@@ -783,8 +787,7 @@ namespace Talus
                     quasi_static   ? 0. :
                     apic           ? v_pic[i] :
                     xpic_order > 0 ? v_flip - xpic_correction[k][i] :
-                                     flip_fraction * v_flip +
-                                       (1. - flip_fraction) * v_pic[i];
+                                     flip * v_flip + (1. - flip) * v_pic[i];
                   for (unsigned int j = 0; j < dim; ++j)
                     props[Properties::affine_velocity + i * dim + j] =
                       (apic && !quasi_static) ? grad_v[i][j] : 0.;

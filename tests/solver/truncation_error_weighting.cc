@@ -23,19 +23,8 @@
 #include <cmath>
 #include <iostream>
 
-namespace
-{
-  int failures = 0;
+#include "check_close.h"
 
-  void
-  check(const char *what, const double value, const double expected)
-  {
-    const bool ok =
-      std::abs(value - expected) <= 1e-14 * std::max(1., std::abs(expected));
-    std::cout << what << ": " << value << (ok ? " ok" : " WRONG") << '\n';
-    failures += ok ? 0 : 1;
-  }
-} // namespace
 
 int
 main()

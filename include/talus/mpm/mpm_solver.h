@@ -1256,6 +1256,11 @@ namespace Talus
       /** Whether #contact_jump holds jumps to impose. */
       bool   contact_jump_active = false;
       double flip_fraction       = 1.;
+      /**
+       * 'FLIP fraction reference step' [s]: a step of size dt blends with
+       * flip_fraction^(dt / flip_reference_step); 0: flip_fraction per step.
+       */
+      double flip_reference_step = 0.;
       /** Affine particle-in-cell velocity update instead of FLIP. */
       bool apic = false;
       /** Order m of the XPIC velocity update; 0: not used. */
