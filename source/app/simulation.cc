@@ -189,6 +189,12 @@ namespace Talus
 
     RunVerification<dim> verification(communicator);
     verification.parse_parameters(prm, boundaries, time_control.end_time);
+    if (time_control.error_control.mass_weighted_coupled)
+      InputFile::reject("Time",
+                        "coupled error norm",
+                        "mass weighted",
+                        "it applies to 'problem = coupled' only (an MPM "
+                        "problem has one field); leave it at 'larger field'");
     if (time_control.error_control.enabled())
       {
         if (solver.is_quasi_static())

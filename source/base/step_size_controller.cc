@@ -32,7 +32,7 @@ namespace Talus
       "larger field",
       dealii::Patterns::Selection("larger field|mass weighted"),
       "The error of a coupled step chosen by 'error tolerance' (problem = "
-      "coupled; ignored otherwise). 'larger field': the larger of the "
+      "coupled; rejected otherwise). 'larger field': the larger of the "
       "relative errors of the MPM (grid) and of a dynamic structure (its "
       "Bossak-Newmark step, lumped mass), each as above; the step resolves "
       "every mode of either field, also those of a light structure that "
