@@ -54,6 +54,7 @@ VARIANTS = [
     # 'FLIP fraction reference step', whatever the step)
     ("time step", "dt=0.01", sub("Time", {"time step": "0.01"})),
     ("time step", "dt=0.005", sub("Time", {"time step": "0.005"})),
+    ("time step", "dt=0.0025", sub("Time", {"time step": "0.0025"})),
     # the blend applied once per step whatever its size (the reference
     # step 0, the default): more PIC damping per second with shorter steps
     ("time step", "dt=0.01, FLIP per step",
