@@ -1312,6 +1312,26 @@ namespace Talus
     std::string
     MPMSolver<dim>::friction_at_rest_warning() const
     {
+      // Friction between bodies: without the line search Newton cycles
+      // where contact nodes switch between stick and slip
+      // (doc/verification.md, "Several bodies and materials": a block
+      // sticking at mu = 0.7 fails at every step size)
+      const std::string bodies =
+        multi_field && body_friction > 0. && !line_search ?
+          "Warning: friction between bodies (subsection Body contact, "
+          "'friction coefficient' > 0) without Newton's line search: where "
+          "the bodies stick, Newton may cycle between stick and slip and "
+          "the steps fail; set 'line search = true' in subsection <Solver> "
+          "(doc/verification.md, \"Several bodies and materials\").\n" :
+          "";
+      return bodies + boundary_friction_at_rest_warning();
+    }
+
+
+    template <int dim>
+    std::string
+    MPMSolver<dim>::boundary_friction_at_rest_warning() const
+    {
       // Bodies meant to stay at rest on a frictional boundary slip and creep
       // in cut cells without numerical damping and the ghost penalty
       // (doc/verification.md, "A block at rest whatever the cut": 0 of 40

@@ -473,12 +473,19 @@ namespace Talus
        * numerical damping (Newmark gamma = 0.5) or without the ghost
        * penalty, where a body meant to stay at rest may slip and creep in
        * cut cells (doc/verification.md, "A block at rest whatever the
-       * cut"). The time loops print it outside test mode.
+       * cut"); and friction between bodies without Newton's line search,
+       * where sticking bodies make Newton cycle (doc/verification.md,
+       * "Several bodies and materials"). The time loops print it outside
+       * test mode.
        */
       std::string
       friction_at_rest_warning() const;
 
     private:
+      /** The part of friction_at_rest_warning() on boundary particles. */
+      std::string
+      boundary_friction_at_rest_warning() const;
+
       /** Material points of one cell with cached shape data. */
       struct CellCache
       {
