@@ -58,11 +58,13 @@ namespace Talus
      * its path x + v t + g t^2 / 2 enters a halo box (box_entry_time()),
      * searched among the boxes its path crosses within the planned step;
      * none once a point lies in the halo. The step is made to end a
-     * thousandth of the arrival time before the entry, so that the entry
-     * falls into the next step, the onset step. With the other shape
-     * functions (uGIMP, cpGIMP, CPDI) a point reaches nodes beyond its
-     * cell by its domain; those boundaries are not forecast.
-
+     * thousandth of the arrival time after the entry, so that the next
+     * step starts with the point in the halo (the reaction begins in it)
+     * and is the onset step (ContactOnsetEvent::forecast() with
+     * onset_in_next_step). With the other shape functions (uGIMP,
+     * cpGIMP, CPDI) a point reaches nodes beyond its cell by its domain;
+     * those boundaries are not forecast.
+     *
      * The depth of a fixed plane, line, box or circle is its analytic
      * signed distance (m by central differences); the other boundaries
      * (moving, coupled, 'mesh', 'external') are taken at the tangent plane
