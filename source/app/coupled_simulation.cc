@@ -781,7 +781,9 @@ namespace Talus
       mpm.boundaries(),
       behind_boundaries,
       mpm.grid().minimal_cell_diameter,
-      mpm.solver().shape_functions() == "linear");
+      [&mpm](const auto &F) {
+        return mpm.solver().point_domain_half_extent(F);
+      });
     while (!time_control.finished())
       {
         // shorten the step ahead of a forecast contact onset

@@ -141,11 +141,11 @@ namespace Talus
     auto                                     &boundaries = problem.boundaries();
     Boundaries::MaterialBehindBoundaries<dim> behind_boundaries(boundaries,
                                                                 grid);
-    const MPM::ContactForecast<dim>           contact_forecast(boundaries,
-                                                     behind_boundaries,
-                                                     grid.minimal_cell_diameter,
-                                                     solver.shape_functions() ==
-                                                       "linear");
+    const MPM::ContactForecast<dim>           contact_forecast(
+      boundaries,
+      behind_boundaries,
+      grid.minimal_cell_diameter,
+      [&solver](const auto &F) { return solver.point_domain_half_extent(F); });
 
     IO::VisualizationOutput<dim> output;
     output.parse_parameters(prm);

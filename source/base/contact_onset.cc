@@ -33,7 +33,8 @@ namespace Talus
       "gravity: to the surface with 'contact side = material points'; "
       "into the cells around the boundary particles' cells with 'contact "
       "side = boundary particles', whose reaction begins when material "
-      "reaches them, linear shape functions only) and shorten a longer "
+      "reaches them, with uGIMP, cpGIMP and CPDI when the point's domain "
+      "does) and shorten a longer "
       "step to that time (at least 'contact onset time step'), so that an "
       "impact is resolved without rejected steps; the check after the "
       "step stays as the safety net. false: the check alone.");

@@ -22,11 +22,11 @@ namespace Talus
       const Boundaries::BoundaryParticles<dim>        &boundaries,
       const Boundaries::MaterialBehindBoundaries<dim> &behind,
       const double                                     cell_size,
-      const bool                                       linear_shape_functions)
+      PointHalfExtent                                  point_half_extent)
       : boundaries(boundaries)
       , behind(behind)
       , cell_size(cell_size)
-      , linear_shape_functions(linear_shape_functions)
+      , point_half_extent(std::move(point_half_extent))
     {}
 
 
@@ -197,8 +197,8 @@ namespace Talus
       bool              any_halo = false;
       for (unsigned int b = 0; b < n && b < watched.size(); ++b)
         {
-          halo_side[b] = watched[b] && linear_shape_functions &&
-                         !boundaries.boundary(b).material_point_contact;
+          halo_side[b] =
+            watched[b] && !boundaries.boundary(b).material_point_contact;
           any_halo = any_halo || halo_side[b];
         }
       if (any_halo)
@@ -218,8 +218,21 @@ namespace Talus
               dealii::Tensor<1, dim> v;
               for (unsigned int d = 0; d < dim; ++d)
                 v[d] = props[MP::velocity + d];
+              // the reach of the point's domain: its path enters a halo
+              // box widened by it
+              const dealii::Tensor<1, dim> l = point_half_extent(
+                internal::read_tensor<dim>(props, MP::deformation));
+              const auto widened = [&](const dealii::BoundingBox<dim> &box) {
+                auto [lower, upper] = box.get_boundary_points();
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    lower[d] -= l[d];
+                    upper[d] += l[d];
+                  }
+                return dealii::BoundingBox<dim>({lower, upper});
+              };
               // the box the path spans within the horizon (its ends and
-              // the turning point of each direction)
+              // the turning point of each direction), widened by the reach
               dealii::Point<dim> lower = x, upper = x;
               for (unsigned int d = 0; d < dim; ++d)
                 {
@@ -235,6 +248,11 @@ namespace Talus
                       upper[d] = std::max(upper[d], y);
                     }
                 }
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  lower[d] -= l[d];
+                  upper[d] += l[d];
+                }
               std::vector<unsigned int> crossed;
               tree.query(boost::geometry::index::intersects(
                            dealii::BoundingBox<dim>({lower, upper})),
@@ -242,8 +260,8 @@ namespace Talus
               for (const unsigned int i : crossed)
                 {
                   const unsigned int b = boxes[i].second;
-                  const double       t =
-                    box_entry_time(x, v, gravity, boxes[i].first, horizon);
+                  const double       t = box_entry_time(
+                    x, v, gravity, widened(boxes[i].first), horizon);
                   if (t == 0.)
                     touching[b] = 1;
                   else
@@ -310,11 +328,8 @@ namespace Talus
     {
       if (!event.forecasting() || boundaries.n_boundaries() == 0)
         return false;
-      std::vector<bool> watched(boundaries.n_boundaries());
-      for (unsigned int b = 0; b < watched.size(); ++b)
-        watched[b] = boundaries.boundary(b).material_point_contact ||
-                     linear_shape_functions;
-      const auto arrivals = arrival_times(
+      std::vector<bool> watched(boundaries.n_boundaries(), true);
+      const auto        arrivals = arrival_times(
         points, watched, gravity, time_control.next_step(), communicator);
       const auto first = std::min_element(arrivals.begin(), arrivals.end());
       // on the boundary particles' side the reaction begins in the step

@@ -373,6 +373,30 @@ namespace Talus
 
 
     template <int dim>
+    dealii::Tensor<1, dim>
+    MPMSolver<dim>::point_domain_half_extent(
+      const dealii::Tensor<2, dim> &F) const
+    {
+      dealii::Tensor<1, dim> l;
+      if (!gimp)
+        return l;
+      const dealii::Tensor<1, dim> &h = grid.cell_extent;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          if (cpdi || (convected_domain && domain_bounding_box))
+            for (unsigned int e = 0; e < dim; ++e)
+              l[d] += std::abs(F[d][e]) * gimp_half_width[e];
+          else if (convected_domain)
+            l[d] = std::abs(F[d][d]) * gimp_half_width[d];
+          else
+            l[d] = gimp_half_width[d];
+          l[d] = std::min(l[d], h[d]);
+        }
+      return l;
+    }
+
+
+    template <int dim>
     std::pair<unsigned long long, unsigned long long>
     MPMSolver<dim>::capped_point_domains() const
     {
@@ -901,21 +925,23 @@ namespace Talus
 
 
     // Explicit instantiation of the members defined in this file.
-#define TALUS_INSTANTIATE(dim)                                         \
-  template void MPMSolver<dim>::cache_particles();                     \
-  template void MPMSolver<dim>::cache_cell_per_body(                   \
-    const typename dealii::DoFHandler<dim>::active_cell_iterator &);   \
-  template std::pair<unsigned long long, unsigned long long>           \
-                MPMSolver<dim>::capped_point_domains() const;          \
-  template void MPMSolver<dim>::project_to_grid();                     \
-  template void MPMSolver<dim>::compute_xpic_correction(               \
-    std::vector<dealii::Tensor<1, dim>> &w) const;                     \
-  template void MPMSolver<dim>::commit_step();                         \
-  template void MPMSolver<dim>::project_stress_to_grid();              \
-  template void MPMSolver<dim>::append_q1_shapes(                      \
-    const typename dealii::Triangulation<dim>::active_cell_iterator &, \
-    const std::vector<dealii::Point<dim>> &,                           \
-    std::vector<double> &,                                             \
+#define TALUS_INSTANTIATE(dim)                                                  \
+  template void MPMSolver<dim>::cache_particles();                              \
+  template void MPMSolver<dim>::cache_cell_per_body(                            \
+    const typename dealii::DoFHandler<dim>::active_cell_iterator &);            \
+  template std::pair<unsigned long long, unsigned long long>                    \
+                                  MPMSolver<dim>::capped_point_domains() const; \
+  template dealii::Tensor<1, dim> MPMSolver<dim>::point_domain_half_extent(     \
+    const dealii::Tensor<2, dim> &) const;                                      \
+  template void MPMSolver<dim>::project_to_grid();                              \
+  template void MPMSolver<dim>::compute_xpic_correction(                        \
+    std::vector<dealii::Tensor<1, dim>> &w) const;                              \
+  template void MPMSolver<dim>::commit_step();                                  \
+  template void MPMSolver<dim>::project_stress_to_grid();                       \
+  template void MPMSolver<dim>::append_q1_shapes(                               \
+    const typename dealii::Triangulation<dim>::active_cell_iterator &,          \
+    const std::vector<dealii::Point<dim>> &,                                    \
+    std::vector<double> &,                                                      \
     std::vector<dealii::Tensor<1, dim>> &) const;
 
     TALUS_INSTANTIATE(2)

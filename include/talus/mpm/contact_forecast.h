@@ -13,6 +13,7 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -62,8 +63,14 @@ namespace Talus
      * step starts with the point in the halo (the reaction begins in it)
      * and is the onset step (ContactOnsetEvent::forecast() with
      * onset_in_next_step). With the other shape functions (uGIMP,
-     * cpGIMP, CPDI) a point reaches nodes beyond its cell by its domain;
-     * those boundaries are not forecast.
+     * cpGIMP, CPDI) a point gives mass to a node as soon as its domain
+     * overlaps the node's support: the point enters the halo when the
+     * box of its domain does, i.e. its path enters the halo box widened
+     * by the domain's half-extent l_p (MPMSolver::
+     * point_domain_half_extent(), from the committed F). For CPDI's
+     * parallelepiped this bounding box is reached at most a corner's
+     * way before the domain itself (a forecast slightly early, never
+     * late).
      *
      * The depth of a fixed plane, line, box or circle is its analytic
      * signed distance (m by central differences); the other boundaries
@@ -79,15 +86,24 @@ namespace Talus
     {
     public:
       /**
+       * The half-extent per direction [m] of a point's domain, given its
+       * committed deformation gradient (zero with linear shape
+       * functions).
+       */
+      using PointHalfExtent =
+        std::function<dealii::Tensor<1, dim>(const dealii::Tensor<2, dim> &)>;
+
+      /**
        * The forecast for the boundaries of @p boundaries, whose analytic
        * depths @p behind gives; @p cell_size is the smallest cell of the
-       * background grid. @p linear_shape_functions: the boundaries checked
-       * on the boundary particles' side are forecast too.
+       * background grid; @p point_half_extent the reach of a point's
+       * domain for the boundaries checked on the boundary particles' side
+       * (MPMSolver::point_domain_half_extent()).
        */
       ContactForecast(const Boundaries::BoundaryParticles<dim> &boundaries,
                       const Boundaries::MaterialBehindBoundaries<dim> &behind,
-                      const double cell_size,
-                      const bool   linear_shape_functions);
+                      const double    cell_size,
+                      PointHalfExtent point_half_extent);
 
       /**
        * The earliest arrival time [s] of the points of @p points at each
@@ -107,9 +123,7 @@ namespace Talus
 
       /**
        * Before a step: when @p event forecasts (ContactOnsetEvent::
-       * forecasting()), the boundaries with material-point contact (and,
-       * with linear shape functions, those checked on the boundary
-       * particles' side) are watched, and the
+       * forecasting()), all boundaries are watched, and the
        * planned step of @p time_control is shortened ahead of the earliest
        * arrival (ContactOnsetEvent::forecast()). Returns whether it was.
        * Collective.
@@ -156,7 +170,7 @@ namespace Talus
       const Boundaries::BoundaryParticles<dim>        &boundaries;
       const Boundaries::MaterialBehindBoundaries<dim> &behind;
       const double                                     cell_size;
-      const bool                                       linear_shape_functions;
+      const PointHalfExtent                            point_half_extent;
     };
   } // namespace MPM
 } // namespace Talus

@@ -274,6 +274,20 @@ namespace Talus
       {
         return convected_domain || cpdi;
       }
+      /**
+       * The half-extent per direction [m] of the domain of a point whose
+       * committed deformation gradient is @p F, as the next step's weights
+       * use it: zero with linear shape functions (the point itself); the
+       * uGIMP half-width l0; cpGIMP's |F_dd| l0_d (sum_e |F_de| l0_e with
+       * 'cpGIMP domain = bounding box'); with CPDI the bounding box of
+       * the parallelepiped spanned by F_n r_i^0, sum_e |F_de| l0_e; capped
+       * at the cell size (the reach of the node patch). A grid node
+       * receives mass from the point as soon as its support overlaps this
+       * box (ContactForecast).
+       */
+      dealii::Tensor<1, dim>
+      point_domain_half_extent(const dealii::Tensor<2, dim> &F) const;
+
       /** The chosen 'shape functions' (linear, uGIMP, cpGIMP or CPDI). */
       const std::string &
       shape_functions() const
