@@ -58,6 +58,19 @@ namespace Talus
       "dt^2) at a node shared by bodies a and b [-], > 0 (multi-velocity "
       "field): the inertia stiffness of the lighter field, so that the "
       "penetration within a step is about 1/factor of the approach per step.");
+    prm.declare_entry(
+      "carry contact forces",
+      "false",
+      Patterns::Bool(),
+      "Whether the penalty force of a node shared by two bodies (pressure "
+      "and tangential stick force) is carried from one step into the next "
+      "while the node stays in contact (multi-velocity field): the force "
+      "then changes by k times the relative displacement of the step, so a "
+      "body resting or sticking on another holds its place. 'false': the "
+      "penalty starts unloaded in every step and such a body creeps, by "
+      "F / k per step (about F beta dt / (factor m) per second). The energy "
+      "the contact takes ('body contact dissipation') then includes what "
+      "the carried springs store, F^2 / (2 k) per node.");
     prm.leave_subsection();
   }
 
@@ -71,6 +84,7 @@ namespace Talus
     multi_velocity_field = prm.get("contact") == "multi-velocity field";
     friction_coefficient = get_non_negative(prm, sub, "friction coefficient");
     penalty_factor       = get_positive(prm, sub, "penalty factor");
+    carry_contact_forces = prm.get_bool("carry contact forces");
     prm.leave_subsection();
     if (multi_velocity_field && n_bodies < 2)
       InputFile::reject(sub,
@@ -124,6 +138,7 @@ namespace Talus
         return;
       body_friction     = contact.friction_coefficient;
       body_penalty      = contact.penalty_factor;
+      body_carry        = contact.carry_contact_forces;
       const auto reject = [](const std::string &sub,
                              const std::string &entry,
                              const std::string &value,
@@ -179,6 +194,16 @@ namespace Talus
       contact_nodes.clear();
       if (!multi_field)
         return;
+      // the forces committed at the end of the last step, by node and pair
+      std::map<std::vector<double>, dealii::Tensor<1, dim>> carried;
+      for (std::size_t i = 0; i + carried_entry_size <= carried_contact.size();
+           i += carried_entry_size)
+        {
+          const std::vector<double> key(carried_contact.begin() + i,
+                                        carried_contact.begin() + i + dim + 2);
+          for (unsigned int d = 0; d < dim; ++d)
+            carried[key][d] = carried_contact[i + dim + 2 + d];
+        }
       using Properties            = MaterialPointProperties<dim>;
       const unsigned int n_nodes  = shape_stride;
       const unsigned int n_fields = grid.n_velocity_fields();
@@ -236,6 +261,7 @@ namespace Talus
         unsigned int                                     a, b;
         std::array<dealii::Tensor<1, dim>, n_candidates> normals;
         std::array<dealii::types::global_dof_index, dim> dofs_a, dofs_b;
+        dealii::Point<dim>                               vertex;
         /** The candidate of the larger volume gradient. */
         unsigned int preferred = 0;
       };
@@ -255,8 +281,9 @@ namespace Talus
                   if (!(m_a > 0.) || !(m_b > 0.))
                     continue;
                   Pair p;
-                  p.a = a;
-                  p.b = b;
+                  p.a      = a;
+                  p.b      = b;
+                  p.vertex = c.cell->vertex(v);
                   // candidate normals: the outward normal of body a, minus
                   // that of body b, and their average (Nairn 2013's
                   // options); the one along which the bodies' domains are
@@ -368,6 +395,9 @@ namespace Talus
                   body_penalty *
                   std::min(nodal_mass(p.dofs_a[0]), nodal_mass(p.dofs_b[0])) *
                   newmark.mass_factor(dt);
+                node.key = carried_key(p.vertex, a, b);
+                if (const auto it = carried.find(node.key); it != carried.end())
+                  node.carried = it->second;
                 contact_nodes.push_back(node);
               }
           }
@@ -396,23 +426,33 @@ namespace Talus
       ContactForce result;
       const auto  &n = node.normal;
       const double k = node.stiffness;
-      // a gap the bodies may close within the step; a negative one (the
-      // domains overlap at the start) is not pushed out: only the
-      // approach of this step is resisted
-      const double g = std::max(node.gap, 0.) + jump * n;
-      if (!(g < 0.))
+      // the pressure carried from the last step (carry contact forces),
+      // which the approach of this step raises; else a gap the bodies may
+      // close within the step, where a negative one (the domains overlap
+      // at the start) is not pushed out: only the approach of this step
+      // is resisted
+      const double carried_pressure = node.carried * n;
+      const double pressure         = carried_pressure > 0. ?
+                                        carried_pressure - k * (jump * n) :
+                                        -k * (std::max(node.gap, 0.) + jump * n);
+      if (!(pressure > 0.))
         return result;
       result.active   = true;
-      result.pressure = -k * g;
+      result.pressure = pressure;
       // force on b (on a: its negative): p n + t
       result.force                    = result.pressure * n;
       const dealii::Tensor<2, dim> nn = dealii::outer_product(n, n);
       result.dforce                   = -k * nn;
       if (body_friction > 0.)
         {
-          // stick penalty on the tangential increment, bounded by mu p
-          const dealii::Tensor<1, dim> s     = jump - (jump * n) * n;
-          const dealii::Tensor<1, dim> trial = -k * s;
+          // stick penalty on the tangential increment, from the carried
+          // tangential force f_t (on the current tangent plane), bounded
+          // by mu p: the trial force -k sigma with the slip sigma = s -
+          // f_t / k of the spring
+          const dealii::Tensor<1, dim> s = jump - (jump * n) * n;
+          const dealii::Tensor<1, dim> sigma =
+            s - (node.carried - carried_pressure * n) / k;
+          const dealii::Tensor<1, dim> trial = -k * sigma;
           const double                 limit = body_friction * result.pressure;
           dealii::Tensor<2, dim>       tangential_projector =
             dealii::unit_symmetric_tensor<dim>() - nn;
@@ -423,15 +463,15 @@ namespace Talus
             }
           else
             {
-              const double                 s_norm = s.norm();
-              const dealii::Tensor<1, dim> t      = s / s_norm;
+              const double                 sigma_norm = sigma.norm();
+              const dealii::Tensor<1, dim> t          = sigma / sigma_norm;
               result.force -= limit * t;
               result.slip = true;
               // d(-mu p t)/d jump = -mu (dp/djump) t - mu p dt/djump,
-              // dp/djump = -k n, dt/djump = (P - t t)/|s| P
+              // dp/djump = -k n, dt/djump = (P - t t)/|sigma| P
               result.dforce += body_friction * k * dealii::outer_product(t, n);
               result.dforce -=
-                limit / s_norm *
+                limit / sigma_norm *
                 (tangential_projector - dealii::outer_product(t, t));
             }
         }
@@ -491,8 +531,11 @@ namespace Talus
       // unloaded (f(0) = 0 unless the friction pulls), so what the contact
       // takes is dissipated: the inelastic nodal impact of the fields and
       // the friction between the bodies.
-      double       work   = 0.;
-      unsigned int active = 0;
+      // With 'carry contact forces' it includes what the carried springs
+      // store, which they give back when the bodies separate.
+      double              work   = 0.;
+      unsigned int        active = 0;
+      std::vector<double> carried_local;
       for (const auto &node : contact_nodes)
         {
           dealii::Tensor<1, dim> jump;
@@ -501,7 +544,17 @@ namespace Talus
               displacement(node.dofs[dim + d]) - displacement(node.dofs[d]);
           const ContactForce end = body_contact_force(node, jump);
           if (end.active)
-            ++active;
+            {
+              ++active;
+              if (body_carry)
+                {
+                  carried_local.insert(carried_local.end(),
+                                       node.key.begin(),
+                                       node.key.end());
+                  for (unsigned int d = 0; d < dim; ++d)
+                    carried_local.push_back(end.force[d]);
+                }
+            }
           work += 0.5 *
                   (body_contact_force(node, dealii::Tensor<1, dim>()).force +
                    end.force) *
@@ -511,6 +564,30 @@ namespace Talus
         dealii::Utilities::MPI::sum(work, grid.mpi_communicator);
       n_active_contact_nodes =
         dealii::Utilities::MPI::sum(active, grid.mpi_communicator);
+      // the committed forces on every rank (a node's owner may change)
+      carried_contact.clear();
+      if (body_carry)
+        for (const auto &from_rank :
+             dealii::Utilities::MPI::all_gather(grid.mpi_communicator,
+                                                carried_local))
+          carried_contact.insert(carried_contact.end(),
+                                 from_rank.begin(),
+                                 from_rank.end());
+    }
+
+
+    template <int dim>
+    std::vector<double>
+    MPMSolver<dim>::carried_key(const dealii::Point<dim> &vertex,
+                                const unsigned int        a,
+                                const unsigned int        b)
+    {
+      std::vector<double> key(dim + 2);
+      for (unsigned int d = 0; d < dim; ++d)
+        key[d] = vertex[d];
+      key[dim]     = a;
+      key[dim + 1] = b;
+      return key;
     }
 
 
@@ -526,7 +603,9 @@ namespace Talus
                                      const dealii::Tensor<1, dim> &) const; \
   template void MPMSolver<dim>::assemble_body_contact(                                    \
     const dealii::TrilinosWrappers::MPI::Vector &, const bool);                           \
-  template void MPMSolver<dim>::commit_body_contact();
+  template void                MPMSolver<dim>::commit_body_contact();                     \
+  template std::vector<double> MPMSolver<dim>::carried_key(                               \
+    const dealii::Point<dim> &, const unsigned int, const unsigned int);
 
     TALUS_INSTANTIATE(2)
     TALUS_INSTANTIATE(3)

@@ -39,6 +39,15 @@ namespace Talus
      * active set follows the iterate). Coulomb friction between bodies
      * ('friction coefficient') acts on the tangential increment
      * (du_b - du_a)_t with a stick penalty k and slip at mu p.
+     *
+     * With 'carry contact forces' the force of a node that ended the last
+     * step in contact is carried into the next (an incremental penalty):
+     * p = p_n - k (du_b - du_a) . n and the stick trial f_t = P f_t,n -
+     * k (du_b - du_a)_t, with f_n the committed force on b (P the
+     * projector onto the current tangent plane); else the penalty starts
+     * unloaded in every step, and a body held by another (resting or
+     * sticking) moves by F / k in each step to rebuild the force, a creep
+     * of about F beta dt / (factor m) per second.
      */
     class BodyContact
     {
@@ -60,6 +69,8 @@ namespace Talus
       double friction_coefficient = 0.;
       /** Penalty factor of the normal (and stick) contact stiffness [-]. */
       double penalty_factor = 100.;
+      /** Whether contact forces are carried from step to step. */
+      bool carry_contact_forces = false;
     };
   } // namespace MPM
 } // namespace Talus

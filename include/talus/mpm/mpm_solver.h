@@ -25,6 +25,8 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <boost/serialization/vector.hpp>
+
 #include <Amesos_BaseSolver.h>
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
@@ -417,14 +419,16 @@ namespace Talus
        * checkpoint needs (MPMProblem::save_checkpoint()): the energy
        * accounts (friction, reset, transfer, integrator and body contact
        * dissipation; EnergyAccounts::serialize()), the grid
-       * kinetic energy and largest grid speed of the last commit and the
-       * friction boundaries' resultant. The same on every rank.
+       * kinetic energy and largest grid speed of the last commit, the
+       * friction boundaries' resultant and the carried forces between
+       * bodies (carried_contact). The same on every rank.
        */
       template <class Archive>
       void
       serialize_committed_scalars(Archive &ar)
       {
-        ar &accounts &grid_kinetic_energy &max_grid_speed &contact_force;
+        ar &accounts &grid_kinetic_energy &max_grid_speed &contact_force
+          &carried_contact;
       }
 
       /**
@@ -537,6 +541,13 @@ namespace Talus
         dealii::Tensor<1, dim>                       normal;
         double                                       gap       = 0.;
         double                                       stiffness = 0.;
+        /** The node and pair: carried_key(). */
+        std::vector<double> key;
+        /**
+         * The force on b committed at the end of the last step ('carry
+         * contact forces'; zero if the node was not in contact).
+         */
+        dealii::Tensor<1, dim> carried;
       };
       /** The force of a contact node on body b (on a: its negative). */
       struct ContactForce
@@ -552,7 +563,22 @@ namespace Talus
       bool                     multi_field            = false;
       double                   body_friction          = 0.;
       double                   body_penalty           = 100.;
+      bool                     body_carry             = false;
       unsigned int             n_active_contact_nodes = 0;
+      /**
+       * Committed state of 'carry contact forces': the force on b of every
+       * node in contact at the end of the last step, on every rank, as
+       * entries of carried_entry_size numbers: the vertex, a, b
+       * (carried_key()) and the force.
+       */
+      std::vector<double>           carried_contact;
+      static constexpr unsigned int carried_entry_size = 2 * dim + 2;
+
+      /** What identifies a contact node: its vertex and the pair a < b. */
+      static std::vector<double>
+      carried_key(const dealii::Point<dim> &vertex,
+                  const unsigned int        a,
+                  const unsigned int        b);
 
       /** Contact nodes, normals and gaps of the step (after the P2G). */
       void
