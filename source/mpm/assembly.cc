@@ -524,8 +524,10 @@ namespace Talus
                 }
             }
 
+          // (uGIMP, cpGIMP, CPDI: a cell's node patch reaches a cell
+          // beyond its vertices, so every cell is looked at)
           if (!grid.friction_boundaries.empty() &&
-              cell_touches_friction[c.cell->active_cell_index()])
+              (gimp || cell_touches_friction[c.cell->active_cell_index()]))
             {
               // Unconstrained residual for the contact reactions, then the
               // Coulomb force of slipping nodes as a combination of rows:

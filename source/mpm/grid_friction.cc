@@ -65,8 +65,11 @@ namespace Talus
         std::array<dealii::types::global_dof_index, dim>      dofs;
       };
       std::map<dealii::types::global_dof_index, Candidate> candidates;
+      // uGIMP, cpGIMP, CPDI: the node patch of an owned cell reaches the
+      // vertices of its ghost neighbours, whose friction nodes its rows
+      // combine too
       for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
+        if (cell->is_locally_owned() || (gimp && cell->is_ghost()))
           for (const unsigned int f : cell->face_indices())
             {
               const auto face = cell->face(f);

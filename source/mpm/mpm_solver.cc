@@ -497,7 +497,7 @@ namespace Talus
           "Q1 field at their location, as with 'linear'. uGIMP, cpGIMP and "
           "CPDI: "
           "Cartesian background grids only ('grid type = box'); not with "
-          "grid friction boundaries, APIC or the ghost penalty.");
+          "APIC or the ghost penalty.");
         prm.declare_entry(
           "cpGIMP domain stretch",
           "diagonal",
@@ -906,13 +906,6 @@ namespace Talus
                             " needs a Cartesian background grid "
                             "(subsection Background grid, 'grid type = box'); "
                             "this grid is read from a mesh file");
-      if (!grid.friction_boundaries.empty())
-        InputFile::reject("Solver",
-                          "shape functions",
-                          shape_name,
-                          shape_name +
-                            " is not implemented with grid friction "
-                            "boundaries; use 'shape functions = linear'");
       // the caches' node-major dof order is FESystem<FE_Q(1)^dim>'s
       for (unsigned int i = 0; i < grid.fe.dofs_per_cell; ++i)
         AssertThrow(grid.fe.system_to_component_index(i) ==
