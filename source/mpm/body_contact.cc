@@ -37,9 +37,8 @@ namespace Talus
       "starts when the bodies touch, they separate freely, and Coulomb "
       "friction ('friction coefficient') acts between them. Needs 'number of "
       "bodies' >= 2, linear shape functions, the lumped mass matrix, inertia "
-      "(not quasi-static), no boundary particles, grid friction boundaries, "
-      "ghost penalty or adaptive grid (doc/theory.md, 'Contact between "
-      "bodies').");
+      "(not quasi-static), no boundary particles, grid friction boundaries "
+      "or ghost penalty (doc/theory.md, 'Contact between bodies').");
     prm.declare_entry(
       "friction coefficient",
       "0",

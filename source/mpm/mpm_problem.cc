@@ -108,13 +108,6 @@ namespace Talus
       // the adaptive grid starts at its finest level (setup() coarsens)
       adaptive.parse_parameters(prm);
       adaptive.check_refined_boundaries(*background_grid);
-      if (body_contact.multi_velocity_field && adaptive.enabled())
-        InputFile::reject("Body contact",
-                          "contact",
-                          "multi-velocity field",
-                          "an adaptive background grid (subsection Adaptive "
-                          "grid, 'enable = true') is not implemented with "
-                          "it; use 'single velocity field' or a uniform grid");
       base_refinement = refinement;
       const unsigned int total_level =
         refinement + adaptive.initial_refinement();
