@@ -85,6 +85,13 @@ namespace Talus
     penalty_factor       = get_positive(prm, sub, "penalty factor");
     carry_contact_forces = prm.get_bool("carry contact forces");
     prm.leave_subsection();
+    if (!multi_velocity_field && carry_contact_forces)
+      InputFile::reject(sub,
+                        "carry contact forces",
+                        "true",
+                        "it applies to the forces between the bodies' "
+                        "velocity fields, 'contact = multi-velocity field'; "
+                        "with one velocity field there are none");
     if (multi_velocity_field && n_bodies < 2)
       InputFile::reject(sub,
                         "contact",
