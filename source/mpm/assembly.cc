@@ -264,6 +264,9 @@ namespace Talus
       dealii::Tensor<2, 3>                P;
       dealii::Tensor<4, 3>                A;
       bool                                ok = true;
+      // lumped inertia of hanging nodes, by master dof (locally refined
+      // grids)
+      std::map<dealii::types::global_dof_index, double> hanging_inertia;
 
       // The cells' contributions before friction and constraints, kept for
       // a re-assembly at the same iterate after a contact state update.
@@ -362,6 +365,20 @@ namespace Talus
                               if (comp[j] == ci)
                                 k_local(i, j) +=
                                   c_mass * m * N[node[i]] * N[node[j]];
+                        }
+                      else if (has_hanging_nodes &&
+                               hanging_constraints.is_constrained(c.dofs[i]))
+                        {
+                          // the lumped mass on the conforming space: a
+                          // hanging node's share goes to the diagonal of
+                          // its masters (below), as the P2G condenses it
+                          // into their nodal masses; through the cell
+                          // matrix it would couple them (C^T M C)
+                          for (const auto &e :
+                               *hanging_constraints.get_constraint_entries(
+                                 c.dofs[i]))
+                            hanging_inertia[e.first] +=
+                              e.second * m * N[node[i]];
                         }
                       else
                         {
@@ -566,6 +583,32 @@ namespace Talus
 
       cell_contributions_current = keep_contributions && ok;
       inertia_changed_dofs.clear();
+
+      // The hanging nodes' lumped inertia, on the masters' diagonal: the
+      // inertia force is then M a with the condensed nodal masses of the
+      // P2G (nodal_mass), the mass of the energy accounts.
+      if (ok)
+        {
+          std::vector<dealii::types::global_dof_index> master(1);
+          dealii::FullMatrix<double>                   k_master(1, 1);
+          dealii::Vector<double>                       r_master(1);
+          for (const auto &[j, m] : hanging_inertia)
+            {
+              master[0]      = j;
+              k_master(0, 0) = c_mass * m;
+              r_master[0]    = -m * newmark.acceleration(du(j),
+                                                      velocity_n(j),
+                                                      acceleration_n(j),
+                                                      dt);
+              if (with_matrix)
+                constraints.distribute_local_to_global(
+                  k_master, r_master, master, matrix, residual);
+              else
+                constraints.distribute_local_to_global(r_master,
+                                                       master,
+                                                       residual);
+            }
+        }
 
       // Boundary particles in cells with at least one node that carries
       // mass: penalty forces on the material.

@@ -728,7 +728,7 @@ namespace Talus
 
       std::vector<double> history_new(n_history);
       std::vector<double> du_local(max_dofs), a_local(max_dofs),
-        dv_local(max_dofs), v_local(max_dofs);
+        dv_local(max_dofs), v_local(max_dofs), dv_square_local(max_dofs);
       double grid_energy = 0., grid_speed = 0., transfer_energy = 0.;
       // the FLIP/PIC blend of this step ('FLIP fraction reference step')
       const double                        flip = flip_reference_step > 0. ?
@@ -743,12 +743,25 @@ namespace Talus
           a_local.resize(dofs_per_cell);
           dv_local.resize(dofs_per_cell);
           v_local.resize(dofs_per_cell);
+          dv_square_local.resize(dofs_per_cell);
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             {
               du_local[i] = conforming_value(displacement, c.dofs[i]);
               a_local[i]  = conforming_value(acceleration_new, c.dofs[i]);
               dv_local[i] = conforming_value(dv_flip, c.dofs[i]);
-              v_local[i]  = conforming_value(velocity_n, c.dofs[i]) +
+              // |dv|^2 at the node; at a hanging node the masters' mean
+              // sum_j c_hj |dv_j|^2: its mass is theirs (condensed)
+              dv_square_local[i] = dv_local[i] * dv_local[i];
+              if (has_hanging_nodes &&
+                  hanging_constraints.is_constrained(c.dofs[i]))
+                {
+                  dv_square_local[i] = 0.;
+                  for (const auto &e :
+                       *hanging_constraints.get_constraint_entries(c.dofs[i]))
+                    dv_square_local[i] +=
+                      e.second * dv_flip(e.first) * dv_flip(e.first);
+                }
+              v_local[i] = conforming_value(velocity_n, c.dofs[i]) +
                            conforming_value(dv_ghosted, c.dofs[i]);
             }
           cell_deformation_gradients(c, du_local, F_cell);
@@ -767,7 +780,7 @@ namespace Talus
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const auto ci = internal::component_and_node<dim>(i);
-                  dv_square_mean += N[ci.second] * dv_local[i] * dv_local[i];
+                  dv_square_mean += N[ci.second] * dv_square_local[i];
                   v_pic[ci.first] += N[ci.second] * v_local[i];
                   grad_v[ci.first] += v_local[i] * dN[ci.second];
                   du_p[ci.first] += N[ci.second] * du_local[i];
