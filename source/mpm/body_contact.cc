@@ -36,9 +36,10 @@ namespace Talus
       "normal gap measured from the points' domains (Nairn 2013), so contact "
       "starts when the bodies touch, they separate freely, and Coulomb "
       "friction ('friction coefficient') acts between them. Needs 'number of "
-      "bodies' >= 2, linear shape functions, the lumped mass matrix, inertia "
-      "(not quasi-static), no boundary particles, grid friction boundaries "
-      "or ghost penalty (doc/theory.md, 'Contact between bodies').");
+      "bodies' >= 2, the lumped mass matrix, inertia (not quasi-static), no "
+      "boundary particles, grid friction boundaries or ghost penalty; works "
+      "with every 'shape functions' (doc/theory.md, 'Contact between "
+      "bodies').");
     prm.declare_entry(
       "friction coefficient",
       "0",
@@ -156,8 +157,6 @@ namespace Talus
                             " is not implemented with 'contact = "
                             "multi-velocity field' (subsection Body contact)");
       };
-      if (gimp)
-        reject("Solver", "shape functions", shape_name, shape_name);
       if (consistent_mass)
         reject("Solver", "mass matrix", "consistent", "the consistent mass");
       if (quasi_static)
@@ -252,11 +251,32 @@ namespace Talus
       dealii::TrilinosWrappers::MPI::Vector grad(owned, relevant, comm);
       grad = gradient;
 
-      const auto dof = [&](const auto        &cell,
-                           const unsigned int v,
-                           const unsigned int field,
-                           const unsigned int d) {
-        return cell->vertex_dof_index(v, field * dim + d);
+      // The nodes of a cache: its cell's vertices (linear shape functions)
+      // or the patch nodes its points reach (uGIMP, cpGIMP, CPDI), each
+      // with its index j in the cache's shape values, its position and
+      // the dofs of every field (component d of field f at f dim + d).
+      std::vector<dealii::types::global_dof_index> vertex_dofs(dim * n_fields);
+      const auto for_each_node = [&](const CellCache &c, const auto &visit) {
+        if (!gimp)
+          for (const unsigned int v : c.cell->vertex_indices())
+            {
+              for (unsigned int i = 0; i < vertex_dofs.size(); ++i)
+                vertex_dofs[i] = c.cell->vertex_dof_index(v, i);
+              visit(v, c.cell->vertex(v), vertex_dofs);
+            }
+        else
+          for (unsigned int j = 0; j < c.lattice_nodes.size(); ++j)
+            {
+              long long          key = c.lattice_nodes[j];
+              dealii::Point<dim> x   = grid.lower_corner;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  x[d] += static_cast<double>(key % lattice_size[d]) *
+                          grid.cell_extent[d];
+                  key /= lattice_size[d];
+                }
+              visit(j, x, lattice_dofs.at(c.lattice_nodes[j]));
+            }
       };
       // The pairs of bodies at the nodes of this rank's cells with points
       // (the same on every rank that sees the node): the key is the dof
@@ -275,53 +295,56 @@ namespace Talus
                                                 pairs;
       std::set<dealii::types::global_dof_index> visited;
       for (const auto &c : cells)
-        for (const unsigned int v : c.cell->vertex_indices())
-          {
-            if (!visited.insert(dof(c.cell, v, 0, 0)).second)
-              continue;
-            for (unsigned int a = 0; a < n_fields; ++a)
-              for (unsigned int b = a + 1; b < n_fields; ++b)
-                {
-                  const double m_a = nodal_mass(dof(c.cell, v, a, 0));
-                  const double m_b = nodal_mass(dof(c.cell, v, b, 0));
-                  if (!(m_a > 0.) || !(m_b > 0.))
-                    continue;
-                  Pair p;
-                  p.a      = a;
-                  p.b      = b;
-                  p.vertex = c.cell->vertex(v);
-                  // candidate normals: the outward normal of body a, minus
-                  // that of body b, and their average (Nairn 2013's
-                  // options); the one along which the bodies' domains are
-                  // separated most is taken below. A body's gradient is
-                  // exact inside a flat face but tilts at its corners and
-                  // where its points cross cells; along a tilted normal the
-                  // domains overlap.
-                  dealii::Tensor<1, dim> g_a, g_b;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    {
-                      p.dofs_a[d] = dof(c.cell, v, a, d);
-                      p.dofs_b[d] = dof(c.cell, v, b, d);
-                      g_a[d]      = grad(p.dofs_a[d]);
-                      g_b[d]      = grad(p.dofs_b[d]);
-                    }
-                  if (!(g_a.norm() > 0.) || !(g_b.norm() > 0.))
-                    continue;
-                  p.normals[0] = g_a / g_a.norm();
-                  p.normals[1] = -g_b / g_b.norm();
-                  p.normals[2] = p.normals[0] + p.normals[1];
-                  if (!(p.normals[2].norm() > 1e-12))
-                    p.normals[2] = p.normals[0];
-                  p.normals[2] /= p.normals[2].norm();
-                  p.preferred             = g_a.norm() >= g_b.norm() ? 0 : 1;
-                  pairs[{p.dofs_a[0], b}] = p;
-                }
-          }
+        for_each_node(c,
+                      [&](const unsigned int,
+                          const dealii::Point<dim> &x,
+                          const auto               &dofs) {
+                        if (!visited.insert(dofs[0]).second)
+                          return;
+                        for (unsigned int a = 0; a < n_fields; ++a)
+                          for (unsigned int b = a + 1; b < n_fields; ++b)
+                            {
+                              const double m_a = nodal_mass(dofs[a * dim]);
+                              const double m_b = nodal_mass(dofs[b * dim]);
+                              if (!(m_a > 0.) || !(m_b > 0.))
+                                continue;
+                              Pair p;
+                              p.a      = a;
+                              p.b      = b;
+                              p.vertex = x;
+                              // candidate normals: the outward normal of body
+                              // a, minus that of body b, and their average
+                              // (Nairn 2013's options); the one along which the
+                              // bodies' domains are separated most is taken
+                              // below. A body's gradient is exact inside a flat
+                              // face but tilts at its corners and where its
+                              // points cross cells; along a tilted normal the
+                              // domains overlap.
+                              dealii::Tensor<1, dim> g_a, g_b;
+                              for (unsigned int d = 0; d < dim; ++d)
+                                {
+                                  p.dofs_a[d] = dofs[a * dim + d];
+                                  p.dofs_b[d] = dofs[b * dim + d];
+                                  g_a[d]      = grad(p.dofs_a[d]);
+                                  g_b[d]      = grad(p.dofs_b[d]);
+                                }
+                              if (!(g_a.norm() > 0.) || !(g_b.norm() > 0.))
+                                continue;
+                              p.normals[0] = g_a / g_a.norm();
+                              p.normals[1] = -g_b / g_b.norm();
+                              p.normals[2] = p.normals[0] + p.normals[1];
+                              if (!(p.normals[2].norm() > 1e-12))
+                                p.normals[2] = p.normals[0];
+                              p.normals[2] /= p.normals[2].norm();
+                              p.preferred = g_a.norm() >= g_b.norm() ? 0 : 1;
+                              pairs[{p.dofs_a[0], b}] = p;
+                            }
+                      });
 
       // The extremes of the points' domains along each candidate normal,
       // per pair: on dof a_0 the largest x.n + l of body a, on dof b_0 the
       // largest -(x.n - l) of body b, over the points whose cell holds the
-      // node.
+      // node (GIMP: that give it mass).
       const double lowest = -std::numeric_limits<double>::max();
       for (unsigned int a = 0; a < n_fields; ++a)
         for (unsigned int b = a + 1; b < n_fields; ++b)
@@ -334,19 +357,24 @@ namespace Talus
                 const unsigned int field = c.field;
                 if (field != a && field != b)
                   continue;
-                for (const unsigned int v : c.cell->vertex_indices())
-                  {
-                    const auto it = pairs.find({dof(c.cell, v, a, 0), b});
+                for_each_node(
+                  c,
+                  [&](const unsigned int j,
+                      const dealii::Point<dim> &,
+                      const auto &dofs) {
+                    const auto it = pairs.find({dofs[a * dim], b});
                     if (it == pairs.end())
-                      continue;
+                      return;
                     any = true;
                     const auto slot =
-                      relevant.index_within_set(dof(c.cell, v, field, 0));
+                      relevant.index_within_set(dofs[field * dim]);
                     for (unsigned int q = 0; q < c.n; ++q)
                       {
-                        const unsigned int k      = c.first + q;
-                        const double       volume = point_volume(k);
-                        const double       l =
+                        const unsigned int k = c.first + q;
+                        if (gimp && !(shape_values[k * n_nodes + j] > 1e-10))
+                          continue;
+                        const double volume = point_volume(k);
+                        const double l =
                           0.5 * std::pow(std::max(volume, 0.), 1. / dim);
                         for (unsigned int i = 0; i < n_candidates; ++i)
                           {
@@ -357,7 +385,7 @@ namespace Talus
                             local[i][slot] = std::max(local[i][slot], value);
                           }
                       }
-                  }
+                  });
               }
             if (!dealii::Utilities::MPI::logical_or(any, comm))
               continue;

@@ -930,10 +930,11 @@ namespace Talus
                 key = key * lattice_size[d] +
                       std::llround((cell->vertex(v)[d] - grid.lower_corner[d]) /
                                    grid.cell_extent[d]);
-              std::array<dealii::types::global_dof_index, dim> dofs;
-              for (unsigned int d = 0; d < dim; ++d)
+              std::vector<dealii::types::global_dof_index> dofs(
+                dim * grid.n_velocity_fields());
+              for (unsigned int d = 0; d < dofs.size(); ++d)
                 dofs[d] = cell->vertex_dof_index(v, d);
-              lattice_dofs[key] = dofs;
+              lattice_dofs[key] = std::move(dofs);
             }
     }
 

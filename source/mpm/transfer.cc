@@ -115,7 +115,6 @@ namespace Talus
     MPMSolver<dim>::cache_cell_per_body(
       const typename dealii::DoFHandler<dim>::active_cell_iterator &cell)
     {
-      // (multi-velocity field: linear shape functions, checked)
       auto       &handler = points.particle_handler();
       const auto &system  = grid.system_fe();
       const typename dealii::Triangulation<dim>::active_cell_iterator tria_cell(
@@ -137,13 +136,16 @@ namespace Talus
           c.first = particles.size();
           c.n     = mine.size();
           c.field = b;
-          c.dofs.resize(grid.fe.dofs_per_cell);
-          for (unsigned int i = 0; i < c.dofs.size(); ++i)
+          if (!gimp)
             {
-              const auto ci = internal::component_and_node<dim>(i);
-              c.dofs[i] =
-                all[system.component_to_system_index(b * dim + ci.first,
-                                                     ci.second)];
+              c.dofs.resize(grid.fe.dofs_per_cell);
+              for (unsigned int i = 0; i < c.dofs.size(); ++i)
+                {
+                  const auto ci = internal::component_and_node<dim>(i);
+                  c.dofs[i] =
+                    all[system.component_to_system_index(b * dim + ci.first,
+                                                         ci.second)];
+                }
             }
           std::vector<dealii::Point<dim>> reference_points;
           for (const auto &p : mine)
@@ -151,10 +153,14 @@ namespace Talus
               particles.push_back(p);
               reference_points.push_back(p->get_reference_location());
             }
-          append_q1_shapes(tria_cell,
-                           reference_points,
-                           shape_values,
-                           shape_gradients);
+          // (GIMP: the patch dofs of field b, cache_gimp_cell())
+          if (gimp)
+            cache_gimp_cell(cell, reference_points, c);
+          else
+            append_q1_shapes(tria_cell,
+                             reference_points,
+                             shape_values,
+                             shape_gradients);
           cells.push_back(std::move(c));
         }
     }
@@ -226,6 +232,7 @@ namespace Talus
                                grid.cell_extent[d]);
       std::vector<unsigned int> slot; // patch node (0..4^dim) of cache node
       c.dofs.clear();
+      c.lattice_nodes.clear();
       for (unsigned int a = 0; a < shape_stride; ++a)
         {
           long long                  key    = 0;
@@ -248,7 +255,8 @@ namespace Talus
                       dealii::ExcMessage(
                         "uGIMP: a patch node is not locally relevant"));
           for (unsigned int d = 0; d < dim; ++d)
-            c.dofs.push_back(it->second[d]);
+            c.dofs.push_back(it->second[c.field * dim + d]);
+          c.lattice_nodes.push_back(key);
           slot.push_back(a);
         }
       // GIMP weights: tensor products of the 1D functions, per cache node

@@ -527,6 +527,13 @@ namespace Talus
          * field, in the order of FE_Q(1)^dim); 0 otherwise.
          */
         unsigned int field = 0;
+        /**
+         * uGIMP, cpGIMP, CPDI: the lattice index of each node of the
+         * cache (the patch nodes inside the grid, in the order of dofs,
+         * dim dofs each); empty with linear shape functions, whose nodes
+         * are the cell's vertices.
+         */
+        std::vector<long long> lattice_nodes;
       };
 
       /**
@@ -1260,12 +1267,13 @@ namespace Talus
        */
       dealii::Tensor<1, dim> gimp_half_width;
       /**
-       * uGIMP: the dofs (per component) of every locally relevant grid
-       * vertex by its lattice index (integer coordinates of the vertex,
-       * linearised); see setup().
+       * uGIMP: the dofs of every locally relevant grid vertex by its
+       * lattice index (integer coordinates of the vertex, linearised):
+       * component d of velocity field f at entry f dim + d (one field
+       * unless multi-velocity field); see setup().
        */
       std::unordered_map<long long,
-                         std::array<dealii::types::global_dof_index, dim>>
+                         std::vector<dealii::types::global_dof_index>>
         lattice_dofs;
       /** Vertices per direction of the lattice (uGIMP). */
       std::array<long long, dim> lattice_size;
