@@ -32,7 +32,8 @@ subset+='|mpm/incline_slide_mu01\.debug$|boundaries/incline_rotated_30_mu01\.deb
 subset+='|structure/von_mises_truss\.debug$|coupled/block_on_string_rest\.debug$)'
 
 cd "$top/build-debug"
-jobs=$(nproc 2>/dev/null || echo 2)
+# two per core, as contrib/run_tests.sh
+jobs=$(( 2 * $(nproc 2>/dev/null || echo 2) ))
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 status=0

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Set up, build (Release, <repo>/build) and run the Talus test suite.
-# Serial tests run in parallel, MPI tests ("mpirun=" in the name) one after
-# the other so that they do not oversubscribe the cores (as Lethe does).
+# Serial tests run in parallel (two per core), MPI tests ("mpirun=" in the
+# name) one after the other so that they do not oversubscribe the cores
+# (as Lethe does).
 # Tests named *_slow (long convergence levels) are left out: run them by name,
 #   cd build && ctest -R <name>_slow
 # Exit status is non-zero when the build or any test fails.
@@ -19,10 +20,20 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 
 cd "$top/build"
-jobs=$(nproc 2>/dev/null || echo 2)
+# Serial tests: two per core. A talus run spends about half of its first
+# second idle (loading libraries, MPI's start), and many tests last about
+# a second: 244 errors/ tests took 57 s with -j4 against 95 s with -j2 on
+# 2 cores (doc/testing.md). The MPI tests, whose ranks poll while they
+# wait, stay one at a time.
+jobs=$(( 2 * $(nproc 2>/dev/null || echo 2) ))
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 status=0
+# The longest tests first (ctest's own scheduling by cost), also in a
+# fresh build: seed its cost data from tests/ctest_cost_data.txt.
+mkdir -p Testing/Temporary
+[[ -f Testing/Temporary/CTestCostData.txt ]] ||
+  cp "$top/tests/ctest_cost_data.txt" Testing/Temporary/CTestCostData.txt
 
 ctest -j"$jobs" --output-on-failure -E 'mpirun=|_slow' 2>&1 | tee "$log" || status=1
 

@@ -89,22 +89,12 @@ namespace Talus
                 c.dofs.resize(fe.dofs_per_cell);
                 cell->get_dof_indices(c.dofs);
               }
-            reference_points.clear();
+            std::vector<typename dealii::Particles::ParticleIterator<dim>> all;
             for (auto p = handler.particles_in_cell(tria_cell).begin();
                  p != handler.particles_in_cell(tria_cell).end();
                  ++p)
-              {
-                particles.push_back(p);
-                reference_points.push_back(p->get_reference_location());
-              }
-            if (gimp)
-              cache_gimp_cell(cell, reference_points, c);
-            else
-              append_q1_shapes(tria_cell,
-                               reference_points,
-                               shape_values,
-                               shape_gradients);
-            cells.push_back(std::move(c));
+              all.push_back(p);
+            append_cell_cache(all, c);
           }
       (void)Properties::mass;
     }
@@ -147,22 +137,34 @@ namespace Talus
                                                          ci.second)];
                 }
             }
-          std::vector<dealii::Point<dim>> reference_points;
-          for (const auto &p : mine)
-            {
-              particles.push_back(p);
-              reference_points.push_back(p->get_reference_location());
-            }
           // (GIMP: the patch dofs of field b, cache_gimp_cell())
-          if (gimp)
-            cache_gimp_cell(cell, reference_points, c);
-          else
-            append_q1_shapes(tria_cell,
-                             reference_points,
-                             shape_values,
-                             shape_gradients);
-          cells.push_back(std::move(c));
+          append_cell_cache(mine, c);
         }
+    }
+
+
+    template <int dim>
+    void
+    MPMSolver<dim>::append_cell_cache(
+      const std::vector<typename dealii::Particles::ParticleIterator<dim>>
+                &points_of_cache,
+      CellCache &c)
+    {
+      std::vector<dealii::Point<dim>> reference_points;
+      for (const auto &p : points_of_cache)
+        {
+          particles.push_back(p);
+          reference_points.push_back(p->get_reference_location());
+        }
+      if (gimp)
+        cache_gimp_cell(c.cell, reference_points, c);
+      else
+        append_q1_shapes(
+          typename dealii::Triangulation<dim>::active_cell_iterator(c.cell),
+          reference_points,
+          shape_values,
+          shape_gradients);
+      cells.push_back(std::move(c));
     }
 
 
@@ -950,6 +952,9 @@ namespace Talus
   template void MPMSolver<dim>::cache_particles();                              \
   template void MPMSolver<dim>::cache_cell_per_body(                            \
     const typename dealii::DoFHandler<dim>::active_cell_iterator &);            \
+  template void MPMSolver<dim>::append_cell_cache(                              \
+    const std::vector<typename dealii::Particles::ParticleIterator<dim>> &,     \
+    CellCache &);                                                               \
   template std::pair<unsigned long long, unsigned long long>                    \
                                   MPMSolver<dim>::capped_point_domains() const; \
   template dealii::Tensor<1, dim> MPMSolver<dim>::point_domain_half_extent(     \

@@ -730,6 +730,18 @@ namespace Talus
         const typename dealii::DoFHandler<dim>::active_cell_iterator &cell);
 
       /**
+       * Complete the cache @p c (cell, first, n and, with linear shape
+       * functions, dofs set) with @p points_of_cache: append them to
+       * particles, their shape values and gradients (GIMP: also the patch
+       * dofs of the cache's field), and move it to cells.
+       */
+      void
+      append_cell_cache(
+        const std::vector<typename dealii::Particles::ParticleIterator<dim>>
+                  &points_of_cache,
+        CellCache &c);
+
+      /**
        * Linear shape functions: append the values and gradients of the
        * cell's Q1 functions at @p reference_points (unit cell coordinates)
        * to @p values and @p gradients, point by point (the gradients
