@@ -371,6 +371,8 @@ namespace Talus
                     for (unsigned int q = 0; q < c.n; ++q)
                       {
                         const unsigned int k = c.first + q;
+                        // (GIMP: not a point whose domain only touches the
+                        // node's support, weight 0 up to round-off)
                         if (gimp && !(shape_values[k * n_nodes + j] > 1e-10))
                           continue;
                         const double volume = point_volume(k);

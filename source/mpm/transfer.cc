@@ -66,7 +66,7 @@ namespace Talus
       shape_values.reserve(handler.n_locally_owned_particles() * n_nodes);
       shape_gradients.reserve(handler.n_locally_owned_particles() * n_nodes);
 
-      std::vector<dealii::Point<dim>> reference_points;
+      std::vector<typename dealii::Particles::ParticleIterator<dim>> in_cell;
       for (const auto &cell : grid.dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -89,12 +89,12 @@ namespace Talus
                 c.dofs.resize(fe.dofs_per_cell);
                 cell->get_dof_indices(c.dofs);
               }
-            std::vector<typename dealii::Particles::ParticleIterator<dim>> all;
+            in_cell.clear();
             for (auto p = handler.particles_in_cell(tria_cell).begin();
                  p != handler.particles_in_cell(tria_cell).end();
                  ++p)
-              all.push_back(p);
-            append_cell_cache(all, c);
+              in_cell.push_back(p);
+            append_cell_cache(in_cell, c);
           }
       (void)Properties::mass;
     }
