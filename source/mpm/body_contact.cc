@@ -71,6 +71,20 @@ namespace Talus
       "F / k per step (about F beta dt / (factor m) per second). The energy "
       "the contact takes ('body contact dissipation') then includes what "
       "the carried springs store, F^2 / (2 k) per node.");
+    prm.declare_entry(
+      "normal margin",
+      "0.05",
+      Patterns::Anything(),
+      "Preference of the contact normal of the larger volume gradient over "
+      "the other candidates (the other body's normal, their mean), as a "
+      "fraction of the smallest cell diameter [-], > 0 (multi-velocity "
+      "field): another candidate is taken where it separates the bodies' "
+      "point domains by this much more. The choice is continuous: "
+      "candidates within a quarter of the margin of the best are blended, "
+      "and where the two bodies' volume gradients are within 1 % of each "
+      "other the preference is shared, so that mirrored nodes get mirrored "
+      "normals "
+      "(doc/theory.md, 'Contact between bodies').");
     prm.leave_subsection();
   }
 
@@ -85,6 +99,7 @@ namespace Talus
     friction_coefficient = get_non_negative(prm, sub, "friction coefficient");
     penalty_factor       = get_positive(prm, sub, "penalty factor");
     carry_contact_forces = prm.get_bool("carry contact forces");
+    normal_margin        = get_positive(prm, sub, "normal margin");
     prm.leave_subsection();
     if (!multi_velocity_field && carry_contact_forces)
       InputFile::reject(sub,
@@ -143,10 +158,11 @@ namespace Talus
       multi_field = contact.multi_velocity_field;
       if (!multi_field)
         return;
-      body_friction     = contact.friction_coefficient;
-      body_penalty      = contact.penalty_factor;
-      body_carry        = contact.carry_contact_forces;
-      const auto reject = [](const std::string &sub,
+      body_friction      = contact.friction_coefficient;
+      body_penalty       = contact.penalty_factor;
+      body_carry         = contact.carry_contact_forces;
+      body_normal_margin = contact.normal_margin;
+      const auto reject  = [](const std::string &sub,
                              const std::string &entry,
                              const std::string &value,
                              const std::string &what) {
@@ -155,7 +171,7 @@ namespace Talus
                           value,
                           what +
                             " is not implemented with 'contact = "
-                            "multi-velocity field' (subsection Body contact)");
+                             "multi-velocity field' (subsection Body contact)");
       };
       if (consistent_mass)
         reject("Solver", "mass matrix", "consistent", "the consistent mass");
@@ -288,8 +304,12 @@ namespace Talus
         std::array<dealii::Tensor<1, dim>, n_candidates> normals;
         std::array<dealii::types::global_dof_index, dim> dofs_a, dofs_b;
         dealii::Point<dim>                               vertex;
-        /** The candidate of the larger volume gradient. */
-        unsigned int preferred = 0;
+        /**
+         * The preference of candidate 0 (a's normal) over candidate 1
+         * (b's), in [0, 1]: 1 where a's volume gradient is the larger by 1
+         * % or more of their sum, 0 where b's is, linear in between.
+         */
+        double preference_a = 1.;
       };
       std::map<std::pair<dealii::types::global_dof_index, unsigned int>, Pair>
                                                 pairs;
@@ -336,7 +356,12 @@ namespace Talus
                               if (!(p.normals[2].norm() > 1e-12))
                                 p.normals[2] = p.normals[0];
                               p.normals[2] /= p.normals[2].norm();
-                              p.preferred = g_a.norm() >= g_b.norm() ? 0 : 1;
+                              p.preference_a =
+                                std::clamp(0.5 + 50. *
+                                                   (g_a.norm() - g_b.norm()) /
+                                                   (g_a.norm() + g_b.norm()),
+                                           0.,
+                                           1.);
                               pairs[{p.dofs_a[0], b}] = p;
                             }
                       });
@@ -401,8 +426,15 @@ namespace Talus
                   continue;
                 // the normal of the larger volume gradient (Nairn 2013),
                 // unless another candidate separates the domains by more
-                // than 5 % of the cell diameter (the preferred one is
-                // tilted: its domains overlap)
+                // than the margin (the preferred one is tilted: its
+                // domains overlap). The choice is made continuous, so that
+                // mirrored nodes get mirrored normals (a hard switch
+                // decided on rounding where the margin was nearly met):
+                // the preference is shared between a's and b's normal
+                // where their gradients are about equal, and the
+                // candidates within tau of the best biased gap are
+                // blended, with weights falling linearly from 1 (the best)
+                // to 0 (tau behind)
                 const auto gap = [&](const unsigned int i) {
                   const double top_a =
                     result[i][owned.index_within_set(p.dofs_a[0])];
@@ -411,16 +443,38 @@ namespace Talus
                   return (top_a <= lowest || top_b <= lowest) ? lowest :
                                                                 -top_b - top_a;
                 };
-                const double tolerance = 0.05 * grid.minimal_cell_diameter;
-                unsigned int best      = p.preferred;
+                const double margin =
+                  body_normal_margin * grid.minimal_cell_diameter;
+                const double                           tau  = 0.25 * margin;
+                const std::array<double, n_candidates> bias = {
+                  {margin * p.preference_a,
+                   margin * (1. - p.preference_a),
+                   0.}};
+                std::array<double, n_candidates> score;
+                double                           top = lowest;
                 for (unsigned int i = 0; i < n_candidates; ++i)
-                  if (gap(i) > gap(best) + tolerance)
-                    best = i;
-                if (gap(best) <= lowest)
+                  {
+                    score[i] = gap(i) <= lowest ? lowest : gap(i) + bias[i];
+                    top      = std::max(top, score[i]);
+                  }
+                if (top <= lowest)
+                  continue;
+                dealii::Tensor<1, dim> normal;
+                double                 weights = 0., blended_gap = 0.;
+                for (unsigned int i = 0; i < n_candidates; ++i)
+                  if (score[i] > lowest)
+                    {
+                      const double w =
+                        std::clamp(1. + (score[i] - top) / tau, 0., 1.);
+                      normal += w * p.normals[i];
+                      blended_gap += w * gap(i);
+                      weights += w;
+                    }
+                if (!(normal.norm() > 1e-12 * weights))
                   continue;
                 ContactNode node;
-                node.gap    = gap(best);
-                node.normal = p.normals[best];
+                node.gap    = blended_gap / weights;
+                node.normal = normal / normal.norm();
                 for (unsigned int d = 0; d < dim; ++d)
                   {
                     node.dofs.push_back(p.dofs_a[d]);

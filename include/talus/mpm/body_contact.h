@@ -23,9 +23,18 @@ namespace Talus
      * normal of the body with the larger nodal volume gradient g_b =
      * sum_{p in b} V_p grad N_I(x_p) (Nairn 2013), g_a / |g_a| or
      * -g_b / |g_b|, unless the other or their normalised sum separates
-     * the bodies' point domains by more than 5 % of the cell diameter
-     * (a gradient tilted by points crossing a cell), and
-     * the normal gap is measured from the points' domains (Nairn 2013,
+     * the bodies' point domains by more than a margin ('normal margin',
+     * 5 % of the cell diameter; a gradient tilted by points crossing a
+     * cell). The choice is continuous: the candidates' biased gaps are
+     * s_i = g_i + b_i, g_i the gap along candidate i, b the margin times
+     * the preference of a's (w) and b's (1 - w) normal, w rising linearly
+     * from 0 to 1 as (|g_a| - |g_b|) / (|g_a| + |g_b|) goes from -1 % to
+     * +1 %, and b_2 = 0; the normal is the normalised sum_i w_i n_i with
+     * w_i = max(0, 1 - (max_j s_j - s_i) / tau), tau = margin / 4, and
+     * the gap sum_i w_i g_i / sum_i w_i, so that mirrored nodes get
+     * mirrored normals whatever the rounding (a hard switch broke the
+     * mirror symmetry of two colliding disks). The
+     * gap is measured from the points' domains (Nairn 2013,
      * CMES 92, 271-299, separation from the particles rather than from the
      * nodal velocities): g_0 = min_{p in b} (x_p . n - l_p) - max_{p in a}
      * (x_p . n + l_p) over the points whose cells hold the node, with l_p
@@ -71,6 +80,11 @@ namespace Talus
       double penalty_factor = 100.;
       /** Whether contact forces are carried from step to step. */
       bool carry_contact_forces = false;
+      /**
+       * Preference of the normal of the larger volume gradient, as a
+       * fraction of the smallest cell diameter [-].
+       */
+      double normal_margin = 0.05;
     };
   } // namespace MPM
 } // namespace Talus

@@ -571,6 +571,7 @@ namespace Talus
       double                   body_friction          = 0.;
       double                   body_penalty           = 100.;
       bool                     body_carry             = false;
+      double                   body_normal_margin     = 0.05;
       unsigned int             n_active_contact_nodes = 0;
       /**
        * Committed state of 'carry contact forces': the force on b of every
