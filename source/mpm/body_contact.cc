@@ -37,9 +37,9 @@ namespace Talus
       "starts when the bodies touch, they separate freely, and Coulomb "
       "friction ('friction coefficient') acts between them. Needs 'number of "
       "bodies' >= 2, the lumped mass matrix, inertia (not quasi-static), no "
-      "boundary particles, grid friction boundaries or ghost penalty; works "
-      "with every 'shape functions' (doc/theory.md, 'Contact between "
-      "bodies').");
+      "boundary particles or ghost penalty; works with every 'shape "
+      "functions' and with grid friction boundaries (each body's field has "
+      "its own friction nodes) (doc/theory.md, 'Contact between bodies').");
     prm.declare_entry(
       "friction coefficient",
       "0",
@@ -186,11 +186,6 @@ namespace Talus
                "ghost penalty factor",
                std::to_string(ghost_penalty_factor),
                "the ghost penalty");
-      if (!grid.friction_boundaries.empty())
-        reject("Background grid",
-               "friction boundaries",
-               "(not empty)",
-               "a grid friction boundary");
       // The sliding tangent of the friction between bodies is not
       // symmetric (mu k t n; in 3D also mu p / |s| (P - t t)): CG, which
       // needs a symmetric positive definite matrix, stalls at 2000

@@ -65,6 +65,7 @@ namespace Talus
         std::array<dealii::types::global_dof_index, dim>      dofs;
       };
       std::map<dealii::types::global_dof_index, Candidate> candidates;
+      const unsigned int n_fields = grid.n_velocity_fields();
       // uGIMP, cpGIMP, CPDI: the node patch of an owned cell reaches the
       // vertices of its ghost neighbours, whose friction nodes its rows
       // combine too
@@ -96,18 +97,22 @@ namespace Talus
                                     " is not axis aligned");
               const double inward = n[axis] > 0. ? -1. : 1.;
               cell_touches_friction[cell->active_cell_index()] = true;
+              // (multi-velocity field: one friction node per body's field
+              // at each vertex, each with its own contact state)
               for (const unsigned int v : face->vertex_indices())
-                {
-                  Candidate &cand = candidates[face->vertex_dof_index(v, 0)];
-                  for (unsigned int d = 0; d < dim; ++d)
-                    cand.dofs[d] = face->vertex_dof_index(v, d);
-                  bool known = false;
-                  for (const auto &e : cand.faces)
-                    known = known || (std::get<0>(e) == unsigned(axis) &&
-                                      std::get<1>(e) == inward);
-                  if (!known)
-                    cand.faces.emplace_back(axis, inward, mu_it->second);
-                }
+                for (unsigned int field = 0; field < n_fields; ++field)
+                  {
+                    Candidate &cand =
+                      candidates[face->vertex_dof_index(v, field * dim)];
+                    for (unsigned int d = 0; d < dim; ++d)
+                      cand.dofs[d] = face->vertex_dof_index(v, field * dim + d);
+                    bool known = false;
+                    for (const auto &e : cand.faces)
+                      known = known || (std::get<0>(e) == unsigned(axis) &&
+                                        std::get<1>(e) == inward);
+                    if (!known)
+                      cand.faces.emplace_back(axis, inward, mu_it->second);
+                  }
             }
       // Cells that touch a friction node through a vertex only (not a face)
       // must combine rows too.
