@@ -958,8 +958,40 @@ namespace Talus
                     bp.N[k] *
                     mass_share(c.dofs[fe.component_to_system_index(0, k)]);
                 // dissipated: -f . (relative increment - elastic gap change)
-                work[bp.boundary] -=
-                  bf.force * ((du_b - bp.du_bar) - (bf.gap - bp.gap_old));
+                const dealii::Tensor<1, dim> relative = du_b - bp.du_bar;
+                if (start_force_recorded && !bp.on_material_point &&
+                    !bp.augmented && !bp.nitsche && bp.damping == 0. &&
+                    !boundary_particles->boundary(bp.boundary).moving)
+                  {
+                    // a penalty boundary at rest, with the integrator's
+                    // account started from the forces at du = 0 (no
+                    // boundary moves, record_start_force()): what
+                    // Newmark's energy identity sees, the trapezoidal
+                    // work of the force on the material -(f(0) + f(du)) .
+                    // du / 2 (f(0) is in that residual), less the change
+                    // of the springs' energy k |g|^2
+                    // / 2 that the spring_energy column holds (active
+                    // points only). In stick this is -f . (du - dg); in
+                    // slip it also books the change of the force within
+                    // the step, which the end force alone misses.
+                    const double        k = bp.beta * bp.weight;
+                    const BoundaryForce start =
+                      boundary_force(bp, dealii::Tensor<1, dim>());
+                    const double state_old =
+                      bp.particle->get_properties()
+                        [Boundaries::BoundaryParticleProperties<dim>::state];
+                    const double spring_new =
+                      bf.state != 0 ? 0.5 * k * (bf.gap * bf.gap) : 0.;
+                    const double spring_old =
+                      state_old != 0. ? 0.5 * k * (bp.gap_old * bp.gap_old) :
+                                        0.;
+                    work[bp.boundary] -=
+                      0.5 * (start.force + bf.force) * relative +
+                      (spring_new - spring_old);
+                  }
+                else
+                  work[bp.boundary] -=
+                    bf.force * (relative - (bf.gap - bp.gap_old));
                 // a merged (cell-wise) point shares its gap, state and,
                 // by weight, its reaction among its particles
                 // the multiplier the next step starts from reproduces this
