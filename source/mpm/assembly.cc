@@ -267,6 +267,33 @@ namespace Talus
       // lumped inertia of hanging nodes, by master dof (locally refined
       // grids)
       std::map<dealii::types::global_dof_index, double> hanging_inertia;
+      // Rows added to friction nodes' tangential dofs through hanging
+      // nodes: per tangential dof the coefficients of the columns (a
+      // cell's dofs) and, last, the residual.
+      std::map<dealii::types::global_dof_index, std::vector<double>> slip_rows;
+      const auto add_slip_rows =
+        [&](const std::vector<dealii::types::global_dof_index> &columns,
+            const bool                                          matrix_too) {
+          if (slip_rows.empty())
+            return;
+          std::vector<dealii::types::global_dof_index> rows;
+          dealii::FullMatrix<double> k_rows(slip_rows.size(), columns.size());
+          dealii::Vector<double>     r_rows(slip_rows.size());
+          for (const auto &[t, row] : slip_rows)
+            {
+              const unsigned int r = rows.size();
+              rows.push_back(t);
+              for (unsigned int l = 0; l < columns.size(); ++l)
+                k_rows(r, l) = row[l];
+              r_rows[r] = row[columns.size()];
+            }
+          if (matrix_too)
+            constraints.distribute_local_to_global(k_rows,
+                                                   rows,
+                                                   columns,
+                                                   matrix);
+          constraints.distribute_local_to_global(r_rows, rows, residual);
+        };
 
       // The cells' contributions before friction and constraints, kept for
       // a re-assembly at the same iterate after a contact state update.
@@ -307,6 +334,22 @@ namespace Talus
               std::copy(stored + dofs_per_cell * dofs_per_cell,
                         stored + dofs_per_cell * dofs_per_cell + dofs_per_cell,
                         r_local.begin());
+              // the hanging nodes' lumped inertia is not in the stored
+              // block (it goes to the masters' diagonal below)
+              if (with_inertia && !consistent_mass && has_hanging_nodes)
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  if (hanging_constraints.is_constrained(c.dofs[i]))
+                    for (unsigned int q = 0; q < c.n; ++q)
+                      {
+                        const unsigned int k = c.first + q;
+                        const double       m =
+                          particles[k]->get_properties()[Properties::mass];
+                        for (const auto &e :
+                             *hanging_constraints.get_constraint_entries(
+                               c.dofs[i]))
+                          hanging_inertia[e.first] +=
+                            e.second * m * shape_values[k * n_nodes + node[i]];
+                      }
             }
           else
             {
@@ -549,7 +592,46 @@ namespace Talus
               // Unconstrained residual for the contact reactions, then the
               // Coulomb force of slipping nodes as a combination of rows:
               // r_t += mu * inward * s_t * r_n (exactly linearized).
-              raw_residual.add(c.dofs, r_local);
+              if (has_hanging_nodes)
+                hanging_constraints.distribute_local_to_global(r_local,
+                                                               c.dofs,
+                                                               raw_residual);
+              else
+                raw_residual.add(c.dofs, r_local);
+              // a hanging node's rows go to its masters with their
+              // weights: where a master is a slipping friction node, its
+              // tangential rows take the weighted normal row too
+              if (has_hanging_nodes)
+                {
+                  slip_rows.clear();
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    if (hanging_constraints.is_constrained(c.dofs[i]))
+                      for (const auto &e :
+                           *hanging_constraints.get_constraint_entries(
+                             c.dofs[i]))
+                        {
+                          const auto it = friction_node_of.find(e.first);
+                          if (it == friction_node_of.end())
+                            continue;
+                          const FrictionNode &fn = friction_nodes[it->second];
+                          if (fn.state != ContactState::slip || fn.mu == 0.)
+                            continue;
+                          for (unsigned int k = 0;
+                               k < fn.tangential_dofs.size();
+                               ++k)
+                            {
+                              auto &row = slip_rows[fn.tangential_dofs[k]];
+                              row.resize(dofs_per_cell + 1, 0.);
+                              const double factor =
+                                e.second * fn.mu * fn.inward *
+                                fn.slip_direction[fn.tangential_components[k]];
+                              for (unsigned int l = 0; l < dofs_per_cell; ++l)
+                                row[l] += factor * k_local(i, l);
+                              row[dofs_per_cell] += factor * r_local[i];
+                            }
+                        }
+                  add_slip_rows(c.dofs, with_matrix);
+                }
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const auto it = friction_node_of.find(c.dofs[i]);
@@ -607,6 +689,27 @@ namespace Talus
                 constraints.distribute_local_to_global(r_master,
                                                        master,
                                                        residual);
+              if (grid.friction_boundaries.empty())
+                continue;
+              // the friction nodes' unconstrained residual, and the
+              // Coulomb force of a slipping master's normal inertia
+              raw_residual.add(master, r_master);
+              const auto it = friction_node_of.find(j);
+              if (it == friction_node_of.end())
+                continue;
+              const FrictionNode &fn = friction_nodes[it->second];
+              if (fn.state != ContactState::slip || fn.mu == 0.)
+                continue;
+              slip_rows.clear();
+              for (unsigned int k = 0; k < fn.tangential_dofs.size(); ++k)
+                {
+                  const double factor =
+                    fn.mu * fn.inward *
+                    fn.slip_direction[fn.tangential_components[k]];
+                  slip_rows[fn.tangential_dofs[k]] = {factor * k_master(0, 0),
+                                                      factor * r_master[0]};
+                }
+              add_slip_rows(master, with_matrix);
             }
         }
 

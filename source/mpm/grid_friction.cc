@@ -132,6 +132,12 @@ namespace Talus
               continue;
             }
           const unsigned int axis = std::get<0>(cand.faces[0]);
+          // a hanging vertex on the boundary (3D: the middle of a coarse
+          // cell's boundary edge) moves with its masters, whose friction
+          // nodes hold it
+          if (has_hanging_nodes &&
+              hanging_constraints.is_constrained(cand.dofs[axis]))
+            continue;
           if (fixed_dofs.is_element(cand.dofs[axis]) ||
               slip_dofs[axis].is_element(cand.dofs[axis]))
             continue; // governed by the other condition
@@ -154,6 +160,25 @@ namespace Talus
           friction_nodes.push_back(fn);
         }
       friction_corner_dofs.compress();
+      // Cells with a hanging node whose masters include a friction node
+      // (a node next to a coarser cell): their rows reach the friction
+      // node through the hanging constraint.
+      if (has_hanging_nodes && !friction_nodes.empty())
+        {
+          std::vector<dealii::types::global_dof_index> dofs(
+            grid.system_fe().dofs_per_cell);
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                cell->get_dof_indices(dofs);
+                for (const auto i : dofs)
+                  if (hanging_constraints.is_constrained(i))
+                    for (const auto &e :
+                         *hanging_constraints.get_constraint_entries(i))
+                      if (friction_node_of.count(e.first))
+                        cell_touches_friction[cell->active_cell_index()] = true;
+              }
+        }
     }
 
 

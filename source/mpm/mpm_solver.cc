@@ -883,14 +883,6 @@ namespace Talus
                           "ghost penalty factor",
                           std::to_string(ghost_penalty_factor),
                           "the ghost penalty " + why + "; set it to 0");
-      if (!grid.friction_boundaries.empty())
-        InputFile::reject("Background grid",
-                          "friction boundaries",
-                          "(not empty)",
-                          "grid friction boundaries are not implemented on a "
-                          "locally refined background grid (subsection "
-                          "Adaptive grid, 'enable = true'); use fixed or "
-                          "slip boundaries");
     }
 
 

@@ -311,6 +311,28 @@ namespace Talus
               if (direct_pivoting)
                 refactorize(true);
               direct_pivoting = false;
+              if (factorised != 0 && std::getenv("TALUS_DEBUG_SINGULAR"))
+                for (const auto r : grid.locally_owned_dofs)
+                  {
+                    double rowsum = 0.;
+                    for (auto it = matrix.begin(r); it != matrix.end(r); ++it)
+                      rowsum += std::abs(it->value());
+                    if (std::abs(matrix.diag_element(r)) < 1e-12 * rowsum ||
+                        rowsum == 0.)
+                      std::cerr
+                        << "singular? row " << r << " diag "
+                        << matrix.diag_element(r) << " rowsum " << rowsum
+                        << " mass " << nodal_mass(r) << " constrained "
+                        << constraints.is_constrained(r) << " at "
+                        << owned_support_points[grid.locally_owned_dofs
+                                                  .index_within_set(r)] +
+                             0.5 * (grid.lower_corner - dealii::Point<dim>() +
+                                    grid.upper_corner)
+                        << " hanging "
+                        << (has_hanging_nodes &&
+                            hanging_constraints.is_constrained(r))
+                        << std::endl;
+                  }
               AssertThrow(factorised == 0,
                           dealii::ExcMessage(
                             "the factorisation of the tangent (" +
