@@ -37,7 +37,9 @@ namespace Talus
       "starts when the bodies touch, they separate freely, and Coulomb "
       "friction ('friction coefficient') acts between them. Needs 'number of "
       "bodies' >= 2, the lumped mass matrix, inertia (not quasi-static), no "
-      "boundary particles or ghost penalty; works with every 'shape "
+      "ghost penalty, and of the boundaries of boundary particles only "
+      "those with 'contact side = material points' (each point meets the "
+      "surface through its own body's field); works with every 'shape "
       "functions' and with grid friction boundaries (each body's field has "
       "its own friction nodes) (doc/theory.md, 'Contact between bodies').");
     prm.declare_entry(

@@ -280,8 +280,18 @@ namespace Talus
         with_nitsche = with_nitsche || boundary_particles->boundary(b).nitsche;
       if (with_nitsche)
         project_stress_to_grid();
+      // boundaries whose particles act on the grid (not material-point
+      // contact, the only kind with several velocity fields)
+      bool particle_side = false;
+      for (unsigned int b = 0; b < boundary_particles->n_boundaries(); ++b)
+        particle_side = particle_side ||
+                        !boundary_particles->boundary(b).material_point_contact;
+      Assert(!particle_side || grid.n_velocity_fields() == 1,
+             dealii::ExcInternalError());
       for (const auto &cell : grid.dof_handler.active_cell_iterators())
         {
+          if (!particle_side)
+            break;
           if (!cell->is_locally_owned())
             continue;
           const typename dealii::Triangulation<dim>::active_cell_iterator
@@ -699,7 +709,23 @@ namespace Talus
                   // point's cell also with uGIMP (whose material cells
                   // carry the patch's)
                   c.dofs.resize(grid.fe.dofs_per_cell);
-                  mc.cell->get_dof_indices(c.dofs);
+                  c.field = mc.field;
+                  if (grid.n_velocity_fields() == 1)
+                    mc.cell->get_dof_indices(c.dofs);
+                  else
+                    {
+                      // the point's own body's field
+                      const auto &system = grid.system_fe();
+                      std::vector<dealii::types::global_dof_index> all(
+                        system.dofs_per_cell);
+                      mc.cell->get_dof_indices(all);
+                      for (unsigned int i = 0; i < c.dofs.size(); ++i)
+                        {
+                          const auto ci = internal::component_and_node<dim>(i);
+                          c.dofs[i]     = all[system.component_to_system_index(
+                            mc.field * dim + ci.first, ci.second)];
+                        }
+                    }
                   boundary_cells.push_back(std::move(c));
                 }
             }

@@ -161,14 +161,23 @@ namespace Talus
       boundary_particles =
         std::make_unique<Boundaries::BoundaryParticles<dim>>(*background_grid);
       boundary_particles->parse_parameters(prm);
-      if (body_contact.multi_velocity_field &&
-          boundary_particles->n_boundaries() > 0)
-        InputFile::reject("Body contact",
-                          "contact",
-                          "multi-velocity field",
-                          "boundaries of boundary particles are not "
-                          "implemented with it; use grid boundaries (fixed "
-                          "or slip) or 'single velocity field'");
+      // with several velocity fields a boundary acts on each material
+      // point through its own body's field: material-point contact;
+      // the gap and stick state of a boundary particle are those of one
+      // field
+      if (body_contact.multi_velocity_field)
+        for (unsigned int b = 0; b < boundary_particles->n_boundaries(); ++b)
+          if (!boundary_particles->boundary(b).material_point_contact)
+            InputFile::reject(
+              "Boundary particles/Boundary " + std::to_string(b + 1),
+              "contact side",
+              "boundary particles",
+              "'material points' (with condition = contact or friction, "
+              "method = penalty) when subsection Body contact sets "
+              "'contact = multi-velocity field': the gap and stick state "
+              "of a boundary particle belong to one velocity field; or use "
+              "grid boundaries (fixed, slip, friction) or 'single velocity "
+              "field'");
       balancing.parse_parameters(prm);
     }
 
