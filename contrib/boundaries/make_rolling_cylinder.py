@@ -150,7 +150,11 @@ def write(path, mu, condition, factor, end_time=0.4, points_contact=False,
     g = (G * (math.sin(THETA) * t[0] - math.cos(THETA) * n[0]),
          G * (math.sin(THETA) * t[1] - math.cos(THETA) * n[1]))
     a = factor * G * math.sin(THETA)
-    side = "\n    set contact side = material points" if points_contact else ""
+    # a lattice body rolls on the torque of its contact points: their
+    # increment interpolated at x_c (doc/verification.md)
+    side = ("\n    set contact side = material points"
+            "\n    set contact point motion = interpolated"
+            if points_contact else "")
     if penalty_factor is not None:
         side += f"\n    set penalty factor = {penalty_factor}"
     # 2 % of s(t) at every report time (material-point contact), or 2 % of

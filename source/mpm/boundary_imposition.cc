@@ -589,118 +589,202 @@ namespace Talus
               c.first_boundary = boundary_points.size();
               for (unsigned int q = 0; q < mc.n; ++q)
                 {
-                  auto                      particle = particles[mc.first + q];
-                  auto                      props = particle->get_properties();
-                  const auto                x_p   = particle->get_location();
-                  std::vector<unsigned int> nearest;
-                  tree.query(boost::geometry::index::nearest(x_p, 1),
-                             std::back_inserter(nearest));
-                  const unsigned int            j = nearest[0];
-                  const dealii::Tensor<1, dim> &n = n_b[j];
-                  const dealii::Tensor<2, dim>  F =
+                  auto       particle = particles[mc.first + q];
+                  auto       props    = particle->get_properties();
+                  const auto x_p      = particle->get_location();
+                  const dealii::Tensor<2, dim> F =
                     read_tensor<dim>(props, MP::deformation);
                   const double l0 =
                     std::pow(props[MP::initial_volume], 1. / dim);
                   // the circle (sphere) of the point's current volume: a
                   // rotation leaves it unchanged, and so does plastic flow
-                  // at constant volume, whose F may be far from a rotation
+                  // at constant volume, whose F may be far from a rotation;
+                  // with the point: of its initial volume (a rigid offset,
+                  // so that the gap is not measured anew)
                   const double r =
-                    0.5 * l0 * std::pow(dealii::determinant(F), 1. / dim);
-                  const dealii::Point<dim> x_c = x_p - r * n;
+                    desc.contact_point_with_point ?
+                      0.5 * l0 :
+                      0.5 * l0 * std::pow(dealii::determinant(F), 1. / dim);
+                  // The surface is the tangent line (plane) of the nearest
+                  // boundary particle j0, or, on a boundary at rest at a
+                  // concave corner, of a
+                  // neighbour k whose particle lies on the material side of
+                  // j0's tangent (the surface turns towards the material)
+                  // if the point is deeper below k's tangent: the gap is
+                  // then the smallest over the faces that bound the point,
+                  // continuous across the corner (the nearest particle alone
+                  // switches between faces with a jump of the gap).
+                  std::vector<unsigned int> nearest;
+                  // (a moving surface, a net or string, keeps the nearest
+                  // particle's tangent: its kinks follow the load)
+                  tree.query(boost::geometry::index::nearest(
+                               x_p, desc.moving ? 1u : (dim == 2 ? 8u : 16u)),
+                             std::back_inserter(nearest));
+                  unsigned int j = nearest[0];
+                  for (const unsigned int k : nearest)
+                    if ((x_b[k] - x_p).norm_square() <
+                        (x_b[j] - x_p).norm_square())
+                      j = k;
+                  {
+                    const unsigned int j0 = j;
+                    double g_min = (x_p - r * n_b[j0] - x_b[j0]) * n_b[j0];
+                    for (const unsigned int k : nearest)
+                      if (k != j0 && (x_b[k] - x_b[j0]) * n_b[j0] >
+                                       1e-9 * (x_b[k] - x_b[j0]).norm())
+                        {
+                          const double g_k =
+                            (x_p - r * n_b[k] - x_b[k]) * n_b[k];
+                          if (g_k < g_min)
+                            {
+                              g_min = g_k;
+                              j     = k;
+                            }
+                        }
+                  }
+                  const dealii::Tensor<1, dim> &n   = n_b[j];
+                  const dealii::Point<dim>      x_c = x_p - r * n;
                   // an extent that overlaps the boundary at the start is
                   // measured from its initial depth on (contact offset)
                   if (initializing && (x_c - x_b[j]) * n < 0.)
                     props[points.contact_offset_index(b)] =
                       -((x_c - x_b[j]) * n);
-                  const double g0 =
-                    (x_c - x_b[j]) * n + props[points.contact_offset_index(b)];
-                  dealii::Tensor<1, dim> g_t;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    g_t[d] = props[points.contact_gap_index(b) + d];
-                  g_t -= (g_t * n) * n;
+                  const double offset = props[points.contact_offset_index(b)];
+                  const double g0     = (x_c - x_b[j]) * n + offset;
                   // the surface's own increment in the step (a moving or
-                  // coupled boundary)
-                  dealii::Tensor<1, dim> du_bar;
-                  if (!initializing && desc.moving)
-                    du_bar =
-                      boundary_particles->prescribed_displacement(b,
-                                                                  X_b[j],
-                                                                  time) -
-                      boundary_particles->prescribed_displacement(b,
-                                                                  X_b[j],
-                                                                  time - dt);
+                  // coupled boundary) at the particle jf
+                  const auto surface_increment = [&](const unsigned int jf) {
+                    dealii::Tensor<1, dim> du_bar;
+                    if (!initializing && desc.moving)
+                      du_bar =
+                        boundary_particles->prescribed_displacement(b,
+                                                                    X_b[jf],
+                                                                    time) -
+                        boundary_particles->prescribed_displacement(b,
+                                                                    X_b[jf],
+                                                                    time - dt);
+                    return du_bar;
+                  };
                   // out of reach in this step: forget the stick spring
                   dealii::Tensor<1, dim> v;
                   for (unsigned int d = 0; d < dim; ++d)
                     v[d] = props[MP::velocity + d];
-                  const double reach = initializing ?
-                                         1e-6 * h :
-                                         0.5 * h + 2. * dt * v.norm() +
-                                           dt * dt * gravity_vector.norm() +
-                                           std::max(0., du_bar * n);
+                  const double reach =
+                    initializing ? 1e-6 * h :
+                                   0.5 * h + 2. * dt * v.norm() +
+                                     dt * dt * gravity_vector.norm() +
+                                     std::max(0., surface_increment(j) * n);
                   if (g0 > reach)
                     {
                       for (unsigned int d = 0; d < dim; ++d)
                         props[points.contact_gap_index(b) + d] = 0.;
                       continue;
                     }
-                  BoundaryPoint bp;
-                  bp.particle          = particle;
-                  bp.on_material_point = true;
-                  bp.surface_particle  = id_b[j];
-                  bp.boundary          = b;
-                  bp.weight =
-                    std::pow(props[MP::initial_volume], (dim - 1.) / dim);
-                  bp.beta          = desc.beta;
-                  bp.mu            = desc.friction_coefficient;
-                  bp.condition     = desc.condition;
-                  bp.damping       = desc.contact_damping;
-                  bp.damping_onset = 1e-2 * h;
-                  bp.normal        = n;
-                  bp.gap_old       = g0 * n + g_t;
-                  bp.du_bar        = du_bar;
-                  bp.a_bar         = 0.;
-                  if (initializing && desc.moving)
+                  // One contact per face: the nearest face (above), and at
+                  // a concave corner every other face within reach whose
+                  // normal turns by more than 10 degrees (one particle per
+                  // such face, the one with the smallest gap), so that the
+                  // point meets the next face within the step it crosses
+                  // the corner instead of passing below it along the
+                  // tangent of the first (and being pushed out with the
+                  // energy of a deep penetration in the next step). Only
+                  // the nearest face keeps the tangential stick spring.
+                  std::vector<std::pair<unsigned int, double>> faces = {
+                    {j, g0}};
+                  for (const unsigned int k : nearest)
+                    if (k != j && n_b[k] * n < std::cos(10. * M_PI / 180.) &&
+                        (x_b[k] - x_b[j]) * n > 0.)
+                      {
+                        const double g_k =
+                          (x_p - r * n_b[k] - x_b[k]) * n_b[k] + offset;
+                        if (g_k > reach)
+                          continue;
+                        bool same_face = false;
+                        for (auto &f : faces)
+                          if (n_b[f.first] * n_b[k] >=
+                              std::cos(10. * M_PI / 180.))
+                            {
+                              same_face = true;
+                              if (f.first != j && g_k < f.second)
+                                f = {k, g_k};
+                            }
+                        if (!same_face)
+                          faces.emplace_back(k, g_k);
+                      }
+                  for (const auto &face : faces)
                     {
-                      const double eps = 1e-4; // [s], as for the particles
-                      bp.a_bar =
-                        (boundary_particles->prescribed_displacement(b,
-                                                                     X_b[j],
-                                                                     time) -
-                         2. * boundary_particles->prescribed_displacement(
-                                b, X_b[j], time + eps) +
-                         boundary_particles->prescribed_displacement(
-                           b, X_b[j], time + 2. * eps)) /
-                        (eps * eps);
-                    }
-                  // shape values of the point's cell at x_c
-                  dealii::Point<dim> xi = particle->get_reference_location();
-                  // (the extent of the point's cell: that of the finest
-                  // level, doubled per level above it)
-                  if (grid.is_cartesian)
-                    for (unsigned int d = 0; d < dim; ++d)
-                      xi[d] +=
-                        (x_c[d] - x_p[d]) /
-                        std::ldexp(grid.cell_extent[d],
-                                   grid.cell_extent_level - mc.cell->level());
-                  else
-                    {
-                      try
+                      const unsigned int            jf      = face.first;
+                      const bool                    primary = jf == j;
+                      const dealii::Tensor<1, dim> &n_f     = n_b[jf];
+                      const dealii::Point<dim>      x_cf    = x_p - r * n_f;
+                      dealii::Tensor<1, dim>        g_t;
+                      if (primary)
                         {
-                          xi = grid.mapping.transform_real_to_unit_cell(
-                            typename dealii::Triangulation<
-                              dim>::active_cell_iterator(mc.cell),
-                            x_c);
+                          for (unsigned int d = 0; d < dim; ++d)
+                            g_t[d] = props[points.contact_gap_index(b) + d];
+                          g_t -= (g_t * n_f) * n_f;
                         }
-                      catch (...)
+                      BoundaryPoint bp;
+                      bp.particle          = particle;
+                      bp.on_material_point = true;
+                      bp.primary           = primary;
+                      bp.surface_particle  = id_b[jf];
+                      bp.boundary          = b;
+                      bp.weight =
+                        std::pow(props[MP::initial_volume], (dim - 1.) / dim);
+                      bp.beta          = desc.beta;
+                      bp.mu            = desc.friction_coefficient;
+                      bp.condition     = desc.condition;
+                      bp.damping       = desc.contact_damping;
+                      bp.damping_onset = 1e-2 * h;
+                      bp.normal        = n_f;
+                      bp.gap_old       = face.second * n_f + g_t;
+                      bp.du_bar        = surface_increment(jf);
+                      bp.a_bar         = 0.;
+                      if (initializing && desc.moving)
                         {
-                          // keep the point's own location
+                          const double eps = 1e-4; // [s], as for the particles
+                          bp.a_bar =
+                            (boundary_particles->prescribed_displacement(
+                               b, X_b[jf], time) -
+                             2. * boundary_particles->prescribed_displacement(
+                                    b, X_b[jf], time + eps) +
+                             boundary_particles->prescribed_displacement(
+                               b, X_b[jf], time + 2. * eps)) /
+                            (eps * eps);
                         }
+                      // shape values of the point's cell at x_c (with the
+                      // point: at the point's own location)
+                      dealii::Point<dim> xi =
+                        particle->get_reference_location();
+                      // (the extent of the point's cell: that of the finest
+                      // level, doubled per level above it)
+                      if (desc.contact_point_with_point)
+                        ;
+                      else if (grid.is_cartesian)
+                        for (unsigned int d = 0; d < dim; ++d)
+                          xi[d] += (x_cf[d] - x_p[d]) /
+                                   std::ldexp(grid.cell_extent[d],
+                                              grid.cell_extent_level -
+                                                mc.cell->level());
+                      else
+                        {
+                          try
+                            {
+                              xi = grid.mapping.transform_real_to_unit_cell(
+                                typename dealii::Triangulation<
+                                  dim>::active_cell_iterator(mc.cell),
+                                x_cf);
+                            }
+                          catch (...)
+                            {
+                              // keep the point's own location
+                            }
+                        }
+                      bp.N.resize(n_nodes);
+                      for (unsigned int k = 0; k < n_nodes; ++k)
+                        bp.N[k] = base.shape_value(k, xi);
+                      boundary_points.push_back(std::move(bp));
                     }
-                  bp.N.resize(n_nodes);
-                  for (unsigned int k = 0; k < n_nodes; ++k)
-                    bp.N[k] = base.shape_value(k, xi);
-                  boundary_points.push_back(std::move(bp));
                 }
               c.n_boundary = boundary_points.size() - c.first_boundary;
               if (c.n_boundary > 0)
@@ -1054,7 +1138,8 @@ namespace Talus
                     pc.tangential_gap =
                       bf.state == 0 ? dealii::Tensor<1, dim>() :
                                       bf.gap - (bf.gap * bp.normal) * bp.normal;
-                    pc.active = bf.state != 0;
+                    pc.active  = bf.state != 0;
+                    pc.primary = bp.primary;
                     if (bf.state != 0)
                       {
                         // the dashpot's work on the normal increment
@@ -1118,9 +1203,10 @@ namespace Talus
         {
           auto point = pc.point;
           auto props = point->get_properties();
-          for (unsigned int d = 0; d < dim; ++d)
-            props[points.contact_gap_index(pc.boundary) + d] =
-              pc.tangential_gap[d];
+          if (pc.primary)
+            for (unsigned int d = 0; d < dim; ++d)
+              props[points.contact_gap_index(pc.boundary) + d] =
+                pc.tangential_gap[d];
           if (pc.active)
             boundary_particles->record_point_contact(pc.boundary,
                                                      pc.reaction,

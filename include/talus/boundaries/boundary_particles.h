@@ -110,6 +110,15 @@ namespace Talus
        */
       bool material_point_contact = false;
       /**
+       * Material-point contact: whether the contact point x_c = x_p - r n
+       * moves with the material point (r = r_0 from the point's initial
+       * volume, the increment that of x_p: the gap a step starts from is
+       * the one the last step ended with), or with the increment
+       * interpolated at x_c and r from the current volume (the gap is
+       * measured again from the point's position at every step).
+       */
+      bool contact_point_with_point = false;
+      /**
        * Normal dashpot of material-point contact relative to the spring,
        * eta: the force on a pressed point is k (-g_n - eta s (g_n -
        * g_n,old)) with s = min(1, penetration / (0.01 h)) (a Kelvin-Voigt

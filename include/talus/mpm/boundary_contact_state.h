@@ -141,6 +141,12 @@ namespace Talus
       dealii::types::particle_index surface_particle =
         dealii::numbers::invalid_unsigned_int;
       /**
+       * Material-point contact: whether this is the contact with the
+       * point's nearest face (which keeps the tangential stick spring)
+       * rather than with a further face of a concave corner.
+       */
+      bool primary = true;
+      /**
        * Material-point contact: the normal dashpot of the contact,
        * eta = 'contact damping', a force eta k (g - g_old) . n n added to
        * the spring's -k g while the point is pressed (0: none).
@@ -208,6 +214,8 @@ namespace Talus
       double                        spring_energy = 0.;
       dealii::types::particle_index surface_particle =
         dealii::numbers::invalid_unsigned_int;
+      /** Whether the contact is with the point's nearest face. */
+      bool primary = true;
     };
   } // namespace MPM
 } // namespace Talus
