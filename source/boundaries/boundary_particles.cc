@@ -433,7 +433,7 @@ namespace Talus
             "V0^(1/dim)/2 from the initial volume), so every step starts "
             "from the gap the last one ended with; a point's friction then "
             "acts at its centre, so a lattice body rolls with less torque "
-            "(the rolling cylinder: 2.2 % instead of 1.0 % off at 0.4 s) "
+            "(the rolling cylinder: 2.1 % instead of 1.0 % off at 0.4 s) "
             "[-].");
           prm.declare_entry(
             "contact damping",

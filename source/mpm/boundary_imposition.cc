@@ -615,16 +615,35 @@ namespace Talus
                   // continuous across the corner (the nearest particle alone
                   // switches between faces with a jump of the gap).
                   std::vector<unsigned int> nearest;
-                  // (a moving surface, a net or string, keeps the nearest
-                  // particle's tangent: its kinks follow the load)
-                  tree.query(boost::geometry::index::nearest(
-                               x_p, desc.moving ? 1u : (dim == 2 ? 8u : 16u)),
+                  tree.query(boost::geometry::index::nearest(x_p, 1),
                              std::back_inserter(nearest));
                   unsigned int j = nearest[0];
-                  for (const unsigned int k : nearest)
-                    if ((x_b[k] - x_p).norm_square() <
-                        (x_b[j] - x_p).norm_square())
-                      j = k;
+                  // The further faces are looked for only where one can be
+                  // within reach: a face within reach has a particle at
+                  // most reach + r + s/2 away (s the particles' spacing,
+                  // below h), so the nearest face's gap is at most reach +
+                  // h. (A moving surface, a net or string, keeps the
+                  // nearest particle's tangent: its kinks follow the
+                  // load.)
+                  dealii::Tensor<1, dim> v;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    v[d] = props[MP::velocity + d];
+                  const double reach_at_rest =
+                    initializing ? 1e-6 * h :
+                                   0.5 * h + 2. * dt * v.norm() +
+                                     dt * dt * gravity_vector.norm();
+                  if (!desc.moving &&
+                      (x_p - r * n_b[j] - x_b[j]) * n_b[j] <= reach_at_rest + h)
+                    {
+                      nearest.clear();
+                      tree.query(boost::geometry::index::nearest(
+                                   x_p, dim == 2 ? 8u : 16u),
+                                 std::back_inserter(nearest));
+                      for (const unsigned int k : nearest)
+                        if ((x_b[k] - x_p).norm_square() <
+                            (x_b[j] - x_p).norm_square())
+                          j = k;
+                    }
                   {
                     const unsigned int j0 = j;
                     double g_min = (x_p - r * n_b[j0] - x_b[j0]) * n_b[j0];
@@ -665,14 +684,10 @@ namespace Talus
                     return du_bar;
                   };
                   // out of reach in this step: forget the stick spring
-                  dealii::Tensor<1, dim> v;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    v[d] = props[MP::velocity + d];
                   const double reach =
-                    initializing ? 1e-6 * h :
-                                   0.5 * h + 2. * dt * v.norm() +
-                                     dt * dt * gravity_vector.norm() +
-                                     std::max(0., surface_increment(j) * n);
+                    initializing ?
+                      reach_at_rest :
+                      reach_at_rest + std::max(0., surface_increment(j) * n);
                   if (g0 > reach)
                     {
                       for (unsigned int d = 0; d < dim; ++d)
