@@ -715,6 +715,7 @@ namespace Talus
 
       // Boundary particles in cells with at least one node that carries
       // mass: penalty forces on the material.
+      const double end_contact_scale = end_contact_factor();
       std::vector<dealii::Tensor<1, dim>> dT(dofs_per_cell), df(dofs_per_cell);
       k_local.reinit(dofs_per_cell, dofs_per_cell);
       r_local.reinit(dofs_per_cell);
@@ -791,9 +792,12 @@ namespace Talus
                     std::max(multiplier_residual,
                              (bp.lambda - bf.force).norm() / k);
                 }
+              // (unilateral contact with its end-of-step force counts
+              // 1/(2 beta) times: ContactTimeIntegration)
+              const double s = bp.end_of_step ? end_contact_scale : 1.;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
-                  const double Ni = bp.N[node[i]];
+                  const double Ni = s * bp.N[node[i]];
                   r_local[i] += Ni * bf.force[comp[i]];
                   if (with_matrix)
                     for (unsigned int j = 0; j < dofs_per_cell; ++j)

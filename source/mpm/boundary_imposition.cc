@@ -69,8 +69,11 @@ namespace Talus
       double             max_mass = 0., min_stiffness = 1e300;
       for (const auto i : grid.locally_owned_dofs)
         max_mass = std::max(max_mass, static_cast<double>(nodal_mass(i)));
+      // (contact forces that act with their end value are not in the
+      // start acceleration: ContactTimeIntegration)
       for (const auto &b : boundary_points)
-        min_stiffness = std::min(min_stiffness, b.beta * b.weight);
+        if (!b.end_of_step)
+          min_stiffness = std::min(min_stiffness, b.beta * b.weight);
       max_mass = dealii::Utilities::MPI::max(max_mass, grid.mpi_communicator);
       min_stiffness =
         dealii::Utilities::MPI::min(min_stiffness, grid.mpi_communicator);
@@ -106,6 +109,8 @@ namespace Talus
       // the force of boundary particle idx of cell c for the acceleration
       // a_ghosted, as a penalty on tau^2 (a - a_bar) plus lambda_a
       const auto force_at = [&](const CellCache &c, const unsigned int idx) {
+        if (boundary_points[idx].end_of_step)
+          return BoundaryForce();
         BoundaryPoint bp = boundary_points[idx];
         bp.du_bar        = tau2 * bp.a_bar;
         bp.gap_old       = 0.;
@@ -325,15 +330,16 @@ namespace Talus
               // material-point contact: the particles only give the surface
               if (desc.material_point_contact)
                 continue;
-              bp.weight     = props[BP::weight];
-              bp.beta       = desc.beta;
-              bp.mu         = desc.friction_coefficient;
-              bp.condition  = desc.condition;
-              bp.augmented  = desc.augmented || desc.lagrange_multiplier;
-              bp.monolithic = desc.lagrange_multiplier;
-              bp.nitsche    = desc.nitsche;
-              bp.theta      = desc.nitsche_theta;
-              c.nitsche     = c.nitsche || desc.nitsche;
+              bp.weight      = props[BP::weight];
+              bp.beta        = desc.beta;
+              bp.mu          = desc.friction_coefficient;
+              bp.condition   = desc.condition;
+              bp.augmented   = desc.augmented || desc.lagrange_multiplier;
+              bp.monolithic  = desc.lagrange_multiplier;
+              bp.nitsche     = desc.nitsche;
+              bp.theta       = desc.nitsche_theta;
+              c.nitsche      = c.nitsche || desc.nitsche;
+              bp.end_of_step = end_of_step_contact(desc);
               dealii::Point<dim> X;
               for (unsigned int d = 0; d < dim; ++d)
                 {
@@ -751,6 +757,7 @@ namespace Talus
                       bp.condition     = desc.condition;
                       bp.damping       = desc.contact_damping;
                       bp.damping_onset = 1e-2 * h;
+                      bp.end_of_step   = end_of_step_contact(desc);
                       bp.normal        = n_f;
                       bp.gap_old       = face.second * n_f + g_t;
                       bp.du_bar        = surface_increment(jf);
@@ -1084,9 +1091,29 @@ namespace Talus
                     mass_share(c.dofs[fe.component_to_system_index(0, k)]);
                 // dissipated: -f . (relative increment - elastic gap change)
                 const dealii::Tensor<1, dim> relative = du_b - bp.du_bar;
-                if (start_force_recorded && !bp.on_material_point &&
-                    !bp.augmented && !bp.nitsche && bp.damping == 0. &&
-                    !boundary_particles->boundary(bp.boundary).moving)
+                if (bp.end_of_step)
+                  {
+                    // the force acts with its end value over the step
+                    // (ContactTimeIntegration): its work -f . du less the
+                    // change of the springs' energy k |g|^2 / 2 that the
+                    // spring_energy column holds (active points only)
+                    const double k = bp.beta * bp.weight;
+                    const bool   was_active =
+                      bp.on_material_point ?
+                          bp.gap_old * bp.normal < 0. :
+                          bp.particle->get_properties()
+                            [Boundaries::BoundaryParticleProperties<
+                              dim>::state] != 0.;
+                    const double spring_new =
+                      bf.state != 0 ? 0.5 * k * (bf.gap * bf.gap) : 0.;
+                    const double spring_old =
+                      was_active ? 0.5 * k * (bp.gap_old * bp.gap_old) : 0.;
+                    work[bp.boundary] -=
+                      bf.force * relative + (spring_new - spring_old);
+                  }
+                else if (start_force_recorded && !bp.on_material_point &&
+                         !bp.augmented && !bp.nitsche && bp.damping == 0. &&
+                         !boundary_particles->boundary(bp.boundary).moving)
                   {
                     // a penalty boundary at rest, with the integrator's
                     // account started from the forces at du = 0 (no
@@ -1157,10 +1184,12 @@ namespace Talus
                     pc.primary = bp.primary;
                     if (bf.state != 0)
                       {
-                        // the dashpot's work on the normal increment
+                        // the dashpot's work on the normal increment (in
+                        // -f . du already with the end-of-step force)
                         const double dgn = (du_b - bp.du_bar) * bp.normal;
-                        work[bp.boundary] +=
-                          bp.damping * bp.beta * bp.weight * dgn * dgn;
+                        if (!bp.end_of_step)
+                          work[bp.boundary] +=
+                            bp.damping * bp.beta * bp.weight * dgn * dgn;
                         pc.reaction    = -bf.force;
                         pc.normal      = bp.normal;
                         pc.penetration = std::max(0., -(bf.gap * bp.normal));

@@ -628,11 +628,18 @@ namespace Talus
         for (unsigned int b = 0; b < boundary_particles->n_boundaries(); ++b)
           if (boundary_particles->boundary(b).moving)
             return;
+      // (without the contact forces that act with their end value: the
+      // start acceleration a_n does not hold them)
+      dealii::TrilinosWrappers::MPI::Vector f_c;
+      const bool end_contact = uses_end_contact_force();
+      if (end_contact)
+        end_contact_force(nullptr, f_c);
+      const double s = end_contact_factor();
       start_force.reinit(grid.locally_owned_dofs, grid.mpi_communicator);
       for (const auto i : grid.locally_owned_dofs)
         if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
           start_force(i) =
-            residual(i) +
+            residual(i) - (end_contact ? s * f_c(i) : 0.) +
             nodal_mass(i) *
               newmark.acceleration(0., velocity_n(i), acceleration_n(i), dt);
       start_force.compress(dealii::VectorOperation::insert);
@@ -665,9 +672,16 @@ namespace Talus
           }
           dealii::TrilinosWrappers::MPI::Vector a(grid.locally_owned_dofs,
                                                   grid.mpi_communicator);
+          // (without the contact forces that act with their end value)
+          dealii::TrilinosWrappers::MPI::Vector f_c;
+          const bool end_contact = uses_end_contact_force();
+          if (end_contact)
+            end_contact_force(nullptr, f_c);
+          const double s = end_contact_factor();
           for (const auto i : grid.locally_owned_dofs)
             if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
-              a(i) = residual(i) / nodal_mass(i);
+              a(i) =
+                (residual(i) - (end_contact ? s * f_c(i) : 0.)) / nodal_mass(i);
           a.compress(dealii::VectorOperation::insert);
           acceleration_n = a;
         }

@@ -598,22 +598,37 @@ namespace Talus
           // acceleration's part du (f_n - M a_n) / 2 is not, where a_n is
           // the points' projected acceleration instead of M^-1 f_n
           // (record_start_force(); the free nodes).
-          double     integrator = 0.;
-          double     start_work = 0.;
-          const bool newmark_part =
+          //
+          // Contact forces that act with their end value f_c over the step
+          // (ContactTimeIntegration): a^c = M^-1 f_c adds dt a^c to the
+          // velocity and dt^2/2 a^c to the increment, so Newmark's
+          // acceleration of the increment holds a^c/(2 beta) besides the
+          // acceleration a of the other forces; the points carry a.
+          dealii::TrilinosWrappers::MPI::Vector f_c;
+          const bool end_contact = uses_end_contact_force();
+          if (end_contact)
+            end_contact_force(&displacement, f_c);
+          const double s          = end_contact_factor();
+          double       integrator = 0.;
+          double       start_work = 0.;
+          const bool   newmark_part =
             !(newmark.gamma == 0.5 && newmark.beta == 0.25);
           for (const auto i : grid.locally_owned_dofs)
             if (nodal_mass(i) > 0.)
               {
                 const double du = displacement(i);
                 const double an = acceleration_n(i);
+                const double a_c =
+                  end_contact && !constraints.is_constrained(i) ?
+                    f_c(i) / nodal_mass(i) :
+                    0.;
                 const double a =
-                  newmark.acceleration(du, velocity_n(i), an, dt);
+                  newmark.acceleration(du, velocity_n(i), an, dt) - s * a_c;
                 a_new(i) = a;
-                dv(i)    = newmark.velocity(0., an, a, dt);
+                dv(i)    = newmark.velocity(0., an, a, dt) + dt * a_c;
                 integrator +=
-                  nodal_mass(i) *
-                  (0.5 * du * (an + a) - dv(i) * (velocity_n(i) + 0.5 * dv(i)));
+                  nodal_mass(i) * (0.5 * du * (an + a) + du * a_c -
+                                   dv(i) * (velocity_n(i) + 0.5 * dv(i)));
                 if (start_force_recorded && !constraints.is_constrained(i))
                   start_work +=
                     0.5 * du * (start_force(i) - nodal_mass(i) * an);

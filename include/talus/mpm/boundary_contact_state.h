@@ -157,6 +157,12 @@ namespace Talus
        * value (so that the force is continuous at first contact) [m].
        */
       double damping_onset = 1.;
+      /**
+       * Whether the force acts with its end-of-step value over the step
+       * (unilateral penalty contact of a boundary at rest, with
+       * 'contact force in time = end of step'; ContactTimeIntegration).
+       */
+      bool end_of_step = false;
     };
 
     /**

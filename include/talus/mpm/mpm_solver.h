@@ -8,6 +8,7 @@
 #include <talus/mpm/background_grid.h>
 #include <talus/mpm/body_contact.h>
 #include <talus/mpm/boundary_contact_state.h>
+#include <talus/mpm/contact_time_integration.h>
 #include <talus/mpm/diagnostics.h>
 #include <talus/mpm/energy_accounts.h>
 #include <talus/mpm/material_points.h>
@@ -629,6 +630,25 @@ namespace Talus
                      const dealii::Tensor<1, dim> &du) const;
 
       /**
+       * Nodal forces of the boundary points whose contact force acts with
+       * its end value (ContactTimeIntegration) at the increment @p du
+       * (ghosted; nullptr: zero), unscaled; and the factor 1/(2 beta) with
+       * which they enter the residual of Newmark's acceleration.
+       */
+      void
+      end_contact_force(const dealii::TrilinosWrappers::MPI::Vector *du,
+                        dealii::TrilinosWrappers::MPI::Vector       &f) const;
+      double
+      end_contact_factor() const;
+      /** Whether some boundary may use the end-of-step contact force. */
+      bool
+      uses_end_contact_force() const;
+      /** Whether the points of boundary @p desc use the end-of-step force. */
+      bool
+      end_of_step_contact(
+        const Boundaries::BoundaryDescription<dim> &desc) const;
+
+      /**
        * Nitsche's method: the traction T = -sigma n the material exerts
        * on itself across the boundary at particle @p b for the cell's
        * increments @p du_local, with sigma = sigma_n + C : grad du (the
@@ -1050,9 +1070,10 @@ namespace Talus
       dealii::TimerOutput                              &timer;
 
       // Parameters.
-      bool                                                    quasi_static;
-      bool                                                    consistent_mass;
-      dealii::Tensor<1, dim>                                  gravity_vector;
+      bool                   quasi_static;
+      bool                   consistent_mass;
+      ContactTimeIntegration contact_time_integration;
+      dealii::Tensor<1, dim> gravity_vector;
       std::unique_ptr<dealii::Functions::ParsedFunction<dim>> body_force;
       double                                                  load_ramp_time;
       unsigned int max_newton_iterations;
