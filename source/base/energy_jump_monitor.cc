@@ -115,7 +115,8 @@ namespace Talus
         << " times the mean change per step before ('energy jump warning' "
            "in subsection Time): the "
            "step's solution may be spurious; a shorter 'time step' avoids "
-           "it.\n";
+           "it, unless a contact closed within the step ('contact force in "
+           "time = end of step' in subsection Solver).\n";
     return msg.str();
   }
 } // namespace Talus
