@@ -678,10 +678,25 @@ namespace Talus
           if (end_contact)
             end_contact_force(nullptr, f_c);
           const double s = end_contact_factor();
+          // With the end-of-step contact force, nodes lighter than a
+          // fraction of the heaviest keep the projected acceleration: the
+          // internal force of a point at the edge of a node's support does
+          // not vanish with its shape value, so f/m_I grows without bound
+          // as m_I -> 0 (ContactTimeIntegration::light_node_fraction)
+          double light = 0.;
+          if (end_contact)
+            {
+              for (const auto i : grid.locally_owned_dofs)
+                light = std::max(light, static_cast<double>(nodal_mass(i)));
+              light = ContactTimeIntegration::light_node_fraction *
+                      dealii::Utilities::MPI::max(light, grid.mpi_communicator);
+            }
           for (const auto i : grid.locally_owned_dofs)
             if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
-              a(i) =
-                (residual(i) - (end_contact ? s * f_c(i) : 0.)) / nodal_mass(i);
+              a(i) = nodal_mass(i) < light ?
+                       acceleration_n(i) :
+                       (residual(i) - (end_contact ? s * f_c(i) : 0.)) /
+                         nodal_mass(i);
           a.compress(dealii::VectorOperation::insert);
           acceleration_n = a;
         }

@@ -65,6 +65,13 @@ namespace Talus
       void
       parse_parameters(dealii::ParameterHandler &prm);
 
+      /**
+       * With the end-of-step force, the start acceleration is taken from
+       * the forces only at nodes of at least this fraction of the largest
+       * nodal mass; lighter nodes keep the projected acceleration.
+       */
+      static constexpr double light_node_fraction = 1e-2;
+
       /** Whether unilateral penalty contact uses its end-of-step force. */
       bool end_of_step = false;
     };
