@@ -30,8 +30,8 @@ namespace Talus
         "acceleration of the other forces starts the step), so not with "
         "grid friction boundaries and only when every boundary of boundary "
         "particles is unilateral contact at rest with the penalty method. "
-        "Lumped mass only (with the consistent mass the trapezoidal rule "
-        "is kept). doc/theory.md, 'Contact force in time'.");
+        "Lumped mass only; an input in which no boundary would use it is "
+        "rejected. doc/theory.md, 'Contact force in time'.");
     }
 
 

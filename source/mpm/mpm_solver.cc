@@ -1267,6 +1267,24 @@ namespace Talus
     {
       p2g_current        = false;
       boundary_particles = boundaries.empty() ? nullptr : &boundaries;
+      // 'end of step' that no boundary would use is an error, not a
+      // silent trapezoidal rule
+      if (contact_time_integration.end_of_step)
+        {
+          bool used = false;
+          for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
+            used = used || end_of_step_contact(boundaries.boundary(b));
+          if (!used)
+            InputFile::reject(
+              "Solver",
+              "contact force in time",
+              "end of step",
+              "'trapezoidal' here: 'end of step' acts on boundaries of "
+              "boundary particles at rest with 'condition = contact' or "
+              "'friction' and the penalty method, in a dynamic analysis "
+              "with 'mass matrix = lumped'; this input has none (or is "
+              "quasi-static, or uses the consistent mass)");
+        }
       // (boundaries whose contact force acts with its end value are not
       // in the start acceleration: ContactTimeIntegration)
       bool trapezoidal_boundary = false;

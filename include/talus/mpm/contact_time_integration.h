@@ -52,7 +52,8 @@ namespace Talus
      * multipliers, and the bonded (`fixed`) and `slip` conditions, whose
      * set of active points does not change, keep the trapezoidal rule;
      * since 'from forces' does not take them, such boundaries and grid
-     * friction boundaries cannot be combined with `end of step`.
+     * friction boundaries cannot be combined with `end of step`. Lumped
+     * mass only; an input in which no boundary would use it is rejected.
      */
     class ContactTimeIntegration
     {
