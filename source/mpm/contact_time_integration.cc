@@ -28,10 +28,12 @@ namespace Talus
         "contact's energy error k |dg|^2 / 2 is dissipation, booked as the "
         "boundary's. Needs 'start acceleration = from forces' (the "
         "acceleration of the other forces starts the step), so not with "
-        "grid friction boundaries and only when every boundary of boundary "
-        "particles is unilateral contact at rest with the penalty method. "
-        "Lumped mass only; an input in which no boundary would use it is "
-        "rejected. doc/theory.md, 'Contact force in time'.");
+        "grid friction boundaries. The other boundaries of boundary "
+        "particles (moving ones, coupling interfaces, fixed, slip, Nitsche, "
+        "Lagrange multipliers) keep the trapezoidal rule, and the nodes of "
+        "their points the projected start acceleration. Lumped mass only; "
+        "an input in which no boundary would use it is rejected. "
+        "doc/theory.md, 'Contact force in time'.");
     }
 
 

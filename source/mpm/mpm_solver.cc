@@ -1287,11 +1287,6 @@ namespace Talus
         }
       // (boundaries whose contact force acts with its end value are not
       // in the start acceleration: ContactTimeIntegration)
-      bool trapezoidal_boundary = false;
-      if (boundary_particles != nullptr)
-        for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
-          trapezoidal_boundary = trapezoidal_boundary ||
-                                 !end_of_step_contact(boundaries.boundary(b));
       if (boundary_particles != nullptr && !start_acceleration_from_forces)
         for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
           if (end_of_step_contact(boundaries.boundary(b)))
@@ -1306,15 +1301,20 @@ namespace Talus
                 "contact force that balances the other forces at a point in "
                 "contact, and the difference does work (measured: 1.2 kJ of "
                 "45 kJ released on a granular slide)");
-      if (trapezoidal_boundary && start_acceleration_from_forces)
+      // Without end-of-step contact the start acceleration from the forces
+      // would mix with the projected one at every boundary (the nodes of
+      // boundary points keep it, newton.cc), which is less accurate than
+      // either (doc/theory.md, "Contact force in time")
+      if (boundary_particles != nullptr && start_acceleration_from_forces &&
+          !contact_time_integration.end_of_step)
         InputFile::reject("Solver",
                           "start acceleration",
                           "from forces",
-                          "'projected' with boundary particles other than "
-                          "unilateral contact at rest with 'contact force "
-                          "in time = end of step' ('from forces' is "
-                          "implemented for these and the grid's fixed and "
-                          "slip boundaries)");
+                          "'projected' with boundary particles, or 'from "
+                          "forces' together with 'contact force in time = "
+                          "end of step' (the nodes of boundaries that keep "
+                          "the trapezoidal rule then keep the projected "
+                          "acceleration)");
       // (resize: a checkpoint restored before keeps its values)
       accounts.boundary_friction_dissipation.resize(boundaries.n_boundaries(),
                                                     0.);

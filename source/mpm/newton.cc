@@ -691,9 +691,37 @@ namespace Talus
               light = ContactTimeIntegration::light_node_fraction *
                       dealii::Utilities::MPI::max(light, grid.mpi_communicator);
             }
+          // Nodes of cells with boundary points whose force keeps
+          // Newmark's trapezoidal rule keep the projected acceleration as
+          // well: there the residual at du = 0 holds neither the friction
+          // force (it starts unloaded in every step) nor the force of the
+          // other penalties that balances the points' projected
+          // acceleration (doc/theory.md, "Contact force in time")
+          dealii::TrilinosWrappers::MPI::Vector trapezoidal;
+          if (boundary_particles != nullptr)
+            {
+              trapezoidal.reinit(grid.locally_owned_dofs,
+                                 grid.mpi_communicator);
+              for (const auto &c : boundary_cells)
+                {
+                  bool any = false;
+                  for (unsigned int b = 0; b < c.n_boundary; ++b)
+                    any =
+                      any || !boundary_points[c.first_boundary + b].end_of_step;
+                  if (!any)
+                    continue;
+                  dealii::Vector<double> ones(c.dofs.size());
+                  ones = 1.;
+                  constraints.distribute_local_to_global(ones,
+                                                         c.dofs,
+                                                         trapezoidal);
+                }
+              trapezoidal.compress(dealii::VectorOperation::add);
+            }
           for (const auto i : grid.locally_owned_dofs)
             if (!constraints.is_constrained(i) && nodal_mass(i) > 0.)
-              a(i) = nodal_mass(i) < light ?
+              a(i) = nodal_mass(i) < light ||
+                         (trapezoidal.size() > 0 && trapezoidal(i) > 0.) ?
                        acceleration_n(i) :
                        (residual(i) - (end_contact ? s * f_c(i) : 0.)) /
                          nodal_mass(i);

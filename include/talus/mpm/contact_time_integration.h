@@ -49,10 +49,10 @@ namespace Talus
      * the contact force that balances the others at a point in contact.
      * Boundaries that move (prescribed motion, coupling interfaces),
      * Nitsche's method, the augmented Lagrangian and Lagrange
-     * multipliers, and the bonded (`fixed`) and `slip` conditions, whose
-     * set of active points does not change, keep the trapezoidal rule;
-     * since 'from forces' does not take them, such boundaries and grid
-     * friction boundaries cannot be combined with `end of step`. Lumped
+     * multipliers, and the bonded (`fixed`) and `slip` conditions keep
+     * the trapezoidal rule, and the nodes of the cells of their points
+     * the projected start acceleration (the residual at du = 0 does not
+     * hold their start force). Not with grid friction boundaries. Lumped
      * mass only; an input in which no boundary would use it is rejected.
      */
     class ContactTimeIntegration
