@@ -43,6 +43,10 @@ from flexible_barrier_2d_study import (SLOPE_AND_MATERIAL, failure,
                                        moving_average, plot_studies, read_csv,
                                        resample, run_study, run_variant, sub)
 
+# the slope's contact force at the end of the step, the net trapezoidal
+END_OF_STEP = sub("Solver", {"contact force in time": "end of step",
+                             "start acceleration": "from forces"})
+
 # (study, name, appended prm text)
 VARIANTS = [
     ("base", "base", ""),
@@ -73,21 +77,10 @@ VARIANTS = [
     # the slope's contact force at the end of the step (the net, a moving
     # coupling interface, keeps the trapezoidal rule; doc/theory.md,
     # "Contact force in time"): the first impact converges in the step
-    ("time step", "end of step",
-     sub("Solver", {"contact force in time": "end of step",
-                    "start acceleration": "from forces"})),
-    ("time step", "dt=0.01, end of step",
-     sub("Time", {"time step": "0.01"})
-     + sub("Solver", {"contact force in time": "end of step",
-                      "start acceleration": "from forces"})),
-    ("time step", "dt=0.005, end of step",
-     sub("Time", {"time step": "0.005"})
-     + sub("Solver", {"contact force in time": "end of step",
-                      "start acceleration": "from forces"})),
-    ("time step", "dt=0.0025, end of step",
-     sub("Time", {"time step": "0.0025"})
-     + sub("Solver", {"contact force in time": "end of step",
-                      "start acceleration": "from forces"})),
+    ("time step", "end of step", END_OF_STEP),
+] + [("time step", "dt=%s, end of step" % dt,
+      sub("Time", {"time step": dt}) + END_OF_STEP)
+     for dt in ("0.01", "0.005", "0.0025")] + [
     # coupling tolerance (relative 1e-4 in the base)
     ("coupling tolerance", "tol=1e-5",
      sub("Coupling", {"relative tolerance": "1e-5"})),
