@@ -19,8 +19,6 @@ echo "run_debug_tests.sh: Debug build done after ${build_time} s"
 
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
-# one-rank runs start no MPI daemon (contrib/run_tests.sh)
-export OMPI_MCA_ess_singleton_isolated=1
 
 # The subset: every .cc test (materials/, solver/, coupling/, structure/elements,
 # structure/structure_api, boundaries/external_displacement), every errors/
