@@ -1267,54 +1267,7 @@ namespace Talus
     {
       p2g_current        = false;
       boundary_particles = boundaries.empty() ? nullptr : &boundaries;
-      // 'end of step' that no boundary would use is an error, not a
-      // silent trapezoidal rule
-      if (contact_time_integration.end_of_step)
-        {
-          bool used = false;
-          for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
-            used = used || end_of_step_contact(boundaries.boundary(b));
-          if (!used)
-            InputFile::reject(
-              "Solver",
-              "contact force in time",
-              "end of step",
-              "'trapezoidal' here: 'end of step' acts on boundaries of "
-              "boundary particles at rest with 'condition = contact' or "
-              "'friction' and the penalty method, in a dynamic analysis "
-              "with 'mass matrix = lumped'; this input has none (or is "
-              "quasi-static, or uses the consistent mass)");
-        }
-      // (boundaries whose contact force acts with its end value are not
-      // in the start acceleration: ContactTimeIntegration)
-      if (boundary_particles != nullptr && !start_acceleration_from_forces)
-        for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
-          if (end_of_step_contact(boundaries.boundary(b)))
-            InputFile::reject(
-              "Solver",
-              "contact force in time",
-              "end of step",
-              "'trapezoidal', or 'end of step' together with 'start "
-              "acceleration = from forces' (boundary '" +
-                boundaries.boundary(b).name +
-                "'): the points' projected acceleration then misses the "
-                "contact force that balances the other forces at a point in "
-                "contact, and the difference does work (measured: 1.2 kJ of "
-                "45 kJ released on a granular slide)");
-      // Without end-of-step contact the start acceleration from the forces
-      // would mix with the projected one at every boundary (the nodes of
-      // boundary points keep it, newton.cc), which is less accurate than
-      // either (doc/theory.md, "Contact force in time")
-      if (boundary_particles != nullptr && start_acceleration_from_forces &&
-          !contact_time_integration.end_of_step)
-        InputFile::reject("Solver",
-                          "start acceleration",
-                          "from forces",
-                          "'projected' with boundary particles, or 'from "
-                          "forces' together with 'contact force in time = "
-                          "end of step' (the nodes of boundaries that keep "
-                          "the trapezoidal rule then keep the projected "
-                          "acceleration)");
+      check_contact_time_integration(boundaries);
       // (resize: a checkpoint restored before keeps its values)
       accounts.boundary_friction_dissipation.resize(boundaries.n_boundaries(),
                                                     0.);

@@ -647,6 +647,10 @@ namespace Talus
       bool
       end_of_step_contact(
         const Boundaries::BoundaryDescription<dim> &desc) const;
+      /** Reject contact-time options that @p boundaries cannot use. */
+      void
+      check_contact_time_integration(
+        const Boundaries::BoundaryParticles<dim> &boundaries) const;
 
       /**
        * Nitsche's method: the traction T = -sigma n the material exerts
