@@ -28,8 +28,10 @@ engineer reads off a run:
 
 Studies (doc/verification.md, "Flexible barrier (3D): convergence and
 sensitivity"): net mesh, time step, coupling tolerance; net stiffness,
-brake activation force, basal friction and material model. The MPM cell
-size is in "Three MPM levels" of the same document (runs of hours).
+the net's wrinkling law, brake activation force, basal friction and
+material model; each also with the earlier input's trapezoidal contact
+force on the slope and 20 ms steps (studies "trapezoidal ..."). The MPM
+cell size is in "Three MPM levels" of the same document (runs of hours).
 
 usage: contrib/flexible_barrier_3d_study.py [--talus PATH] [--only NAME...]
        [--work DIR] [--jobs N] [--reuse] [--plot PNG]
@@ -43,44 +45,20 @@ from flexible_barrier_2d_study import (SLOPE_AND_MATERIAL, failure,
                                        moving_average, plot_studies, read_csv,
                                        resample, run_study, run_variant, sub)
 
-# the slope's contact force at the end of the step, the net trapezoidal
-END_OF_STEP = sub("Solver", {"contact force in time": "end of step",
-                             "start acceleration": "from forces"})
+# The input takes the slope's contact force at its end value, 10 ms steps
+# (the net, a moving coupling interface, keeps the trapezoidal rule;
+# doc/theory.md, "Contact force in time"). The variants of the earlier
+# input, trapezoidal contact on the slope and 20 ms steps, are appended
+# with it ("trapezoidal" in their study's name) for comparison.
+TRAPEZOIDAL = sub("Solver", {"contact force in time": "trapezoidal",
+                             "start acceleration": "projected"}) \
+    + sub("Time", {"time step": "0.02"})
 
-# (study, name, appended prm text)
-VARIANTS = [
-    ("base", "base", ""),
+SENSITIVITY = [
     # the net's cells (10 x 8 per field in the base): twice as fine
     ("net mesh", "net 20x16",
      sub("Structure/Barrier", {"net cells per field": "20",
                                "net cells over height": "16"})),
-    # time step (0.02 s in the base; the FLIP/PIC blend 0.95 per 20 ms,
-    # 'FLIP fraction reference step', whatever the step)
-    ("time step", "dt=0.01", sub("Time", {"time step": "0.01"})),
-    ("time step", "dt=0.005", sub("Time", {"time step": "0.005"})),
-    ("time step", "dt=0.0025", sub("Time", {"time step": "0.0025"})),
-    # the blend applied once per step whatever its size (the reference
-    # step 0, the default): more PIC damping per second with shorter steps
-    ("time step", "dt=0.01, FLIP per step",
-     sub("Time", {"time step": "0.01"})
-     + sub("Solver", {"FLIP fraction reference step": "0"})),
-    ("time step", "dt=0.005, FLIP per step",
-     sub("Time", {"time step": "0.005"})
-     + sub("Solver", {"FLIP fraction reference step": "0"})),
-    # the contact onset event with its forecast (off in the base): the
-    # step shortened ahead of the first touch of the net, and steps of at
-    # most 2 ms while the number of points on it changes sharply
-    ("time step", "onset 2 ms",
-     sub("Time", {"contact onset time step": "0.002"})),
-    ("time step", "dt=0.01, onset 2 ms",
-     sub("Time", {"time step": "0.01", "contact onset time step": "0.002"})),
-    # the slope's contact force at the end of the step (the net, a moving
-    # coupling interface, keeps the trapezoidal rule; doc/theory.md,
-    # "Contact force in time"): the first impact converges in the step
-    ("time step", "end of step", END_OF_STEP),
-] + [("time step", "dt=%s, end of step" % dt,
-      sub("Time", {"time step": dt}) + END_OF_STEP)
-     for dt in ("0.01", "0.005", "0.0025")] + [
     # coupling tolerance (relative 1e-4 in the base)
     ("coupling tolerance", "tol=1e-5",
      sub("Coupling", {"relative tolerance": "1e-5"})),
@@ -91,6 +69,10 @@ VARIANTS = [
     ("net stiffness", "Et x2",
      sub("Structure/Membrane", {"Young's modulus": "2e9",
                                 "Young's modulus 2": "2e9"})),
+    # the net without the wrinkling (tension-field) law: it then carries
+    # compression
+    ("net law", "no wrinkling",
+     sub("Structure/Membrane", {"wrinkling": "false"})),
     # brake activation force (50 kN in the base, where the retaining
     # ropes carry at most 16 kN); below the rope force
     ("brake", "brake 10 kN",
@@ -98,6 +80,34 @@ VARIANTS = [
     ("brake", "brake 5 kN",
      sub("Structure/Brake", {"activation force": "5e3"})),
 ] + SLOPE_AND_MATERIAL
+
+# time steps of the trapezoidal family (the FLIP/PIC blend 0.95 per
+# 20 ms, 'FLIP fraction reference step', whatever the step; "FLIP per
+# step": the blend once per step, the reference step 0), and the contact
+# onset event with its forecast: the step shortened ahead of the first
+# touch of the net, steps of at most 2 ms while the number of points on
+# it changes sharply
+TRAPEZOIDAL_TIME_STEPS = [
+    ("time step", "dt=%s" % dt, sub("Time", {"time step": dt}))
+    for dt in ("0.01", "0.005", "0.0025")] + [
+    ("time step", "dt=%s, FLIP per step" % dt,
+     sub("Time", {"time step": dt})
+     + sub("Solver", {"FLIP fraction reference step": "0"}))
+    for dt in ("0.01", "0.005")] + [
+    ("time step", "onset 2 ms",
+     sub("Time", {"contact onset time step": "0.002"})),
+    ("time step", "dt=0.01, onset 2 ms",
+     sub("Time", {"time step": "0.01", "contact onset time step": "0.002"})),
+]
+
+# (study, name, appended prm text)
+VARIANTS = [
+    ("base", "base", ""),
+] + [("time step", "dt=%s" % dt, sub("Time", {"time step": dt}))
+     for dt in ("0.02", "0.005", "0.0025")] + SENSITIVITY + [
+    ("trapezoidal " + study, "trapezoidal " + name, TRAPEZOIDAL + extra)
+    for study, name, extra in [("base", "base", "")] + TRAPEZOIDAL_TIME_STEPS
+    + SENSITIVITY]
 
 BRAKES = ["0a", "0b", "1a", "1b", "2a", "2b", "3a", "3b"]
 

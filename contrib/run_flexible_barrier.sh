@@ -2,7 +2,7 @@
 # Build talus (Release), run the flagship and draw its pictures.
 #   bash contrib/run_flexible_barrier.sh       prm/flexible_barrier.prm: 25 m^3
 #        of granular material sliding into a three-field flexible barrier,
-#        3D, coupled MPM + FE, about 3.5 minutes of CPU time on one core
+#        3D, coupled MPM + FE, about 5 minutes of CPU time on one core
 #   bash contrib/run_flexible_barrier.sh 2d    prm/flexible_barrier_2d.prm: the
 #        same event in a longitudinal section per metre of width, ~30 s
 # Output goes to output/flexible_barrier[_2d]/ at the repository top:
