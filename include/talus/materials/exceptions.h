@@ -1,6 +1,7 @@
 #ifndef talus_materials_exceptions_h
 #define talus_materials_exceptions_h
 
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -13,7 +14,9 @@ namespace Talus
      * Thrown by a constitutive model that is evaluated at a deformation
      * gradient with @f$J = \det\mathbf F \le 0@f$ (or a non-finite
      * @f$J@f$): the material point would be turned inside out, and the
-     * stress of a finite-strain model is undefined there.
+     * stress of a finite-strain model is undefined there; or with
+     * @f$J > 0@f$ but numerically singular (a non-positive eigenvalue of
+     * the elastic left Cauchy-Green tensor).
      *
      * This is not an input error: the solver catches it and rejects the
      * step (for instance by cutting the time step) instead of continuing
@@ -44,9 +47,20 @@ namespace Talus
       make_message(const std::string &model_name, const double det_F)
       {
         std::ostringstream msg;
-        msg << "Inverted material point: the " << model_name
-            << " model was evaluated at a deformation gradient with det F = "
-            << det_F << ", but it needs 0 < det F < infinity.";
+        if (det_F > 0. && det_F < std::numeric_limits<double>::infinity())
+          msg << "Degenerate material point: the " << model_name
+              << " model was evaluated at a deformation gradient with det F "
+                 "= "
+              << det_F
+              << " that is numerically singular (its elastic left "
+                 "Cauchy-Green tensor has a non-positive eigenvalue: the "
+                 "point is stretched in one direction and crushed in "
+                 "another).";
+        else
+          msg << "Inverted material point: the " << model_name
+              << " model was evaluated at a deformation gradient with det F "
+                 "= "
+              << det_F << ", but it needs 0 < det F < infinity.";
         return msg.str();
       }
 
