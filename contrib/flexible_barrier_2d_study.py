@@ -94,6 +94,11 @@ TRAPEZOIDAL = sub("Solver", {"contact force in time": "trapezoidal",
 GRID = [
     # MPM cell size: 0.2 m (base), 0.1 m; points per cell fixed
     ("cell size", "h=0.1", sub("Background grid", {"subdivisions": "140, 76"})),
+    # the same with the steps whose energy balance jumps rejected and
+    # retried with half the step (EnergyJumpMonitor)
+    ("cell size", "h=0.1 reject",
+     sub("Background grid", {"subdivisions": "140, 76"}) +
+     sub("Time", {"energy jump action": "reject"})),
     # the default Newton tolerance (residual 1e-8, last correction)
     ("cell size", "Newton 1e-8",
      sub("Solver", {"residual tolerance": "1e-8",
