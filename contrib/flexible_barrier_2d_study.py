@@ -236,14 +236,19 @@ def ringing(t, f, dt=0.01, width=0.1):
 
 def run_in(talus, out, text, reuse):
     """Write the input text to out/run.prm and run talus on it in out
-    (log in out/log), unless reuse is set and it ran there before; return
+    (log in out/log), unless reuse is set: then only read the finished run
+    there (exit code -1 if there is none); return
     the exit code, the wall time [s], the CPU time [s] of the run (user +
     system; -1 for a run recorded without it) and the log."""
     prm = os.path.join(out, "run.prm")
-    with open(prm, "w") as f:
-        f.write(text)
     done = os.path.join(out, "exit_code_and_wall")
-    if not (reuse and os.path.exists(done)):
+    if reuse and not os.path.exists(done):
+        # not finished (or still running in another invocation): do not
+        # start a second run in the same directory
+        return -1, 0., -1., "not run: no finished run in %s (--reuse)" % out
+    if not reuse:
+        with open(prm, "w") as f:
+            f.write(text)
         start = time.time()
         with open(os.path.join(out, "log"), "w") as log:
             child = subprocess.Popen(["nice", talus, prm], stdout=log,
