@@ -1282,10 +1282,7 @@ namespace Talus
        * and the grid by scaling the domain down (internal::cpdi_weights()).
        */
       bool cpdi = false;
-      /**
-       * The chosen 'shape functions' (uGIMP, cpGIMP or CPDI, for
-       * messages).
-       */
+      /** The chosen 'shape functions' (for messages). */
       std::string shape_name = "linear";
       /**
        * cpGIMP: point-steps whose half-width reached the cap h in some
