@@ -7,7 +7,7 @@ the net within 0.3 s of the first contact, as in
 contrib/flexible_barrier_3d_study.py) and v, h, w the flow's speed, depth
 and width just before contact, measured on the material points of the
 last particle output before the first contact (interface force
-above 1 kN), in the front: the points within 'front length' of the
+above 1 kN, or 1 kN/m in 2D), in the front: the points within 'front length' of the
 foremost point downslope.
 
   v  mass-weighted mean speed of the front's points [m/s]
@@ -56,14 +56,6 @@ def first_impact(directory):
             "interface_force_z" in c)
 
 
-def percentile(values, q):
-    s = sorted(values)
-    k = (len(s) - 1) * q / 100.
-    i = int(math.floor(k))
-    j = min(i + 1, len(s) - 1)
-    return s[i] + (s[j] - s[i]) * (k - i)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("directory")
@@ -76,6 +68,7 @@ def main():
                         "per cell per direction; default 0.25 in 3D, 0.1 "
                         "in 2D)")
     args = parser.parse_args()
+    import numpy
     import pyvista
 
     t0, f1, t1, t_end, three_d = first_impact(args.impact or args.directory)
@@ -100,9 +93,9 @@ def main():
     weight = sum(mass[i] for i in ids)
     v = sum(mass[i] * math.sqrt(sum(c * c for c in vel[i]))
             for i in ids) / weight
-    h = percentile([frame[i][1] for i in ids], 95) + 0.5 * spacing
-    w = (percentile([frame[i][2] for i in ids], 95) -
-         percentile([frame[i][2] for i in ids], 5) + spacing) \
+    h = numpy.percentile([frame[i][1] for i in ids], 95) + 0.5 * spacing
+    w = (numpy.percentile([frame[i][2] for i in ids], 95) -
+         numpy.percentile([frame[i][2] for i in ids], 5) + spacing) \
         if three_d else 1.
     alpha = f1 / (args.density * v * v * h * w)
     print("first contact %.3f s; particles at %.3f s: %d points within "
