@@ -23,6 +23,10 @@ shift $(( $# < 2 ? $# : 2 ))
 
 bash "$top/contrib/setup.sh"
 
+# ccache caches sources compiled with a precompiled header only with these
+# (CMakeLists.txt, TALUS_PRECOMPILED_HEADERS).
+export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros}
+
 jobs=$(nproc 2>/dev/null || echo 2)
 echo "build.sh: $build_type build of talus in $build_dir with $jobs jobs"
 cmake -S "$top" -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" \
