@@ -27,11 +27,11 @@ engineer reads off a run:
   rej      rejected steps; cpu: CPU time of the run [s]
 
 Studies (doc/verification.md, "Flexible barrier (3D): convergence and
-sensitivity"): net mesh, time step, coupling tolerance; net stiffness,
-the net's wrinkling law, brake activation force, basal friction and
-material model; each also with the earlier input's trapezoidal contact
-force on the slope and 20 ms steps (studies "trapezoidal ..."). The MPM
-cell size is in "Three MPM levels" of the same document (runs of hours).
+sensitivity"): MPM cell size (1, 0.5, 0.25 m; the last takes hours),
+net mesh, time step, coupling tolerance; net stiffness, the net's
+wrinkling law, brake activation force, basal friction and material model;
+the sensitivity studies also with the earlier input's trapezoidal contact
+force on the slope and 20 ms steps (studies "trapezoidal ...").
 
 usage: contrib/flexible_barrier_3d_study.py [--talus PATH] [--only NAME...]
        [--work DIR] [--jobs N] [--reuse] [--plot PNG]
@@ -104,7 +104,28 @@ TRAPEZOIDAL_TIME_STEPS = [
 VARIANTS = [
     ("base", "base", ""),
 ] + [("time step", "dt=%s" % dt, sub("Time", {"time step": dt}))
-     for dt in ("0.02", "0.005", "0.0025")] + SENSITIVITY + [
+     for dt in ("0.02", "0.005", "0.0025")] + [
+    # MPM cell size: 0.5 m (base), 1 m, 0.25 m; 2 x 2 x 2 points per cell
+    # and the net unchanged. At 1 m the grid starts at z = -1 m so that the
+    # 1 m thick block fills whole cells (from the input's z = -0.25 m the
+    # cells cut by its top face would make it 1.5 m thick). At 0.25 m the
+    # grid starts at z = -0.125 m so that the slope z = 0 cuts a cell layer
+    # in half, as at 0.5 m (on the input's z = -0.25 m the slope lies on
+    # cell faces, and points pushed through it at the net's foot sink in
+    # cells without boundary particles and leave the grid); 79 200 cells,
+    # 12 800 points, hours of CPU time: a checkpoint every 10 minutes, so
+    # that a stopped run continues with
+    #   talus --resume <work>/h=0.25/checkpoints <work>/h=0.25/run.prm
+    ("cell size", "h=1",
+     sub("Background grid", {"lower corner": "0, -3, -1",
+                             "upper corner": "15, 14, 4",
+                             "subdivisions": "15, 17, 5"})),
+    ("cell size", "h=0.25",
+     sub("Background grid", {"lower corner": "0, -3, -0.125",
+                             "upper corner": "15, 13.5, 4.875",
+                             "subdivisions": "60, 66, 20"}) +
+     sub("Checkpoint", {"every minutes": "10"})),
+] + SENSITIVITY + [
     ("trapezoidal " + study, "trapezoidal " + name, TRAPEZOIDAL + extra)
     for study, name, extra in [("base", "base", "")] + TRAPEZOIDAL_TIME_STEPS
     + SENSITIVITY]
