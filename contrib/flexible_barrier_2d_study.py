@@ -25,7 +25,7 @@ row per variant with what a barrier engineer reads off a run:
 Studies (doc/verification.md, "Flexible barrier (2D): convergence and
 sensitivity"): MPM cell size (three levels), net mesh, time step, coupling
 tolerance; net stiffness, brake activation force, basal friction and
-material model.
+material model; a boulder at the front of the flow (two bodies).
 
 usage: contrib/flexible_barrier_2d_study.py [--talus PATH] [--only NAME...]
        [--work DIR] [--jobs N] [--reuse] [--plot PNG]
@@ -80,30 +80,39 @@ SLOPE_AND_MATERIAL = [
 # FLIP/PIC blend per 10 ms and the Newton tolerance of the granular
 # benchmarks (doc/theory.md, "Contact force in time"; the net, a moving
 # coupling interface, keeps the trapezoidal rule). The variants of the
-# earlier input, trapezoidal contact on the slope, the blend once per step
-# and the default Newton tolerance, are appended with it ("trapezoidal"
-# in their study's name) for comparison.
+# earlier input, trapezoidal contact on the slope, the blend once per step,
+# the default Newton tolerance and energy jumps committed with a warning,
+# are appended with it ("trapezoidal" in their study's name) for
+# comparison.
 TRAPEZOIDAL = sub("Solver", {"contact force in time": "trapezoidal",
                              "start acceleration": "projected",
                              "FLIP fraction reference step": "0",
                              "residual tolerance": "1e-8",
                              "increment tolerance": "1e-8",
-                             "increment test": "last correction"})
+                             "increment test": "last correction"}) \
+    + sub("Time", {"energy jump action": "warn"})
 
 # the MPM grid and shape functions of the input
 GRID = [
-    # MPM cell size: 0.2 m (base), 0.1 m; points per cell fixed
+    # MPM cell size: 0.2 m (base), 0.1 m, 0.05 m; points per cell fixed
     ("cell size", "h=0.1", sub("Background grid", {"subdivisions": "140, 76"})),
-    # the same with the steps whose energy balance jumps rejected and
-    # retried with half the step (EnergyJumpMonitor)
-    ("cell size", "h=0.1 reject",
+    # the same committing the steps whose energy balance jumps, with a
+    # warning (EnergyJumpMonitor; the input rejects them and retries with
+    # half the step)
+    ("cell size", "h=0.1 warn",
      sub("Background grid", {"subdivisions": "140, 76"}) +
-     sub("Time", {"energy jump action": "reject"})),
+     sub("Time", {"energy jump action": "warn"})),
     # the step halved with the cell: the flow then crosses the same
     # fraction of a cell per step as at 0.2 m (v dt / h about 0.25)
     ("cell size", "h=0.1 dt=0.005",
      sub("Background grid", {"subdivisions": "140, 76"}) +
      sub("Time", {"time step": "0.005"})),
+    ("cell size", "h=0.1 dt=0.005 warn",
+     sub("Background grid", {"subdivisions": "140, 76"}) +
+     sub("Time", {"time step": "0.005", "energy jump action": "warn"})),
+    ("cell size", "h=0.05 dt=0.0025",
+     sub("Background grid", {"subdivisions": "280, 152"}) +
+     sub("Time", {"time step": "0.0025"})),
     # the default Newton tolerance (residual 1e-8, last correction)
     ("cell size", "Newton 1e-8",
      sub("Solver", {"residual tolerance": "1e-8",
@@ -188,8 +197,28 @@ FLIP_PER_10_MS = [
      + sub("Solver", {"FLIP fraction reference step": "0.01"})),
 ]
 
+# a boulder at the flow's front (0.5 m square, 696 kg per metre, elastic,
+# E = 1e8 Pa), each body with its own velocity field (friction 0.4 between
+# them); the slope then acts on the material points (a boundary whose
+# particles act on the grid has one velocity field)
+BOULDER = [
+    ("bodies", "boulder",
+     sub("Body", {"number of bodies": "2"}) +
+     sub("Body 2", {"material": "Material 2", "geometry": "polygon",
+                    "vertices": "3.65, 3.903; 4.083, 3.653; 4.333, 4.086; "
+                                "3.90, 4.336",
+                    "points per cell per direction": "2"}) +
+     sub("Material 2", {"model": "neo-Hookean", "density": "2784",
+                        "Young's modulus": "1e8", "Poisson's ratio": "0.3"}) +
+     sub("Body contact", {"contact": "multi-velocity field",
+                          "friction coefficient": "0.4"}) +
+     sub("Boundary particles/Boundary 1",
+         {"contact side": "material points"})),
+]
+
 VARIANTS = [("base", "base", "")] + GRID + STUDIES + [
-    ("time step", "dt=0.0025", sub("Time", {"time step": "0.0025"}))] + [
+    ("time step", "dt=0.0025", sub("Time", {"time step": "0.0025"}))] + \
+    BOULDER + [
     ("trapezoidal " + study, "trapezoidal " + name, TRAPEZOIDAL + extra)
     for study, name, extra in [("base", "base", "")] + TRAPEZOIDAL_GRID
     + STUDIES + FLIP_PER_10_MS]
