@@ -92,27 +92,31 @@ TRAPEZOIDAL = sub("Solver", {"contact force in time": "trapezoidal",
                              "increment test": "last correction"}) \
     + sub("Time", {"energy jump action": "warn"})
 
+def refined(h, **time):
+    """The input on cells of h = 0.1 or 0.05 m (0.2 m in the base), with
+    the given entries of subsection Time (e.g. time_step="0.005")."""
+    cells = {"0.1": "140, 76", "0.05": "280, 152"}[h]
+    text = sub("Background grid", {"subdivisions": cells})
+    if time:
+        text += sub("Time", {k.replace("_", " "): v for k, v in time.items()})
+    return text
+
+
 # the MPM grid and shape functions of the input
 GRID = [
-    # MPM cell size: 0.2 m (base), 0.1 m, 0.05 m; points per cell fixed
-    ("cell size", "h=0.1", sub("Background grid", {"subdivisions": "140, 76"})),
-    # the same committing the steps whose energy balance jumps, with a
-    # warning (EnergyJumpMonitor; the input rejects them and retries with
-    # half the step)
-    ("cell size", "h=0.1 warn",
-     sub("Background grid", {"subdivisions": "140, 76"}) +
-     sub("Time", {"energy jump action": "warn"})),
-    # the step halved with the cell: the flow then crosses the same
-    # fraction of a cell per step as at 0.2 m (v dt / h about 0.25)
-    ("cell size", "h=0.1 dt=0.005",
-     sub("Background grid", {"subdivisions": "140, 76"}) +
-     sub("Time", {"time step": "0.005"})),
+    # MPM cell size: 0.2 m (base), 0.1 m, 0.05 m; points per cell fixed;
+    # "warn": the steps whose energy balance jumps committed with a warning
+    # (EnergyJumpMonitor; the input rejects them and retries with half the
+    # step); "dt": the step halved with the cell, so that the flow crosses
+    # the same fraction of a cell per step as at 0.2 m (v dt / h ~ 0.25)
+    ("cell size", "h=0.1", refined("0.1")),
+    ("cell size", "h=0.1 warn", refined("0.1", energy_jump_action="warn")),
+    ("cell size", "h=0.1 dt=0.005", refined("0.1", time_step="0.005")),
     ("cell size", "h=0.1 dt=0.005 warn",
-     sub("Background grid", {"subdivisions": "140, 76"}) +
-     sub("Time", {"time step": "0.005", "energy jump action": "warn"})),
-    ("cell size", "h=0.05 dt=0.0025",
-     sub("Background grid", {"subdivisions": "280, 152"}) +
-     sub("Time", {"time step": "0.0025"})),
+     refined("0.1", time_step="0.005", energy_jump_action="warn")),
+    ("cell size", "h=0.05 dt=0.0025", refined("0.05", time_step="0.0025")),
+    ("cell size", "h=0.05 dt=0.0025 warn",
+     refined("0.05", time_step="0.0025", energy_jump_action="warn")),
     # the default Newton tolerance (residual 1e-8, last correction)
     ("cell size", "Newton 1e-8",
      sub("Solver", {"residual tolerance": "1e-8",
@@ -122,37 +126,37 @@ GRID = [
     ("shape functions", "uGIMP", sub("Solver", {"shape functions": "uGIMP"})),
     ("shape functions", "uGIMP h=0.1",
      sub("Solver", {"shape functions": "uGIMP"}) +
-     sub("Background grid", {"subdivisions": "140, 76"})),
+     refined("0.1")),
 ]
 
 # the same for the earlier input (with the default Newton tolerance)
 TRAPEZOIDAL_GRID = [
     # MPM cell size: 0.2 m (base), 0.1 m, 0.05 m; points per cell fixed
-    ("cell size", "h=0.1", sub("Background grid", {"subdivisions": "140, 76"})),
-    ("cell size", "h=0.05", sub("Background grid", {"subdivisions": "280, 152"})),
+    ("cell size", "h=0.1", refined("0.1")),
+    ("cell size", "h=0.05", refined("0.05")),
     # the MPM's Newton tolerance of the granular benchmarks (residual 1e-6,
     # estimated error): the default 1e-8 stalls at rest on the finer grids
     ("cell size", "Newton 1e-6", sub("Solver", NEWTON_1E6)),
     ("cell size", "h=0.1 Newton 1e-6",
      sub("Solver", NEWTON_1E6) +
-     sub("Background grid", {"subdivisions": "140, 76"})),
+     refined("0.1")),
     # the same with the step of the spurious solution at 3.27 s rejected
     # and retried with half the step (EnergyJumpMonitor)
     ("cell size", "h=0.1 Newton 1e-6 reject",
      sub("Solver", NEWTON_1E6) +
-     sub("Background grid", {"subdivisions": "140, 76"}) +
+     refined("0.1") +
      sub("Time", {"energy jump action": "reject"})),
     ("cell size", "h=0.05 Newton 1e-6",
      sub("Solver", NEWTON_1E6) +
-     sub("Background grid", {"subdivisions": "280, 152"})),
+     refined("0.05")),
     # shape functions: uGIMP (no cell-crossing error) on the three grids
     ("shape functions", "uGIMP", sub("Solver", {"shape functions": "uGIMP"})),
     ("shape functions", "uGIMP h=0.1",
      sub("Solver", {"shape functions": "uGIMP"}) +
-     sub("Background grid", {"subdivisions": "140, 76"})),
+     refined("0.1")),
     ("shape functions", "uGIMP h=0.05",
      sub("Solver", {"shape functions": "uGIMP"}) +
-     sub("Background grid", {"subdivisions": "280, 152"})),
+     refined("0.05")),
 ]
 
 # (study, name, appended prm text), the same for both inputs
