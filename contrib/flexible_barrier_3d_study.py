@@ -101,6 +101,8 @@ TRAPEZOIDAL_TIME_STEPS = [
 ]
 
 # (study, name, appended prm text)
+INTERFACE_END = sub("Coupling", {"interface force in time": "end of step"})
+
 VARIANTS = [
     ("base", "base", ""),
 ] + [("time step", "dt=%s" % dt, sub("Time", {"time step": dt}))
@@ -126,6 +128,14 @@ VARIANTS = [
                              "subdivisions": "60, 66, 20"}) +
      sub("Checkpoint", {"every minutes": "10"})),
 ] + SENSITIVITY + [
+    # the net's contact force with its end value on both fields, the
+    # contact point interpolated (the default on a moving boundary) or
+    # moving with the material point
+    ("interface force", "interface end of step", INTERFACE_END),
+    ("interface force", "interface end of step, with the point",
+     INTERFACE_END + sub("Boundary particles/Boundary 2",
+                         {"contact point motion": "with the point"})),
+] + [
     ("trapezoidal " + study, "trapezoidal " + name, TRAPEZOIDAL + extra)
     for study, name, extra in [("base", "base", "")] + TRAPEZOIDAL_TIME_STEPS
     + SENSITIVITY]

@@ -172,6 +172,17 @@ namespace Talus
       "dissipation) over the run, relative to the largest released "
       "gravitational energy of the material, must not exceed it.");
     prm.declare_entry(
+      "barrier energy tolerance",
+      "0",
+      dealii::Patterns::Double(0.),
+      "If > 0: the barrier's own energy account, the change of its kinetic "
+      "and strain energy and its dissipation less the work of the interface "
+      "force on it (the coupling.csv column interface_work: F_{n+1} . du "
+      "per step with 'interface force in time = end of step', else the "
+      "trapezoidal (F_n + F_{n+1})/2 . du), relative to the largest "
+      "released gravitational energy of the material, must not exceed it "
+      "at any step.");
+    prm.declare_entry(
       "expected largest structure displacement",
       "0",
       dealii::Patterns::Double(0.),
@@ -373,6 +384,7 @@ namespace Talus
     const double max_mean_iterations =
       prm.get_double("maximum mean coupling iterations");
     const double balance_tolerance = prm.get_double("energy balance tolerance");
+    const double barrier_tolerance = prm.get_double("barrier energy tolerance");
     const double max_final_kinetic =
       prm.get_double("maximum final kinetic energy");
     const double conservation_tolerance =
@@ -416,6 +428,13 @@ namespace Talus
                         "'probe upper corner')");
 
     interface.attach(structure.get_structure(), mpm.boundaries());
+    // (before the MPM's setup, which checks the interface boundaries)
+    if (parameters.interface_force_at_end)
+      {
+        for (const unsigned int b : interface.boundary_indices())
+          mpm.boundaries().set_end_of_step_force(b);
+        structure.set_interface_force_at_end();
+      }
     mpm.setup();
     output.initialize(communicator);
     interface.setup(mpm.boundaries(), communicator);
@@ -552,7 +571,13 @@ namespace Talus
     dealii::Vector<double> displacement_at_pass = structure.displacement();
     // steps rejected for an energy jump, jumps kept at the step limit
     unsigned int energy_rejections = 0, energy_jumps_kept = 0;
-    const auto   loop_state = [&](auto &archive) {
+    // the barrier's account: the interface force's work on it, its energy
+    // and dissipation at the start, the largest difference [J]
+    double interface_work = 0., initial_barrier = 0., max_barrier_gap = 0.;
+    if (!resuming)
+      initial_barrier =
+        energies(initial_diagnostics).structure + structure.dissipated_energy();
+    const auto loop_state = [&](auto &archive) {
       archive &time_control &output &initial_diagnostics &initial_total
         &total_iterations &total_rejected &total_restarts &max_u &max_balance
           &max_released &max_conservation &final_kinetic &final_mass &S
@@ -567,6 +592,7 @@ namespace Talus
           &displacement_at_pass;
       // the energy jumps (EnergyJumpMonitor)
       archive &energy_jumps &energy_rejections &energy_jumps_kept;
+      archive &interface_work &initial_barrier &max_barrier_gap;
     };
     const std::string loop_tag = "talus-coupled-time-loop";
     if (resuming)
@@ -606,7 +632,7 @@ namespace Talus
                "penetration,mass,kinetic_energy,gravitational_energy,"
                "strain_energy,spring_energy,plastic_dissipation,"
                "friction_dissipation,numerical_dissipation,barrier_kinetic,"
-               "barrier_dissipation";
+               "barrier_dissipation,interface_work";
         // the friction dissipation split by boundary (slope, net, ...)
         for (unsigned int b = 0; b < mpm.boundaries().n_boundaries(); ++b)
           csv << ',' << mpm.boundaries().name(b) << "_friction_dissipation";
@@ -981,6 +1007,11 @@ namespace Talus
         const double change =
           e.mpm + e.structure + e.dissipation - initial_total;
         max_balance = std::max(max_balance, std::abs(change));
+        interface_work += result.interface_work;
+        max_barrier_gap =
+          std::max(max_barrier_gap,
+                   std::abs(e.structure + structure.dissipated_energy() -
+                            initial_barrier - interface_work));
         max_released =
           std::max(max_released,
                    std::abs(diagnostics.gravitational_energy -
@@ -1035,7 +1066,7 @@ namespace Talus
                      diagnostics.transfer_dissipation +
                      diagnostics.integrator_dissipation
                 << ',' << structure.kinetic_energy() << ','
-                << structure.dissipated_energy();
+                << structure.dissipated_energy() << ',' << interface_work;
             for (const double w : diagnostics.boundary_friction_dissipation)
               csv << ',' << w;
             csv << '\n';
@@ -1257,6 +1288,16 @@ namespace Talus
               << " (tolerance " << balance_tolerance << ")\n";
         if (!(relative <= balance_tolerance))
           failed.push_back("energy balance");
+      }
+    if (barrier_tolerance > 0.)
+      {
+        const double relative =
+          max_barrier_gap / std::max(max_released, 1e-300);
+        pcout << "  barrier energy: largest change less the interface "
+                 "force's work / released = "
+              << relative << " (tolerance " << barrier_tolerance << ")\n";
+        if (!(relative <= barrier_tolerance))
+          failed.push_back("barrier energy");
       }
     if (expected_displacement > 0.)
       {

@@ -418,9 +418,11 @@ namespace Talus
             Selection("default|interpolated|with the point"),
             "contact side = material points: how the contact point x_c = "
             "x_p - r n of a material point moves within a step. 'default': "
-            "'with the point' on a boundary at rest, 'interpolated' on a "
-            "moving one (a prescribed 'Displacement' or geometry = external, "
-            "a coupling interface, whose kinks follow the load). "
+            "'with the point' on a boundary at rest and on a coupling "
+            "interface with 'interface force in time = end of step' "
+            "(subsection Coupling), 'interpolated' on another moving one (a "
+            "prescribed 'Displacement' or geometry = external, a coupling "
+            "interface, whose kinks follow the load). "
             "'interpolated': its increment is interpolated at x_c from the "
             "nodes of the point's cell and r follows the point's current "
             "volume; the gap is measured again from the point's position at "
@@ -706,6 +708,7 @@ namespace Talus
             (contact_point_motion == "with the point" ||
              (contact_point_motion == "default" && !b.moving &&
               b.geometry != "external"));
+          b.contact_point_motion_default = contact_point_motion == "default";
           prm.leave_subsection();
           prm.leave_subsection();
           boundaries.push_back(std::move(b));
@@ -1118,6 +1121,20 @@ namespace Talus
                                      "boundary and a callable function"));
       boundaries[b].external_displacement = u;
       boundaries[b].moving                = true;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryParticles<dim>::set_end_of_step_force(const unsigned int b)
+    {
+      AssertThrow(b < boundaries.size(),
+                  dealii::ExcMessage("set_end_of_step_force() needs an "
+                                     "existing boundary"));
+      boundaries[b].end_of_step_force = true;
+      if (boundaries[b].contact_point_motion_default &&
+          boundaries[b].material_point_contact)
+        boundaries[b].contact_point_with_point = true;
     }
 
 

@@ -156,7 +156,10 @@ namespace Talus
                                                committed.size(),
                                                communicator,
                                                normal_springs());
-              springs *= robin_stiffness(dt);
+              // (the structure's residual counts the interface force
+              // interface_force_factor() times, so its stiffness too)
+              springs *=
+                robin_stiffness(dt) * structure.interface_force_factor();
             }
         }
         if (springs.size() > 0)
@@ -271,6 +274,14 @@ namespace Talus
         interface.interface_work(structure.displacement(), force);
       result.work_structure = work.first;
       result.work_points    = work.second;
+      {
+        const bool  end_value = parameters.interface_force_at_end;
+        const auto &u         = structure.displacement();
+        for (unsigned int i = 0; i < force.size(); ++i)
+          result.interface_work +=
+            (end_value ? force[i] : 0.5 * (force[i] + committed_force[i])) *
+            (u[i] - committed[i]);
+      }
       return result;
     }
 
@@ -355,9 +366,11 @@ namespace Talus
       std::vector<dealii::Vector<double>>          columns;
       std::vector<dealii::types::global_dof_index> S;
       bool                                         any_force = false;
+      // (the structure takes the force interface_force_factor() times)
       for (unsigned int c = 0; c < dofs.size(); ++c)
         {
           dealii::Vector<double> v(dF[c]);
+          v *= structure.interface_force_factor();
           any_force = any_force || v.linfty_norm() > 0.;
           if (springs.size() == n)
             v[dofs[c]] += springs[dofs[c]];

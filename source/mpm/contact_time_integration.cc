@@ -29,10 +29,11 @@ namespace Talus
         "contact's energy error k |dg|^2 / 2 is dissipation, booked as the "
         "boundary's. Needs 'start acceleration = from forces' (the "
         "acceleration of the other forces starts the step), so not with "
-        "grid friction boundaries. The other boundaries of boundary "
-        "particles (moving ones, coupling interfaces, fixed, slip, Nitsche, "
-        "Lagrange multipliers) keep the trapezoidal rule, and the nodes of "
-        "their points the projected start acceleration. Lumped mass only; "
+        "grid friction boundaries. Coupling interfaces follow 'interface "
+        "force in time' in subsection Coupling. The other boundaries of "
+        "boundary particles (moving ones, fixed, slip, Nitsche, Lagrange "
+        "multipliers) keep the trapezoidal rule, and the nodes of their "
+        "points the projected start acceleration. Lumped mass only; "
         "an input in which no boundary would use it is rejected. "
         "doc/theory.md, 'Contact force in time'.");
     }
@@ -106,7 +107,10 @@ namespace Talus
       const Boundaries::BoundaryDescription<dim> &desc) const
     {
       using Boundaries::Condition;
-      return uses_end_contact_force() && !desc.moving && !desc.augmented &&
+      // (a moving boundary only as a coupling interface that asks for it:
+      // the structure then takes the end value too)
+      return uses_end_contact_force() &&
+             (!desc.moving || desc.end_of_step_force) && !desc.augmented &&
              !desc.lagrange_multiplier && !desc.nitsche &&
              (desc.condition == Condition::contact ||
               desc.condition == Condition::friction);
@@ -128,6 +132,33 @@ namespace Talus
     MPMSolver<dim>::check_contact_time_integration(
       const Boundaries::BoundaryParticles<dim> &boundaries) const
     {
+      // a coupling interface asked for the end-of-step force
+      // (Coupling/interface force in time) must get it: the structure
+      // takes the end value whatever the MPM does
+      for (unsigned int b = 0; b < boundaries.n_boundaries(); ++b)
+        {
+          const auto &desc = boundaries.boundary(b);
+          if (!desc.end_of_step_force || end_of_step_contact(desc))
+            continue;
+          if (!uses_end_contact_force())
+            InputFile::reject(
+              "Solver",
+              "contact force in time",
+              contact_time_integration.end_of_step ? "end of step" :
+                                                     "trapezoidal",
+              "'end of step' in a dynamic analysis with 'mass matrix = "
+              "lumped' when 'interface force in time = end of step' in "
+              "subsection Coupling (boundary '" +
+                desc.name + "')");
+          InputFile::reject(
+            "Coupling",
+            "interface force in time",
+            "end of step",
+            "'trapezoidal' for interface boundary '" + desc.name +
+              "': 'end of step' needs 'condition = contact' or "
+              "'friction' imposed by the penalty method (not Nitsche, the "
+              "augmented Lagrangian or Lagrange multipliers)");
+        }
       // 'end of step' that no boundary would use is an error, not a
       // silent trapezoidal rule
       if (contact_time_integration.end_of_step)
@@ -141,10 +172,12 @@ namespace Talus
               "contact force in time",
               "end of step",
               "'trapezoidal' here: 'end of step' acts on boundaries of "
-              "boundary particles at rest with 'condition = contact' or "
-              "'friction' and the penalty method, in a dynamic analysis "
-              "with 'mass matrix = lumped'; this input has none (or is "
-              "quasi-static, or uses the consistent mass)");
+              "boundary particles at rest (or coupling interfaces with "
+              "'interface force in time = end of step') with 'condition "
+              "= contact' or 'friction' and the penalty method, in a "
+              "dynamic analysis with 'mass matrix = lumped'; this input "
+              "has none (or is quasi-static, or uses the consistent "
+              "mass)");
         }
       // (boundaries whose contact force acts with its end value are not
       // in the start acceleration: ContactTimeIntegration)

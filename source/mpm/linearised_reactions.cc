@@ -118,7 +118,12 @@ namespace Talus
               // cache_boundary_particles())
               delta[l] =
                 loaded[l].active_share * point_delta(*loaded[l].bp, column);
-              const dealii::Tensor<1, dim> f = -(loaded[l].D * delta[l]);
+              // (a force that acts with its end value counts 1/(2 beta)
+              // times in the residual, ContactTimeIntegration; the
+              // reaction below is the force itself)
+              const double s =
+                loaded[l].bp->end_of_step ? end_contact_factor() : 1.;
+              const dealii::Tensor<1, dim> f = -s * (loaded[l].D * delta[l]);
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   const auto ci = fe.system_to_component_index(i);

@@ -145,16 +145,43 @@ namespace Talus
       a_trial.reinit(n);
       v_trial.reinit(n);
       damping_trial.reinit(n);
+      // the external forces' acceleration a^c = M^-1 F when they act with
+      // their end value (lumped mass; the condensed forces, as assemble()
+      // applies them; nodes without mass keep F in their static balance)
+      dealii::Vector<double> a_c(n), F_c(n);
+      if (interface_force_at_end)
+        {
+          AssertThrow(!consistent_mass,
+                      dealii::ExcMessage("interface_force_at_end needs the "
+                                         "lumped mass"));
+          std::vector<dealii::types::global_dof_index> one(1);
+          dealii::Vector<double>                       value(1);
+          for (unsigned int i = 0; i < n; ++i)
+            if (structure.external_forces[i] != 0.)
+              {
+                one[0]   = i;
+                value[0] = structure.external_forces[i];
+                constraints.distribute_local_to_global(value, one, F_c);
+              }
+          for (unsigned int i = 0; i < n; ++i)
+            if (constraints.is_constrained(i) || !(M[i] > 0.))
+              F_c[i] = 0.;
+            else
+              a_c[i] = F_c[i] / M[i];
+        }
 
       const auto extra = [&](const dealii::Vector<double> &u,
                              dealii::Vector<double>       &r,
                              dealii::SparseMatrix<double> *K) {
         for (unsigned int i = 0; i < n; ++i)
           {
+            // (with a^c: Newmark's acceleration of the increment less
+            // a^c/(2 beta), the velocity with dt a^c)
             a_trial[i] = (u[i] - u_n[i] - dt * velocity[i]) / (beta * dt * dt) -
-                         (0.5 - beta) / beta * acceleration[i];
+                         (0.5 - beta) / beta * acceleration[i] -
+                         a_c[i] / (2. * beta);
             v_trial[i] = velocity[i] + dt * ((1. - gamma) * acceleration[i] +
-                                             gamma * a_trial[i]);
+                                             gamma * a_trial[i] + a_c[i]);
           }
         dealii::Vector<double> Kv;
         if (stiffness_damping > 0.)
@@ -185,7 +212,9 @@ namespace Talus
         for (unsigned int i = 0; i < n; ++i)
           if (!constraints.is_constrained(i))
             {
-              r[i] += Mw[i];
+              // (+ F_c: the forces act through a^c, not as assemble()'s
+              // load)
+              r[i] += Mw[i] + F_c[i];
               if (stiffness_damping > 0.)
                 r[i] += stiffness_damping * Kv[i];
               if (K != nullptr)
@@ -255,6 +284,15 @@ namespace Talus
       const auto &M = structure.lumped_mass();
       for (unsigned int i = 0; i < x.size(); ++i)
         y[i] = M[i] * x[i];
+    }
+
+
+    double
+    DynamicSolver::interface_force_factor() const
+    {
+      if (!enabled || !interface_force_at_end)
+        return 1.;
+      return (1. - alpha) / (2. * 0.25 * (1. - alpha) * (1. - alpha));
     }
 
 

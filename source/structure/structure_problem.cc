@@ -159,6 +159,26 @@ namespace Talus
 
 
     void
+    StructureProblem::set_interface_force_at_end()
+    {
+      if (dynamic_solver.enabled && dynamic_solver.consistent_mass)
+        InputFile::reject("Structure/Dynamics",
+                          "mass matrix",
+                          "consistent",
+                          "'lumped' with 'interface force in time = end of "
+                          "step' in subsection Coupling");
+      dynamic_solver.interface_force_at_end = true;
+    }
+
+
+    double
+    StructureProblem::interface_force_factor() const
+    {
+      return dynamic_solver.interface_force_factor();
+    }
+
+
+    void
     StructureProblem::set_interface_springs(
       const dealii::Vector<double> &stiffness,
       const dealii::Vector<double> &anchor)

@@ -118,6 +118,9 @@ namespace Talus
        * measured again from the point's position at every step).
        */
       bool contact_point_with_point = false;
+      /** 'contact point motion = default' (the choice then follows the
+       * boundary: at rest, moving, an end-of-step coupling interface). */
+      bool contact_point_motion_default = true;
       /**
        * Normal dashpot of material-point contact relative to the spring,
        * eta: the force on a pressed point is k (-g_n - eta s (g_n -
@@ -160,6 +163,14 @@ namespace Talus
                                            const double)>
            external_displacement;
       bool moving = false;
+      /**
+       * A coupling interface whose unilateral contact force acts with its
+       * end value over the step, as that of boundaries at rest with
+       * 'contact force in time = end of step' (MPM::ContactTimeIntegration;
+       * set by the coupling: 'interface force in time' in subsection
+       * Coupling). Default: the trapezoidal rule of moving boundaries.
+       */
+      bool end_of_step_force = false;
       /** Penalty parameter used (automatic or given) [Pa/m]. */
       double beta = 0.;
     };
@@ -372,6 +383,19 @@ namespace Talus
       void
       set_surface(const unsigned int                         b,
                   const dealii::Triangulation<dim - 1, dim> &surface);
+
+      /**
+       * Let the contact force of the moving boundary @p b act with its end
+       * value over the step (BoundaryDescription::end_of_step_force). Call
+       * it before the MPM solver is set up; the solver checks that the
+       * boundary's condition and method allow it. With 'contact point
+       * motion = default' the contact point then moves with the material
+       * point: the end-of-step force books the change of the springs'
+       * energy from the gap the step starts from, which must be the one
+       * the last step ended with.
+       */
+      void
+      set_end_of_step_force(const unsigned int b);
 
       /**
        * Move the particles of moving boundaries to X + u_bar(X, t) and sort

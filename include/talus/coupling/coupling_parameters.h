@@ -123,6 +123,15 @@ namespace Talus
       bool interface_stiffness_jacobian = false;
       /** The MPM's Newton of an iteration starts from the last increment. */
       bool warm_start = false;
+      /**
+       * 'interface force in time = end of step': the unilateral contact
+       * force of the interface boundaries acts with its end value over the
+       * step, on the material (MPM::ContactTimeIntegration) and on the
+       * structure (Structure::DynamicSolver::interface_force_at_end), so
+       * that the interface does no work besides the penalty's booked
+       * dissipation. Default: the trapezoidal rule of both Newmark schemes.
+       */
+      bool interface_force_at_end = false;
 
       Scheme                 scheme = Scheme::strong;
       Order                  order  = Order::MPM_first;

@@ -51,6 +51,13 @@ namespace Talus
       /** Interface work of the structure's vectors U . F and of the points
        * sum u_p . f_p at the accepted iterate [J] (equal to round-off). */
       double work_structure = 0., work_points = 0.;
+      /**
+       * Work of the interface force on the structure in the step [J]: with
+       * its end value F_{n+1} . du ('interface force in time = end of
+       * step'), else (F_n + F_{n+1})/2 . du, the work that the structure's
+       * Newmark scheme sees (du: the structure's increment).
+       */
+      double interface_work = 0.;
       /** Why the step failed (empty if it converged). */
       std::string failure;
     };

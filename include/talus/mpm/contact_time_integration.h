@@ -47,11 +47,14 @@ namespace Talus
      * a_n = M^-1 (f_ext - f_int)(u_n) ('start acceleration = from
      * forces', required): the points' projected acceleration would miss
      * the contact force that balances the others at a point in contact.
-     * Boundaries that move (prescribed motion, coupling interfaces),
-     * Nitsche's method, the augmented Lagrangian and Lagrange
-     * multipliers, and the bonded (`fixed`) and `slip` conditions keep
-     * the trapezoidal rule, and the nodes of the cells of their points
-     * the projected start acceleration (the residual at du = 0 does not
+     * Coupling interfaces take it with 'interface force in time = end of
+     * step' (subsection Coupling; Boundaries::BoundaryDescription::
+     * end_of_step_force), and the structure then takes the interface
+     * force with its end value as well (Structure::DynamicSolver). Other
+     * boundaries that move (prescribed motion), Nitsche's method, the augmented
+     * Lagrangian and Lagrange multipliers, and the bonded (`fixed`) and `slip`
+     * conditions keep the trapezoidal rule, and the nodes of the cells of their
+     * points the projected start acceleration (the residual at du = 0 does not
      * hold their start force). Not with grid friction boundaries. Lumped
      * mass only; an input in which no boundary would use it is rejected.
      */

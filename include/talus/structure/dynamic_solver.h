@@ -30,6 +30,19 @@ namespace Talus
      * load factor 1 plus Structure::external_forces, which a coupling sets
      * before each step. Sub-solver contract: solve_step() can be repeated
      * (it starts from the last committed state), commit_step() accepts it.
+     *
+     * With interface_force_at_end, the external forces F (the coupling's
+     * interface force) act with their end value over the whole step, as
+     * the MPM's unilateral contact force with 'contact force in time =
+     * end of step' (MPM::ContactTimeIntegration; Doyen, Ern & Piperno
+     * 2011): a^c = M^-1 F adds dt^2/2 a^c to the increment and dt a^c to
+     * the velocity, and a_{n+1} above is the acceleration of the other
+     * forces. In the residual F then counts (1 - alpha)/(2 beta) times
+     * (interface_force_factor()), the step carries only a_{n+1} into the
+     * next one, and for alpha = 0 the work of F in the step is
+     * F_{n+1} . du, the work the MPM's end-of-step contact force does on
+     * the material with the opposite sign: the interface exchanges no
+     * energy besides the penalty's booked dissipation. Lumped mass only.
      */
     class DynamicSolver
     {
@@ -70,6 +83,15 @@ namespace Talus
       const dealii::Vector<double> &
       trial_velocity() const;
 
+      /**
+       * How many times the external forces count in the step's residual:
+       * (1 - alpha)/(2 beta) with interface_force_at_end in a dynamic
+       * analysis, else 1. A linearisation of the interface force (the
+       * coupling's interface springs and initial Jacobian) scales with it.
+       */
+      double
+      interface_force_factor() const;
+
       /** Kinetic energy v.M v/2 of the committed state [J]. */
       double
       kinetic_energy() const;
@@ -94,6 +116,9 @@ namespace Talus
       double stiffness_damping = 0.; ///< a_K [s]
       /** Consistent instead of lumped mass matrix. */
       bool consistent_mass = false;
+      /** The external forces act with their end value (see above; set by
+       * the coupling, 'interface force in time'). */
+      bool interface_force_at_end = false;
 
     private:
       Structure                   &structure;

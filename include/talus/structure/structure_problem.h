@@ -183,6 +183,21 @@ namespace Talus
       const dealii::Vector<double> &
       interface_forces() const;
 
+      /**
+       * Let the interface forces act with their end value over the step
+       * (DynamicSolver::interface_force_at_end; 'interface force in time =
+       * end of step' in subsection Coupling). A dynamic structure needs
+       * the lumped mass (else the input is rejected); a static one solves
+       * for the end value anyway.
+       */
+      void
+      set_interface_force_at_end();
+
+      /** DynamicSolver::interface_force_factor(): how many times the
+       * interface forces count in the step's residual. */
+      double
+      interface_force_factor() const;
+
       /** Robin interface springs [N/m] per global DoF towards @p anchor
        * (Structure::interface_springs); empty vectors remove them. */
       void
