@@ -48,7 +48,7 @@ namespace Talus
       /** Format name in the first line of every manifest. */
       static const std::string format_name;
       /** Version of the checkpoint format (manifest line 1). */
-      static constexpr unsigned int format_version = 9;
+      static constexpr unsigned int format_version = 10;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
