@@ -156,10 +156,14 @@ namespace Talus
                                                committed.size(),
                                                communicator,
                                                normal_springs());
-              // (the structure's residual counts the interface force
-              // interface_force_factor() times, so its stiffness too)
-              springs *=
-                robin_stiffness(dt) * structure.interface_force_factor();
+              // (with the interface force at its end value the
+              // material's incremental interface stiffness is 1/(2 beta)
+              // times the trapezoidal one, and the structure counts the
+              // force (1 - alpha)/(2 beta) times: for alpha = 0 the
+              // springs stay those of the trapezoidal rule; scaled by
+              // the factor, the dropped block took 4.65 instead of 4.26
+              // coupling iterations per step)
+              springs *= robin_stiffness(dt);
             }
         }
         if (springs.size() > 0)

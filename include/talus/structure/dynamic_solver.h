@@ -87,7 +87,7 @@ namespace Talus
        * How many times the external forces count in the step's residual:
        * (1 - alpha)/(2 beta) with interface_force_at_end in a dynamic
        * analysis, else 1. A linearisation of the interface force (the
-       * coupling's interface springs and initial Jacobian) scales with it.
+       * coupling's initial Jacobian) scales with it.
        */
       double
       interface_force_factor() const;
